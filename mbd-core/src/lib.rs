@@ -1,0 +1,14 @@
+//! The runtime of mbd: the model contract that generated code implements, integrators,
+//! kinematic and dynamic analyses, and events.
+//!
+//! Users normally depend on the facade crate `mbd`, which re-exports this crate and the
+//! `#[derive(Mechanism)]`.
+
+pub mod error;
+pub mod integrate;
+pub mod jacobian;
+pub mod model;
+
+pub use error::{Error, Result};
+pub use integrate::{Options, Stats};
+pub use model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};

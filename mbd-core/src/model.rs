@@ -1,0 +1,85 @@
+//! The contract between generated models and the numerics.
+//!
+//! Sizes are const generics (`Vector<N>` is `SVector<f64, N>`), because stable Rust cannot
+//! size an array by an associated constant inside generic code. The derive macro knows
+//! every size of a model when it expands, so it writes them out as literals: the number of
+//! free coordinates `N`, of constraints `M`, of first-order states `D = 2 N`. Generic code in
+//! this crate then checks the relations between them at compile time with inline `const`
+//! assertions (`const { assert!(D == 2 * N) }`), and a user never writes a size.
+
+use crate::error::Result;
+use nalgebra::{SMatrix, SVector};
+
+/// A column of `N` reals.
+pub type Vector<const N: usize> = SVector<f64, N>;
+/// An `R x C` matrix of reals.
+pub type Matrix<const R: usize, const C: usize> = SMatrix<f64, R, C>;
+
+/// A first-order system `y' = f(t, y)` of fixed dimension `D`: what every integrator advances.
+///
+/// A generated mechanism implements it with `y = [q; qd]` and `D = 2 N`.
+pub trait OdeSystem<const D: usize> {
+    /// `f(t, y)`. An error (a singular mass matrix, say) stops the integration with that error.
+    fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>>;
+
+    /// `df/dy` at `(t, y)`. The default differentiates `rhs` by forward differences;
+    /// generated models override it with the exact derivative and set [`Self::EXACT_JACOBIAN`].
+    fn jacobian(&self, t: f64, y: &Vector<D>) -> Result<Matrix<D, D>> {
+        crate::jacobian::forward_difference(|y| self.rhs(t, y), y)
+    }
+
+    /// Whether [`Self::jacobian`] is exact (generated) rather than a finite difference.
+    const EXACT_JACOBIAN: bool = false;
+
+    /// Bring `y` back onto the system's invariant manifolds after an accepted step.
+    /// Closed loops project onto `Phi = 0` and `Phi_q qd + Phi_t = 0`; the default does nothing.
+    fn project(&self, _t: f64, _y: &mut Vector<D>) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// A mechanism in minimal coordinates: `M(q, t) qdd = f(q, qd, t)`, plus constraints when
+/// [`Constrained`] is also implemented.
+///
+/// `q` holds the free coordinates only: driven coordinates are known functions of time and
+/// are substituted into the kinematics by the derive.
+pub trait Mechanism<const N: usize> {
+    /// Names of the free generalised coordinates, in state order.
+    const COORDINATES: [&'static str; N];
+
+    /// The mass matrix `M(q, t)`: symmetric, positive definite when every coordinate moves mass.
+    fn mass_matrix(&self, t: f64, q: &Vector<N>) -> Matrix<N, N>;
+
+    /// The right-hand side `f(q, qd, t)`: generalised applied forces (gravity, springs,
+    /// dampers, loads) minus the velocity-product terms.
+    fn forces(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Vector<N>;
+
+    /// Accelerations `qdd`: `M qdd = f`, or the constrained system for closed loops.
+    fn acceleration(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Result<Vector<N>>;
+
+    /// Total mechanical energy: kinetic plus the potential of gravity and springs. Conserved
+    /// by a model without dampers, friction, loads or drives; the stress suite watches it.
+    fn energy(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> f64;
+}
+
+/// Holonomic constraints `Phi(q, t) = 0` on a [`Mechanism`] (`M` equations).
+///
+/// Sign convention: `M qdd + Phi_q^T lambda = f`, so `-Phi_q^T lambda` is the generalised
+/// constraint force and a driving constraint's multiplier is minus the driving effort.
+pub trait Constrained<const N: usize, const M: usize>: Mechanism<N> {
+    /// `Phi(q, t)`.
+    fn phi(&self, t: f64, q: &Vector<N>) -> Vector<M>;
+    /// `Phi_q = dPhi/dq`.
+    fn phi_q(&self, t: f64, q: &Vector<N>) -> Matrix<M, N>;
+    /// `Phi_t = dPhi/dt`.
+    fn phi_t(&self, t: f64, q: &Vector<N>) -> Vector<M>;
+    /// `gamma = -(Phi_q qd)_q qd - 2 Phi_qt qd - Phi_tt`, so that `Phi_q qdd = gamma`.
+    fn gamma(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Vector<M>;
+    /// `qdd` and `lambda` from `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]`.
+    fn acceleration_and_multipliers(
+        &self,
+        t: f64,
+        q: &Vector<N>,
+        qd: &Vector<N>,
+    ) -> Result<(Vector<N>, Vector<M>)>;
+}

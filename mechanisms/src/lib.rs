@@ -1,0 +1,1 @@
+//! The textbook cases of the validation manual as generated models.
