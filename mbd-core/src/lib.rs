@@ -8,6 +8,7 @@ pub mod error;
 pub mod integrate;
 pub mod jacobian;
 pub mod model;
+pub mod solve;
 
 pub use error::{Error, Result};
 pub use integrate::{Options, Stats};

@@ -1,0 +1,79 @@
+//! The linear solves behind accelerations: `M qdd = f` and the augmented constrained system.
+
+use crate::error::{Error, Result};
+use crate::model::{Matrix, Vector};
+
+/// `qdd` from `M qdd = f`: Cholesky (M is symmetric positive definite for a well-posed
+/// model), with LU as the fallback for a mass matrix that is merely non-singular.
+pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) -> Result<Vector<N>> {
+    let x = match mass.cholesky() {
+        Some(chol) => chol.solve(f),
+        None => mass.lu().solve(f).ok_or(Error::SingularMassMatrix { t })?,
+    };
+    finite(t, x)
+}
+
+/// `(qdd, lambda)` from `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` (`A = N + M`),
+/// by LU with partial pivoting of the whole augmented matrix, which stays regular when
+/// `M` alone is singular (massless coordinates fixed by constraints).
+pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
+    t: f64,
+    mass: &Matrix<N, N>,
+    f: &Vector<N>,
+    phi_q: &Matrix<M, N>,
+    gamma: &Vector<M>,
+) -> Result<(Vector<N>, Vector<M>)> {
+    const { assert!(A == N + M, "augmented size must be N + M") };
+    let mut k = Matrix::<A, A>::zeros();
+    k.fixed_view_mut::<N, N>(0, 0).copy_from(mass);
+    k.fixed_view_mut::<M, N>(N, 0).copy_from(phi_q);
+    k.fixed_view_mut::<N, M>(0, N).copy_from(&phi_q.transpose());
+    let mut rhs = Vector::<A>::zeros();
+    rhs.fixed_rows_mut::<N>(0).copy_from(f);
+    rhs.fixed_rows_mut::<M>(N).copy_from(gamma);
+    let x = k
+        .lu()
+        .solve(&rhs)
+        .ok_or(Error::SingularConstraintJacobian { t })?;
+    let x = finite(t, x)?;
+    Ok((
+        x.fixed_rows::<N>(0).into_owned(),
+        x.fixed_rows::<M>(N).into_owned(),
+    ))
+}
+
+fn finite<const N: usize>(t: f64, x: Vector<N>) -> Result<Vector<N>> {
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(x)
+    } else {
+        Err(Error::NonFinite { t })
+    }
+}
+
+/// `y' = [qd; qdd]` for a second-order model with `y = [q; qd]` (`D = 2 N`).
+pub fn second_order_rhs<const N: usize, const D: usize>(
+    y: &Vector<D>,
+    acceleration: impl FnOnce(&Vector<N>, &Vector<N>) -> Result<Vector<N>>,
+) -> Result<Vector<D>> {
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let q = y.fixed_rows::<N>(0).into_owned();
+    let qd = y.fixed_rows::<N>(N).into_owned();
+    let qdd = acceleration(&q, &qd)?;
+    let mut dy = Vector::<D>::zeros();
+    dy.fixed_rows_mut::<N>(0).copy_from(&qd);
+    dy.fixed_rows_mut::<N>(N).copy_from(&qdd);
+    Ok(dy)
+}
+
+/// `df/dy = [0 I; dqdd/dq dqdd/dqd]` for `y = [q; qd]`.
+pub fn second_order_jacobian<const N: usize, const D: usize>(
+    dqdd_dq: &Matrix<N, N>,
+    dqdd_dqd: &Matrix<N, N>,
+) -> Matrix<D, D> {
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let mut j = Matrix::<D, D>::zeros();
+    j.fixed_view_mut::<N, N>(0, N).fill_with_identity();
+    j.fixed_view_mut::<N, N>(N, 0).copy_from(dqdd_dq);
+    j.fixed_view_mut::<N, N>(N, N).copy_from(dqdd_dqd);
+    j
+}
