@@ -7,6 +7,7 @@
 pub mod error;
 pub mod integrate;
 pub mod jacobian;
+pub mod linalg;
 pub mod model;
 pub mod solve;
 

@@ -1,6 +1,7 @@
 //! The linear solves behind accelerations: `M qdd = f` and the augmented constrained system.
 
 use crate::error::{Error, Result};
+use crate::linalg::Lu;
 use crate::model::{Matrix, Vector};
 
 /// `qdd` from `M qdd = f`: Cholesky (M is symmetric positive definite for a well-posed
@@ -8,7 +9,9 @@ use crate::model::{Matrix, Vector};
 pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) -> Result<Vector<N>> {
     let x = match mass.cholesky() {
         Some(chol) => chol.solve(f),
-        None => mass.lu().solve(f).ok_or(Error::SingularMassMatrix { t })?,
+        None => Lu::factor(*mass)
+            .ok_or(Error::SingularMassMatrix { t })?
+            .solve(f),
     };
     finite(t, x)
 }
@@ -31,10 +34,9 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     let mut rhs = Vector::<A>::zeros();
     rhs.fixed_rows_mut::<N>(0).copy_from(f);
     rhs.fixed_rows_mut::<M>(N).copy_from(gamma);
-    let x = k
-        .lu()
-        .solve(&rhs)
-        .ok_or(Error::SingularConstraintJacobian { t })?;
+    let x = Lu::factor(k)
+        .ok_or(Error::SingularConstraintJacobian { t })?
+        .solve(&rhs);
     let x = finite(t, x)?;
     Ok((
         x.fixed_rows::<N>(0).into_owned(),

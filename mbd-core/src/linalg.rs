@@ -1,0 +1,103 @@
+//! Dense LU with partial pivoting on fixed-size matrices, real or complex.
+//!
+//! nalgebra's own `LU` needs `Const<N>: DimMin` bounds (typenum conversions) that do not
+//! hold for a bare `const N: usize` in generic code; this small factorisation needs none,
+//! and serves both the real systems and Radau IIA's complex one.
+
+use nalgebra::{ComplexField, SMatrix, SVector};
+
+/// `P A = L U`, stored in place (unit lower `L` below the diagonal).
+#[derive(Debug, Clone)]
+pub struct Lu<T: ComplexField, const N: usize> {
+    lu: SMatrix<T, N, N>,
+    perm: [usize; N],
+}
+
+impl<T: ComplexField<RealField = f64> + Copy, const N: usize> Lu<T, N> {
+    /// Factor `a`; `None` when a pivot is zero or not finite (the matrix is singular).
+    pub fn factor(mut a: SMatrix<T, N, N>) -> Option<Self> {
+        let mut perm = [0usize; N];
+        for (i, p) in perm.iter_mut().enumerate() {
+            *p = i;
+        }
+        let scale = a.iter().fold(0.0f64, |m, v| m.max(v.modulus()));
+        for k in 0..N {
+            let (p, pivot) =
+                (k..N)
+                    .map(|i| (i, a[(i, k)].modulus()))
+                    .fold(
+                        (k, -1.0),
+                        |best, cur| if cur.1 > best.1 { cur } else { best },
+                    );
+            if !(pivot > scale * f64::EPSILON * N as f64) || !pivot.is_finite() {
+                return None;
+            }
+            if p != k {
+                a.swap_rows(p, k);
+                perm.swap(p, k);
+            }
+            let akk = a[(k, k)];
+            for i in k + 1..N {
+                let l = a[(i, k)] / akk;
+                a[(i, k)] = l;
+                for j in k + 1..N {
+                    let akj = a[(k, j)];
+                    a[(i, j)] -= l * akj;
+                }
+            }
+        }
+        Some(Lu { lu: a, perm })
+    }
+
+    /// Solve `A x = b` with the stored factors.
+    pub fn solve(&self, b: &SVector<T, N>) -> SVector<T, N> {
+        let mut x = SVector::<T, N>::from_fn(|i, _| b[self.perm[i]]);
+        for i in 0..N {
+            for j in 0..i {
+                let xj = x[j];
+                x[i] -= self.lu[(i, j)] * xj;
+            }
+        }
+        for i in (0..N).rev() {
+            for j in i + 1..N {
+                let xj = x[j];
+                x[i] -= self.lu[(i, j)] * xj;
+            }
+            x[i] /= self.lu[(i, i)];
+        }
+        x
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use nalgebra::{Complex, Matrix3, Vector3};
+
+    #[test]
+    fn solves_a_system_that_needs_pivoting() {
+        // Zero leading pivot: fails without row exchanges.
+        let a = Matrix3::new(0.0, 2.0, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0, 3.0);
+        let x = Vector3::new(1.0, -2.0, 0.5);
+        let lu = Lu::factor(a).unwrap();
+        assert_relative_eq!(lu.solve(&(a * x)), x, epsilon = 1e-14);
+    }
+
+    #[test]
+    fn reports_a_singular_matrix() {
+        let a = Matrix3::new(1.0, 2.0, 3.0, 2.0, 4.0, 6.0, 0.0, 1.0, 1.0);
+        assert!(Lu::factor(a).is_none());
+    }
+
+    #[test]
+    fn solves_a_complex_system() {
+        let i = Complex::new(0.0, 1.0);
+        let one = Complex::new(1.0, 0.0);
+        let a = nalgebra::Matrix2::new(one + i, 2.0 * one, -i, 3.0 * one);
+        let x = nalgebra::Vector2::new(one - i, 2.0 * i);
+        let lu = Lu::factor(a).unwrap();
+        let err = (lu.solve(&(a * x)) - x).norm();
+        assert!(err < 1e-14, "error {err}");
+    }
+}
