@@ -1,0 +1,422 @@
+//! The arena: hash-consed nodes, the symbol table, and per-node summaries (free symbols,
+//! non-smooth operations) computed once when a node is interned.
+//!
+//! Every node is created after its children, so ids are a topological order of the DAG:
+//! a child's id is always smaller than its parent's. `diff`, `substitute`, `eval` and
+//! `schedule` rely on this to work bottom-up without recursion.
+
+use std::collections::{BTreeSet, HashMap, HashSet};
+use std::fmt;
+
+/// A node of the expression DAG, an index into [`Graph`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct Expr(u32);
+
+/// A named scalar symbol (coordinate, speed, parameter, time).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct Sym(u32);
+
+impl Expr {
+    pub(super) fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl Sym {
+    fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// Elementary functions of one argument, named as the `f64` methods that evaluate them.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Func {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Sinh,
+    Cosh,
+    Tanh,
+    Exp,
+    Ln,
+    Sqrt,
+    Abs,
+    /// `f64::signum`: `+1` for `+0.0` and positive numbers, `-1` for `-0.0` and negative ones.
+    Signum,
+}
+
+impl Func {
+    const ALL: [Func; 14] = [
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Asin,
+        Func::Acos,
+        Func::Atan,
+        Func::Sinh,
+        Func::Cosh,
+        Func::Tanh,
+        Func::Exp,
+        Func::Ln,
+        Func::Sqrt,
+        Func::Abs,
+        Func::Signum,
+    ];
+
+    /// The function whose `f64` method is called `name` (`"sin"`, `"ln"`, `"signum"`, …).
+    pub fn from_name(name: &str) -> Option<Func> {
+        Self::ALL.into_iter().find(|f| f.name() == name)
+    }
+
+    /// The name of the `f64` method that evaluates this function.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
+            Func::Tanh => "tanh",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+            Func::Sqrt => "sqrt",
+            Func::Abs => "abs",
+            Func::Signum => "signum",
+        }
+    }
+
+    /// Whether the function is differentiable wherever it is defined (not `abs`, `signum`).
+    pub fn is_smooth(self) -> bool {
+        !matches!(self, Func::Abs | Func::Signum)
+    }
+}
+
+/// A numeric constant stored as `f64` bits so that it can be hashed and interned.
+/// `-0.0` is stored as `0.0` and every NaN as the one `f64::NAN`, so equal-looking
+/// constants share a node.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Const(u64);
+
+impl Const {
+    /// The constant `v`, normalised (`-0.0` → `0.0`, any NaN → `f64::NAN`).
+    pub fn new(v: f64) -> Const {
+        let v = if v == 0.0 {
+            0.0
+        } else if v.is_nan() {
+            f64::NAN
+        } else {
+            v
+        };
+        Const(v.to_bits())
+    }
+
+    pub fn value(self) -> f64 {
+        f64::from_bits(self.0)
+    }
+}
+
+/// One interned operation. Subtraction is `Add(a, Neg(b))`; there is no `Sub` node.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Node {
+    Const(Const),
+    Sym(Sym),
+    Add(Expr, Expr),
+    Mul(Expr, Expr),
+    Neg(Expr),
+    Div(Expr, Expr),
+    Powi(Expr, i32),
+    Powf(Expr, Expr),
+    Call(Func, Expr),
+    /// `y.atan2(x)`, operands in that order.
+    Atan2(Expr, Expr),
+    Min(Expr, Expr),
+    Max(Expr, Expr),
+}
+
+impl Node {
+    /// The operands, in order.
+    pub fn children(self) -> impl Iterator<Item = Expr> {
+        let (a, b) = match self {
+            Node::Const(_) | Node::Sym(_) => (None, None),
+            Node::Neg(a) | Node::Powi(a, _) | Node::Call(_, a) => (Some(a), None),
+            Node::Add(a, b)
+            | Node::Mul(a, b)
+            | Node::Div(a, b)
+            | Node::Powf(a, b)
+            | Node::Atan2(a, b)
+            | Node::Min(a, b)
+            | Node::Max(a, b) => (Some(a), Some(b)),
+        };
+        a.into_iter().chain(b)
+    }
+
+    /// Constants and symbols: the nodes code generation reads rather than computes.
+    pub fn is_leaf(self) -> bool {
+        matches!(self, Node::Const(_) | Node::Sym(_))
+    }
+
+    /// The bit of this node's own non-smooth operation in [`NONSMOOTH_NAMES`], if any.
+    fn nonsmooth_bit(self) -> u8 {
+        match self {
+            Node::Call(Func::Abs, _) => 1,
+            Node::Call(Func::Signum, _) => 2,
+            Node::Min(..) => 4,
+            Node::Max(..) => 8,
+            _ => 0,
+        }
+    }
+}
+
+/// Names reported by [`Graph::nonsmooth_calls`], indexed by bit.
+const NONSMOOTH_NAMES: [&str; 4] = ["abs", "signum", "min", "max"];
+
+/// Free-symbol sets of all nodes as one flat bit table, `words` `u64`s per node.
+/// A node only depends on symbols that existed when it was created; the table is widened
+/// (rarely: symbols are usually declared first) when the symbol count outgrows it.
+#[derive(Default, Debug, Clone)]
+struct SymSets {
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl SymSets {
+    fn row(&self, e: Expr) -> &[u64] {
+        &self.bits[e.index() * self.words..(e.index() + 1) * self.words]
+    }
+
+    fn contains(&self, e: Expr, s: Sym) -> bool {
+        let (w, b) = (s.index() / 64, s.index() % 64);
+        w < self.words && self.bits[e.index() * self.words + w] & (1 << b) != 0
+    }
+
+    /// Makes room for `symbols` symbols in each of the `rows` existing rows.
+    fn widen_for(&mut self, symbols: usize, rows: usize) {
+        let needed = symbols.div_ceil(64);
+        if needed <= self.words {
+            return;
+        }
+        let words = needed.max(2 * self.words);
+        let mut bits = vec![0; rows * words];
+        for r in 0..rows {
+            bits[r * words..r * words + self.words]
+                .copy_from_slice(&self.bits[r * self.words..(r + 1) * self.words]);
+        }
+        self.words = words;
+        self.bits = bits;
+    }
+
+    /// Appends the row of a new node: the union of its children's rows, plus `own`.
+    fn push(&mut self, children: impl Iterator<Item = Expr>, own: Option<Sym>) {
+        let start = self.bits.len();
+        self.bits.resize(start + self.words, 0);
+        for c in children {
+            for w in 0..self.words {
+                self.bits[start + w] |= self.bits[c.index() * self.words + w];
+            }
+        }
+        if let Some(s) = own {
+            self.bits[start + s.index() / 64] |= 1 << (s.index() % 64);
+        }
+    }
+}
+
+/// The expression arena. Structurally equal expressions are one node (hash-consing), so
+/// common subexpressions are shared by construction. Build nodes with the simplifying
+/// constructors (`add`, `mul`, …, in `simplify.rs`); `Node`s are only read back.
+#[derive(Default, Debug, Clone)]
+pub struct Graph {
+    nodes: Vec<Node>,
+    interned: HashMap<Node, Expr>,
+    names: Vec<String>,
+    symbols: HashMap<String, Sym>,
+    symbol_exprs: Vec<Expr>,
+    free: SymSets,
+    /// Per node: bit set of the non-smooth operations used inside it (see `NONSMOOTH_NAMES`).
+    nonsmooth: Vec<u8>,
+    /// `d e / d x` for every `(e, x)` differentiated so far.
+    pub(super) derivatives: HashMap<(Expr, Sym), Expr>,
+}
+
+impl Graph {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The node of `node`, creating it if it is new. No simplification happens here.
+    pub(super) fn intern(&mut self, node: Node) -> Expr {
+        if let Some(&e) = self.interned.get(&node) {
+            return e;
+        }
+        let id = u32::try_from(self.nodes.len()).expect("expression graph exceeds 2^32 nodes");
+        let e = Expr(id);
+        let own = match node {
+            Node::Sym(s) => Some(s),
+            _ => None,
+        };
+        self.free.push(node.children(), own);
+        let mask = node
+            .children()
+            .fold(node.nonsmooth_bit(), |m, c| m | self.nonsmooth[c.index()]);
+        self.nonsmooth.push(mask);
+        self.nodes.push(node);
+        self.interned.insert(node, e);
+        e
+    }
+
+    /// The symbol called `name`; the same name always gives the same expression.
+    pub fn symbol(&mut self, name: &str) -> Expr {
+        if let Some(&s) = self.symbols.get(name) {
+            return self.symbol_exprs[s.index()];
+        }
+        let s = Sym(u32::try_from(self.names.len()).expect("more than 2^32 symbols"));
+        self.names.push(name.to_owned());
+        self.symbols.insert(name.to_owned(), s);
+        self.free.widen_for(self.names.len(), self.nodes.len());
+        let e = self.intern(Node::Sym(s));
+        self.symbol_exprs.push(e);
+        e
+    }
+
+    /// The expression of an existing symbol.
+    pub fn sym(&self, s: Sym) -> Expr {
+        self.symbol_exprs[s.index()]
+    }
+
+    pub fn as_sym(&self, e: Expr) -> Option<Sym> {
+        match self.node(e) {
+            Node::Sym(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    pub fn sym_name(&self, s: Sym) -> &str {
+        &self.names[s.index()]
+    }
+
+    pub fn node(&self, e: Expr) -> Node {
+        self.nodes[e.index()]
+    }
+
+    pub fn as_const(&self, e: Expr) -> Option<f64> {
+        match self.node(e) {
+            Node::Const(c) => Some(c.value()),
+            _ => None,
+        }
+    }
+
+    /// Whether `e` is the constant `0` (`-0.0` is stored as `0.0`).
+    pub fn is_zero(&self, e: Expr) -> bool {
+        self.as_const(e) == Some(0.0)
+    }
+
+    /// Whether `x` occurs in `e`. O(1): a bit lookup in the free-symbol table.
+    pub fn depends_on(&self, e: Expr, x: Sym) -> bool {
+        self.free.contains(e, x)
+    }
+
+    /// Whether any symbol of the bit set `mask` (indexed by symbol, as built by
+    /// [`Graph::symbol_mask`]) occurs in `e`.
+    pub(super) fn depends_on_any(&self, e: Expr, mask: &[u64]) -> bool {
+        self.free.row(e).iter().zip(mask).any(|(a, b)| a & b != 0)
+    }
+
+    /// The bit set of `symbols`, in the layout of the free-symbol table.
+    pub(super) fn symbol_mask(&self, symbols: impl IntoIterator<Item = Sym>) -> Vec<u64> {
+        let mut mask = vec![0; self.free.words];
+        for s in symbols {
+            mask[s.index() / 64] |= 1 << (s.index() % 64);
+        }
+        mask
+    }
+
+    pub fn free_symbols(&self, e: Expr) -> BTreeSet<Sym> {
+        let mut out = BTreeSet::new();
+        for (w, &word) in self.free.row(e).iter().enumerate() {
+            let mut bits = word;
+            while bits != 0 {
+                let b = bits.trailing_zeros() as usize;
+                out.insert(Sym((w * 64 + b) as u32));
+                bits &= bits - 1;
+            }
+        }
+        out
+    }
+
+    /// Names (`"abs"`, `"signum"`, `"min"`, `"max"`) of the non-smooth operations inside `e`,
+    /// in that order, each once.
+    pub fn nonsmooth_calls(&self, e: Expr) -> Vec<&'static str> {
+        let mask = self.nonsmooth[e.index()];
+        (0..NONSMOOTH_NAMES.len())
+            .filter(|b| mask & (1 << b) != 0)
+            .map(|b| NONSMOOTH_NAMES[b])
+            .collect()
+    }
+
+    /// Number of interned nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Nodes reachable from `roots` (roots included) through operands for which `descend`
+    /// holds, each once, in increasing id order, so children come before parents.
+    pub(super) fn reachable(
+        &self,
+        roots: impl IntoIterator<Item = Expr>,
+        mut descend: impl FnMut(Expr) -> bool,
+    ) -> Vec<Expr> {
+        let mut seen = HashSet::new();
+        let mut stack: Vec<Expr> = roots.into_iter().filter(|&r| seen.insert(r)).collect();
+        let mut out = Vec::new();
+        while let Some(e) = stack.pop() {
+            out.push(e);
+            for c in self.node(e).children() {
+                if descend(c) && seen.insert(c) {
+                    stack.push(c);
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// A readable infix rendering of `e`, for messages and test failures.
+    pub fn display(&self, e: Expr) -> impl fmt::Display + '_ {
+        Display { graph: self, e }
+    }
+}
+
+struct Display<'g> {
+    graph: &'g Graph,
+    e: Expr,
+}
+
+impl fmt::Display for Display<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let g = self.graph;
+        let d = |e| Display { graph: g, e };
+        match g.node(self.e) {
+            Node::Const(c) => write!(f, "{}", c.value()),
+            Node::Sym(s) => f.write_str(g.sym_name(s)),
+            Node::Add(a, b) => write!(f, "({} + {})", d(a), d(b)),
+            Node::Mul(a, b) => write!(f, "({} * {})", d(a), d(b)),
+            Node::Neg(a) => write!(f, "-{}", d(a)),
+            Node::Div(a, b) => write!(f, "({} / {})", d(a), d(b)),
+            Node::Powi(a, n) => write!(f, "{}^{n}", d(a)),
+            Node::Powf(a, b) => write!(f, "{}^{}", d(a), d(b)),
+            Node::Call(func, a) => write!(f, "{}({})", func.name(), d(a)),
+            Node::Atan2(y, x) => write!(f, "atan2({}, {})", d(y), d(x)),
+            Node::Min(a, b) => write!(f, "min({}, {})", d(a), d(b)),
+            Node::Max(a, b) => write!(f, "max({}, {})", d(a), d(b)),
+        }
+    }
+}
