@@ -367,6 +367,11 @@ impl Graph {
         self.nodes.is_empty()
     }
 
+    /// Every interned node, in id (topological) order.
+    pub fn exprs(&self) -> impl Iterator<Item = Expr> + use<> {
+        (0..self.nodes.len() as u32).map(Expr)
+    }
+
     /// Nodes reachable from `roots` (roots included) through operands for which `descend`
     /// holds, each once, in increasing id order, so children come before parents.
     pub(super) fn reachable(
@@ -418,5 +423,103 @@ impl fmt::Display for Display<'_> {
             Node::Min(a, b) => write!(f, "min({}, {})", d(a), d(b)),
             Node::Max(a, b) => write!(f, "max({}, {})", d(a), d(b)),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn same_name_gives_same_symbol() {
+        let mut g = Graph::new();
+        let x = g.symbol("x");
+        let y = g.symbol("y");
+        assert_eq!(g.symbol("x"), x);
+        assert_ne!(x, y);
+        let sx = g.as_sym(x).unwrap();
+        assert_eq!(g.sym(sx), x);
+        assert_eq!(g.sym_name(sx), "x");
+        assert_eq!(g.as_sym(g.sym(g.as_sym(y).unwrap())), g.as_sym(y));
+    }
+
+    #[test]
+    fn structurally_equal_expressions_share_one_node() {
+        let mut g = Graph::new();
+        let (x, y) = (g.symbol("x"), g.symbol("y"));
+        let s1 = g.call(Func::Sin, x);
+        let p1 = g.mul(s1, y);
+        let before = g.len();
+        let s2 = g.call(Func::Sin, x);
+        let p2 = g.mul(y, s2);
+        assert_eq!((s1, p1), (s2, p2));
+        assert_eq!(g.len(), before, "rebuilding an existing expression adds no node");
+        let a = g.add(x, y);
+        let b = g.add(y, x);
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn constants_are_normalised_before_interning() {
+        let mut g = Graph::new();
+        assert_eq!(g.constant(-0.0), g.constant(0.0));
+        assert_eq!(g.constant(f64::NAN), g.constant(-f64::NAN));
+        let minus_zero = g.constant(-0.0);
+        assert!(g.is_zero(minus_zero));
+        assert_eq!(Const::new(-0.0).value().to_bits(), 0.0f64.to_bits());
+        let c = g.constant(2.5);
+        assert_eq!(g.as_const(c), Some(2.5));
+    }
+
+    #[test]
+    fn free_symbols_and_depends_on_agree() {
+        let mut g = Graph::new();
+        let c = g.constant(3.0); // created before any symbol exists: row widened later
+        let syms: Vec<Expr> = (0..150).map(|i| g.symbol(&format!("q{i}"))).collect();
+        let e = g.add(syms[3], syms[140]);
+        let e = g.mul(e, c);
+        let e = g.call(Func::Cos, e);
+        let expected: BTreeSet<Sym> = [3, 140].iter().map(|&i| g.as_sym(syms[i]).unwrap()).collect();
+        assert_eq!(g.free_symbols(e), expected);
+        for (i, &s) in syms.iter().enumerate() {
+            let s = g.as_sym(s).unwrap();
+            assert_eq!(g.depends_on(e, s), i == 3 || i == 140, "symbol q{i}");
+            assert!(!g.depends_on(c, s));
+        }
+        assert!(g.free_symbols(c).is_empty());
+    }
+
+    #[test]
+    fn nonsmooth_calls_are_reported_once_each() {
+        let mut g = Graph::new();
+        let (x, y) = (g.symbol("x"), g.symbol("y"));
+        let a = g.call(Func::Abs, x);
+        let m = g.max(a, y);
+        let m2 = g.max(m, x);
+        let s = g.call(Func::Sin, m2);
+        assert_eq!(g.nonsmooth_calls(s), vec!["abs", "max"]);
+        let sg = g.call(Func::Signum, y);
+        let mn = g.min(sg, s);
+        assert_eq!(g.nonsmooth_calls(mn), vec!["abs", "signum", "min", "max"]);
+        let smooth = g.call(Func::Exp, x);
+        assert!(g.nonsmooth_calls(smooth).is_empty());
+    }
+
+    #[test]
+    fn func_names_round_trip() {
+        for f in Func::ALL {
+            assert_eq!(Func::from_name(f.name()), Some(f));
+            assert_eq!(f.is_smooth(), !matches!(f, Func::Abs | Func::Signum));
+        }
+        assert_eq!(Func::from_name("log"), None);
+    }
+
+    #[test]
+    fn display_renders_infix() {
+        let mut g = Graph::new();
+        let (x, y) = (g.symbol("x"), g.symbol("y"));
+        let s = g.call(Func::Sin, x);
+        let e = g.sub(s, y);
+        assert_eq!(g.display(e).to_string(), "(sin(x) + -y)");
     }
 }

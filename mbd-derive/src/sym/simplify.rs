@@ -328,3 +328,232 @@ impl Graph {
         self.sum(products)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn setup() -> (Graph, Expr, Expr) {
+        let mut g = Graph::new();
+        let x = g.symbol("x");
+        let y = g.symbol("y");
+        (g, x, y)
+    }
+
+    #[test]
+    fn identities() {
+        let (mut g, x, _) = setup();
+        let (zero, one) = (g.zero(), g.one());
+        let minus_one = g.constant(-1.0);
+        assert_eq!(g.add(x, zero), x);
+        assert_eq!(g.add(zero, x), x);
+        assert_eq!(g.mul(zero, x), zero);
+        assert_eq!(g.mul(x, zero), zero);
+        assert_eq!(g.mul(one, x), x);
+        assert_eq!(g.mul(x, one), x);
+        assert_eq!(g.div(x, one), x);
+        assert_eq!(g.div(zero, x), zero);
+        let nx = g.neg(x);
+        assert_eq!(g.neg(nx), x);
+        assert_eq!(g.mul(minus_one, x), nx);
+        assert_eq!(g.div(x, minus_one), nx);
+        assert_eq!(g.sub(x, x), zero);
+        assert_eq!(g.powi(x, 0), one);
+        assert_eq!(g.powi(x, 1), x);
+        assert_eq!(g.powf(one, x), one);
+        assert_eq!(g.node(nx), Node::Neg(x));
+    }
+
+    #[test]
+    fn powers_collect() {
+        let (mut g, x, y) = setup();
+        let x2 = g.powi(x, 2);
+        assert_eq!(g.mul(x, x), x2);
+        assert_eq!(g.node(x2), Node::Powi(x, 2));
+        let x3 = g.powi(x, 3);
+        assert_eq!(g.mul(x2, x), x3);
+        let x6 = g.powi(x, 6);
+        assert_eq!(g.powi(x2, 3), x6);
+        let x_inv = g.powi(x, -1);
+        assert_eq!(g.mul(x_inv, x2), x);
+        let nx = g.neg(x);
+        assert_eq!(g.powi(nx, 2), x2);
+        let nx3 = g.neg(x3);
+        assert_eq!(g.powi(nx, 3), nx3);
+        let two = g.constant(2.0);
+        assert_eq!(g.powf(x, two), x2);
+        let half = g.constant(0.5);
+        let xh = g.powf(x, half);
+        assert_eq!(g.node(xh), Node::Powf(x, half));
+        let xy = g.powf(x, y);
+        assert_eq!(g.node(xy), Node::Powf(x, y));
+        // an exponent that overflows i32 is left as a product
+        let big = g.powi(x, i32::MAX);
+        let product = g.mul(big, x);
+        assert!(matches!(g.node(product), Node::Mul(..)));
+    }
+
+    /// `sqrt(x^2) = |x|` and `sqrt(x)^2 = x` only for `x >= 0`: neither is rewritten.
+    #[test]
+    fn square_roots_keep_their_meaning() {
+        let (mut g, x, _) = setup();
+        let x2 = g.powi(x, 2);
+        let root = g.call(Func::Sqrt, x2);
+        assert_eq!(g.node(root), Node::Call(Func::Sqrt, x2));
+        let s = g.call(Func::Sqrt, x);
+        let s2 = g.powi(s, 2);
+        assert_eq!(g.node(s2), Node::Powi(s, 2));
+        assert!(g.eval(s2, &|_| -4.0).is_nan());
+        assert_eq!(g.eval(root, &|_| -4.0), 4.0);
+    }
+
+    #[test]
+    fn commutative_operands_are_canonical() {
+        let (mut g, x, y) = setup();
+        let s = g.call(Func::Sin, y);
+        for (a, b) in [(x, y), (x, s), (s, y)] {
+            assert_eq!(g.add(a, b), g.add(b, a));
+            assert_eq!(g.mul(a, b), g.mul(b, a));
+            assert_eq!(g.min(a, b), g.min(b, a));
+            assert_eq!(g.max(a, b), g.max(b, a));
+        }
+        let three = g.constant(3.0);
+        let sum = g.add(x, three);
+        assert_eq!(g.node(sum), Node::Add(three, x), "constant first");
+        assert_eq!(g.min(x, x), x);
+        assert_eq!(g.max(s, s), s);
+    }
+
+    #[test]
+    fn constants_fold_in_every_operation() {
+        let (mut g, _, _) = setup();
+        let (a, b) = (g.constant(0.3), g.constant(-1.7));
+        let cases = [
+            (g.add(a, b), 0.3 + -1.7),
+            (g.sub(a, b), 0.3 - -1.7),
+            (g.mul(a, b), 0.3 * -1.7),
+            (g.div(a, b), 0.3 / -1.7),
+            (g.neg(a), -0.3),
+            (g.powi(b, 3), (-1.7f64).powi(3)),
+            (g.powf(a, b), 0.3f64.powf(-1.7)),
+            (g.atan2(a, b), 0.3f64.atan2(-1.7)),
+            (g.min(a, b), -1.7),
+            (g.max(a, b), 0.3),
+            (g.call(Func::Ln, a), 0.3f64.ln()),
+            (g.call(Func::Signum, b), -1.0),
+            (g.call(Func::Abs, b), 1.7),
+            (g.call(Func::Acos, a), 0.3f64.acos()),
+        ];
+        for (e, v) in cases {
+            assert_eq!(g.as_const(e), Some(v), "{}", g.display(e));
+        }
+        // a domain error folds to NaN, as it would evaluate at run time
+        let ln = g.call(Func::Ln, b);
+        assert!(g.as_const(ln).unwrap().is_nan());
+    }
+
+    #[test]
+    fn constants_collect_across_one_level() {
+        let (mut g, x, y) = setup();
+        let (c1, c2) = (g.constant(2.0), g.constant(3.0));
+        let six = g.constant(6.0);
+        let five = g.constant(5.0);
+        let c2x = g.mul(c2, x);
+        let six_x = g.mul(six, x);
+        assert_eq!(g.mul(c1, c2x), six_x);
+        let x_c1 = g.add(x, c1);
+        let x_5 = g.add(x, five);
+        assert_eq!(g.add(x_c1, c2), x_5);
+        // constants float out of nested sums and products
+        let y_c2 = g.add(y, c2);
+        let xy = g.add(x, y);
+        let expected = g.add(five, xy);
+        assert_eq!(g.add(x_c1, y_c2), expected);
+        let c1y = g.mul(c1, y);
+        let xy = g.mul(x, y);
+        let expected = g.mul(six, xy);
+        assert_eq!(g.mul(c2x, c1y), expected);
+        // like terms
+        let two_x = g.mul(c1, x);
+        assert_eq!(g.add(x, x), two_x);
+        let five_x = g.mul(five, x);
+        assert_eq!(g.add(c2x, two_x), five_x);
+        let neg_c2x = g.neg(c2x);
+        assert_eq!(g.add(c2x, neg_c2x), g.zero());
+        assert_eq!(g.node(neg_c2x), Node::Mul(g.constant(-3.0), x));
+    }
+
+    #[test]
+    fn signs_move_outwards() {
+        let (mut g, x, y) = setup();
+        let (nx, ny) = (g.neg(x), g.neg(y));
+        let xy = g.mul(x, y);
+        let neg_xy = g.neg(xy);
+        assert_eq!(g.mul(nx, ny), xy);
+        assert_eq!(g.mul(nx, y), neg_xy);
+        let q = g.div(x, y);
+        let neg_q = g.neg(q);
+        assert_eq!(g.div(nx, y), neg_q);
+        assert_eq!(g.div(x, ny), neg_q);
+        assert_eq!(g.div(nx, ny), q);
+        let two = g.constant(2.0);
+        let minus_two = g.constant(-2.0);
+        let m = g.mul(two, nx);
+        assert_eq!(g.node(m), Node::Mul(minus_two, x));
+        let abs = g.call(Func::Abs, x);
+        assert_eq!(g.call(Func::Abs, nx), abs);
+        assert_eq!(g.call(Func::Abs, abs), abs);
+        assert_eq!(g.neg(two), minus_two);
+    }
+
+    /// Division by a power of two is an exact multiplication; by anything else it is kept.
+    #[test]
+    fn division_by_constants() {
+        let (mut g, x, _) = setup();
+        let (four, quarter, three) = (g.constant(4.0), g.constant(0.25), g.constant(3.0));
+        let q = g.div(x, four);
+        assert_eq!(g.node(q), Node::Mul(quarter, x));
+        let t = g.div(x, three);
+        assert_eq!(g.node(t), Node::Div(x, three));
+        let zero = g.zero();
+        let inf = g.div(x, zero);
+        assert_eq!(g.node(inf), Node::Div(x, zero));
+        // 1/c = 2^1022 is exact
+        let tiny = g.constant(f64::MIN_POSITIVE);
+        let q = g.div(x, tiny);
+        let big = g.constant(2f64.powi(1022));
+        assert_eq!(g.node(q), Node::Mul(big, x));
+        // 1/c = 2^-1023 is subnormal: multiplying by it could round where dividing does not
+        let huge = g.constant(2f64.powi(1023));
+        let q = g.div(x, huge);
+        assert_eq!(g.node(q), Node::Div(x, huge));
+    }
+
+    #[test]
+    fn sum_and_dot() {
+        let (mut g, x, y) = setup();
+        assert_eq!(g.sum([]), g.zero());
+        let two = g.constant(2.0);
+        let one = g.one();
+        let s = g.sum([x, one, y, two]);
+        let xy = g.add(x, y);
+        let three = g.constant(3.0);
+        assert_eq!(s, g.add(three, xy));
+        assert_eq!(g.node(s), Node::Add(three, xy));
+        let d = g.dot(&[x, y], &[y, x]);
+        let xy = g.mul(x, y);
+        assert_eq!(d, g.mul(two, xy));
+    }
+
+    #[test]
+    fn build_of_an_existing_node_returns_it() {
+        let (mut g, x, y) = setup();
+        let s = g.call(Func::Sin, x);
+        let e = g.atan2(s, y);
+        let e = g.powf(e, x);
+        let e = g.sub(e, y);
+        for n in g.exprs().collect::<Vec<_>>() {
+            assert_eq!(g.build(g.node(n)), n, "{}", g.display(n));
+        }
+    }
+}
