@@ -12,5 +12,7 @@ pub mod model;
 pub mod solve;
 
 pub use error::{Error, Result};
-pub use integrate::{Options, Stats};
-pub use model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
+pub use integrate::{
+    Direction, Event, EventHit, Integrator, Options, Segment, Solution, Stats,
+};
+pub use model::{Constrained, Generated, Matrix, Mechanism, OdeSystem, Vector};

@@ -83,3 +83,16 @@ pub trait Constrained<const N: usize, const M: usize>: Mechanism<N> {
         qd: &Vector<N>,
     ) -> Result<(Vector<N>, Vector<M>)>;
 }
+
+/// What the derive generated for a model (read by the validation report): the parts that
+/// exist (a model without constraints has no constraint code, and so on) and the number of
+/// straight-line statements emitted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Generated {
+    /// Names of the generated parts: `mass_matrix`, `forces`, `phi`, `jacobian`, `outputs`, ...
+    pub parts: &'static [&'static str],
+    /// Statements (temporaries and assignments) in the generated functions.
+    pub statements: usize,
+    /// Constraint equations.
+    pub constraints: usize,
+}

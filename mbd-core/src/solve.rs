@@ -79,3 +79,41 @@ pub fn second_order_jacobian<const N: usize, const D: usize>(
     j.fixed_view_mut::<N, N>(N, N).copy_from(dqdd_dqd);
     j
 }
+
+/// `(dqdd/dq, dqdd/dqd)` from the derivatives of the residuals `R = M qdd + Phi_q^T lambda - f`
+/// and `C = Phi_q qdd - gamma` taken at fixed `(qdd, lambda)`: differentiating
+/// `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` gives
+/// `[M Phi_q^T; Phi_q 0] [qdd_x; lambda_x] = -[R_x; C_x]` for `x = q, qd`.
+#[allow(clippy::too_many_arguments, reason = "the blocks of one linear system")]
+pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
+    t: f64,
+    mass: &Matrix<N, N>,
+    phi_q: &Matrix<M, N>,
+    r_q: &Matrix<N, N>,
+    r_qd: &Matrix<N, N>,
+    c_q: &Matrix<M, N>,
+    c_qd: &Matrix<M, N>,
+) -> Result<(Matrix<N, N>, Matrix<N, N>)> {
+    const { assert!(A == N + M, "augmented size must be N + M") };
+    let mut k = Matrix::<A, A>::zeros();
+    k.fixed_view_mut::<N, N>(0, 0).copy_from(mass);
+    k.fixed_view_mut::<M, N>(N, 0).copy_from(phi_q);
+    k.fixed_view_mut::<N, M>(0, N).copy_from(&phi_q.transpose());
+    let lu = Lu::factor(k).ok_or(Error::SingularConstraintJacobian { t })?;
+    let solve = |r: &Matrix<N, N>, c: &Matrix<M, N>| {
+        let mut out = Matrix::<N, N>::zeros();
+        for j in 0..N {
+            let mut rhs = Vector::<A>::zeros();
+            rhs.fixed_rows_mut::<N>(0).copy_from(&(-r.column(j)));
+            rhs.fixed_rows_mut::<M>(N).copy_from(&(-c.column(j)));
+            out.set_column(j, &lu.solve(&rhs).fixed_rows::<N>(0));
+        }
+        out
+    };
+    let (a_q, a_qd) = (solve(r_q, c_q), solve(r_qd, c_qd));
+    if a_q.iter().chain(a_qd.iter()).all(|v| v.is_finite()) {
+        Ok((a_q, a_qd))
+    } else {
+        Err(Error::NonFinite { t })
+    }
+}

@@ -1,12 +1,50 @@
-//! The `#[derive(Mechanism)]` of mbd.
+//! The `#[derive(Mechanism)]` of mbd: a mechanism described by attributes on a struct of
+//! parameters becomes exact, specialised equations of motion at compile time.
+//!
+//! Stages, each its own module: [`parse`] (attributes -> AST), [`lower`] (user expressions
+//! -> symbolic values, with spanned errors), [`model`] (Lagrangian mechanics in minimal
+//! coordinates, constraints, reactions), [`sym`] (the symbolic engine: hash-consed DAG,
+//! exact derivatives), [`codegen`] (straight-line Rust).
+//! The language itself is documented on the facade crate `mbd`.
 
-use proc_macro::TokenStream;
-
+mod codegen;
+mod expand;
+mod lower;
+mod model;
+mod parse;
 mod sym;
 
-/// Derive the equations of motion of a mechanism described by `#[mbd(...)]` attributes.
-#[proc_macro_derive(Mechanism, attributes(mbd))]
+use proc_macro::TokenStream;
+use syn::{DeriveInput, parse_macro_input};
+
+/// Derive the equations of motion of a mechanism; see the `mbd` crate for the language.
+#[proc_macro_derive(
+    Mechanism,
+    attributes(
+        mechanism,
+        gravity,
+        coords,
+        drive,
+        relaxed,
+        constraint,
+        particle,
+        rigid,
+        rigid3,
+        point,
+        spring,
+        damper,
+        force,
+        torque,
+        generalized_force,
+        potential,
+        friction,
+        output,
+        event,
+        init,
+        default
+    )
+)]
 pub fn derive_mechanism(input: TokenStream) -> TokenStream {
-    let _ = input;
-    TokenStream::new()
+    let input = parse_macro_input!(input as DeriveInput);
+    expand::derive(&input).into()
 }

@@ -1,0 +1,510 @@
+//! Stage 4: equations -> straight-line Rust. The only module that knows the runtime's paths.
+//!
+//! Each generated function evaluates one shared block: the scheduled DAG nodes its results
+//! need, each once, as `let` temporaries (hash-consing made them common subexpressions),
+//! then fills only the non-zero entries of its static-size results. Parts a model does not
+//! have (constraints, outputs, events, Jacobians) are not generated at all.
+
+use crate::model::{Equations, Role};
+use crate::parse::{Direction, Mechanism};
+use crate::sym::{self, Expr, Func, Node};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::HashMap;
+
+/// One function body under construction.
+struct Block<'a> {
+    eq: &'a Equations,
+    names: HashMap<Expr, TokenStream>,
+    stmts: Vec<TokenStream>,
+}
+
+impl<'a> Block<'a> {
+    /// Schedule `roots` and bind every interior node to a temporary.
+    fn new(eq: &'a Equations, roots: &[Expr]) -> Self {
+        let mut b = Block {
+            eq,
+            names: HashMap::new(),
+            stmts: Vec::new(),
+        };
+        for e in sym::schedule(&eq.g, roots) {
+            let value = b.node(e);
+            let name = format_ident!("t{}", b.stmts.len());
+            b.stmts.push(quote!(let #name: f64 = #value;));
+            b.names.insert(e, quote!(#name));
+        }
+        b
+    }
+
+    fn leaf(&self, e: Expr) -> TokenStream {
+        if let Some(n) = self.names.get(&e) {
+            return n.clone();
+        }
+        match self.eq.g.node(e) {
+            Node::Const(c) => literal(c.value()),
+            Node::Sym(s) => match self.eq.roles.get(&s) {
+                Some(Role::Time) => quote!(t),
+                Some(Role::Param(p)) => quote!(self.#p),
+                Some(Role::Q(i)) => quote!(q[#i]),
+                Some(Role::Qd(i)) => quote!(qd[#i]),
+                Some(Role::Qdd(i)) => quote!(qdd[#i]),
+                Some(Role::Lambda(k)) => quote!(lambda[#k]),
+                None => {
+                    // A driven/relaxed symbol left after reduction would be a bug in the
+                    // mechanics stage; fail the build loudly rather than compute garbage.
+                    let msg = format!(
+                        "mbd internal error: unbound symbol `{}`",
+                        self.eq.g.sym_name(s)
+                    );
+                    quote!(::core::compile_error!(#msg))
+                }
+            },
+            _ => unreachable!("interior nodes are bound before use"),
+        }
+    }
+
+    fn node(&self, e: Expr) -> TokenStream {
+        let l = |x: Expr| self.leaf(x);
+        match self.eq.g.node(e) {
+            Node::Add(a, b) => {
+                let (a, b) = (l(a), l(b));
+                quote!(#a + #b)
+            }
+            Node::Mul(a, b) => {
+                let (a, b) = (l(a), l(b));
+                quote!(#a * #b)
+            }
+            Node::Div(a, b) => {
+                let (a, b) = (l(a), l(b));
+                quote!(#a / #b)
+            }
+            Node::Neg(a) => {
+                let a = l(a);
+                quote!(-#a)
+            }
+            Node::Powi(a, 2) => {
+                let a = l(a);
+                quote!(#a * #a)
+            }
+            Node::Powi(a, n) => {
+                let a = l(a);
+                quote!(#a.powi(#n))
+            }
+            Node::Powf(a, b) => {
+                let (a, b) = (l(a), l(b));
+                quote!(#a.powf(#b))
+            }
+            Node::Call(f, a) => {
+                let a = l(a);
+                let m = format_ident!("{}", method(f));
+                quote!(#a.#m())
+            }
+            Node::Atan2(y, x) => {
+                let (y, x) = (l(y), l(x));
+                quote!(#y.atan2(#x))
+            }
+            Node::Min(a, b) => {
+                let (a, b) = (l(a), l(b));
+                quote!(#a.min(#b))
+            }
+            Node::Max(a, b) => {
+                let (a, b) = (l(a), l(b));
+                quote!(#a.max(#b))
+            }
+            Node::Const(_) | Node::Sym(_) => self.leaf(e),
+        }
+    }
+
+    fn stmts(&self) -> TokenStream {
+        let s = &self.stmts;
+        quote!(#(#s)*)
+    }
+
+    /// `let mut name = Vector::<N>::zeros(); name[i] = ..;` for the non-zero entries.
+    fn vector(&self, name: &str, n: usize, entries: &[Expr]) -> TokenStream {
+        let id = format_ident!("{}", name);
+        let sets = entries
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| !self.eq.g.is_zero(**e))
+            .map(|(i, e)| {
+                let v = self.leaf(*e);
+                quote!(#id[#i] = #v;)
+            });
+        quote!(let mut #id = ::mbd::__private::Vector::<#n>::zeros(); #(#sets)*)
+    }
+
+    fn matrix(&self, name: &str, r: usize, c: usize, entries: &[Vec<Expr>]) -> TokenStream {
+        let id = format_ident!("{}", name);
+        let mut sets = Vec::new();
+        for (i, row) in entries.iter().enumerate() {
+            for (j, e) in row.iter().enumerate() {
+                if !self.eq.g.is_zero(*e) {
+                    let v = self.leaf(*e);
+                    sets.push(quote!(#id[(#i, #j)] = #v;));
+                }
+            }
+        }
+        quote!(let mut #id = ::mbd::__private::Matrix::<#r, #c>::zeros(); #(#sets)*)
+    }
+}
+
+fn method(f: Func) -> &'static str {
+    match f {
+        Func::Sin => "sin",
+        Func::Cos => "cos",
+        Func::Tan => "tan",
+        Func::Asin => "asin",
+        Func::Acos => "acos",
+        Func::Atan => "atan",
+        Func::Sinh => "sinh",
+        Func::Cosh => "cosh",
+        Func::Tanh => "tanh",
+        Func::Exp => "exp",
+        Func::Ln => "ln",
+        Func::Sqrt => "sqrt",
+        Func::Abs => "abs",
+        Func::Signum => "signum",
+    }
+}
+
+fn literal(v: f64) -> TokenStream {
+    let lit = Literal::f64_suffixed(v.abs());
+    if v.is_sign_negative() {
+        quote!((-#lit))
+    } else {
+        quote!(#lit)
+    }
+}
+
+fn uses(eq: &Equations, roots: &[Expr], pred: impl Fn(&Role) -> bool) -> bool {
+    roots.iter().any(|e| {
+        eq.g.free_symbols(*e)
+            .iter()
+            .any(|s| eq.roles.get(s).is_some_and(&pred))
+    })
+}
+
+/// Counts what was generated, for the validation report.
+struct Parts {
+    names: Vec<&'static str>,
+    statements: usize,
+}
+
+pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
+    let ident = &ast.ident;
+    let n = eq.free.len();
+    let m = eq.phi.len();
+    let d = 2 * n;
+    let a = n + m;
+    let constrained = m > 0;
+    let mut parts = Parts {
+        names: vec!["mass_matrix", "forces", "energy"],
+        statements: 0,
+    };
+
+    let coord_names: Vec<String> = eq.free.iter().map(|c| c.to_string()).collect();
+    let split = quote! {
+        let q = y.fixed_rows::<#n>(0).into_owned();
+        let qd = y.fixed_rows::<#n>(#n).into_owned();
+    };
+
+    // M and f from one block, so that they share subexpressions.
+    let mf_roots: Vec<Expr> = eq
+        .mass
+        .iter()
+        .flatten()
+        .chain(&eq.forces)
+        .copied()
+        .collect();
+    let mf = Block::new(eq, &mf_roots);
+    parts.statements += mf.stmts.len();
+    let (mf_stmts, mass_fill, force_fill) = (
+        mf.stmts(),
+        mf.matrix("mass", n, n, &eq.mass),
+        mf.vector("f", n, &eq.forces),
+    );
+    let mass_only = Block::new(eq, &eq.mass.iter().flatten().copied().collect::<Vec<_>>());
+    let force_only = Block::new(eq, &eq.forces);
+    let energy = Block::new(eq, &[eq.energy]);
+    let (mo_stmts, mo_fill) = (mass_only.stmts(), mass_only.matrix("mass", n, n, &eq.mass));
+    let (fo_stmts, fo_fill) = (force_only.stmts(), force_only.vector("f", n, &eq.forces));
+    let (en_stmts, en_value) = (energy.stmts(), energy.leaf(eq.energy));
+
+    let acceleration = if constrained {
+        quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
+    } else {
+        quote! {
+            #mf_stmts
+            #mass_fill
+            #force_fill
+            ::mbd::__private::solve::solve_mass::<#n>(t, &mass, &f)
+        }
+    };
+
+    let mechanism_impl = quote! {
+        impl ::mbd::__private::Mechanism<#n> for #ident {
+            const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
+            fn mass_matrix(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Matrix<#n, #n> {
+                #mo_stmts
+                #mo_fill
+                mass
+            }
+            fn forces(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
+                #fo_stmts
+                #fo_fill
+                f
+            }
+            fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
+                -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
+                #acceleration
+            }
+            fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
+                #en_stmts
+                #en_value
+            }
+        }
+    };
+
+    // Constraints: only in a model that has them.
+    let constrained_impl = constrained.then(|| {
+        parts.names.extend(["phi", "phi_q", "phi_t", "gamma", "multipliers", "projection"]);
+        let phi = Block::new(eq, &eq.phi);
+        let phi_q_roots: Vec<Expr> = eq.phi_q.iter().flatten().copied().collect();
+        let phi_q = Block::new(eq, &phi_q_roots);
+        let phi_t = Block::new(eq, &eq.phi_t);
+        let gamma = Block::new(eq, &eq.gamma);
+        let all: Vec<Expr> = mf_roots.iter().chain(&phi_q_roots).chain(&eq.gamma).copied().collect();
+        let full = Block::new(eq, &all);
+        parts.statements += full.stmts.len() + phi.stmts.len();
+        let (p_s, p_f) = (phi.stmts(), phi.vector("phi", m, &eq.phi));
+        let (pq_s, pq_f) = (phi_q.stmts(), phi_q.matrix("phi_q", m, n, &eq.phi_q));
+        let (pt_s, pt_f) = (phi_t.stmts(), phi_t.vector("phi_t", m, &eq.phi_t));
+        let (g_s, g_f) = (gamma.stmts(), gamma.vector("gamma", m, &eq.gamma));
+        let (f_s, f_m, f_f, f_pq, f_g) = (
+            full.stmts(),
+            full.matrix("mass", n, n, &eq.mass),
+            full.vector("f", n, &eq.forces),
+            full.matrix("phi_q", m, n, &eq.phi_q),
+            full.vector("gamma", m, &eq.gamma),
+        );
+        quote! {
+            impl ::mbd::__private::Constrained<#n, #m> for #ident {
+                fn phi(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#m> { #p_s #p_f phi }
+                fn phi_q(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Matrix<#m, #n> { #pq_s #pq_f phi_q }
+                fn phi_t(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#m> { #pt_s #pt_f phi_t }
+                fn gamma(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#m> { #g_s #g_f gamma }
+                fn acceleration_and_multipliers(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
+                    -> ::mbd::__private::Result<(::mbd::__private::Vector<#n>, ::mbd::__private::Vector<#m>)> {
+                    #f_s #f_m #f_f #f_pq #f_g
+                    ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma)
+                }
+            }
+        }
+    });
+
+    // `qdd` and `lambda` for code that needs them (outputs, events, Jacobians).
+    let solve_qdd_lambda = if constrained {
+        quote!(let (qdd, lambda) = ::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, &q, &qd)?;)
+    } else {
+        quote! {
+            let qdd = ::mbd::__private::Mechanism::<#n>::acceleration(self, t, &q, &qd)?;
+            let lambda = ::mbd::__private::Vector::<0>::zeros();
+        }
+    };
+    let m_or_0 = if constrained { m } else { 0 };
+
+    let jacobian = eq.jacobian.as_ref().map(|jac| {
+        parts.names.push("jacobian");
+        let mut roots: Vec<Expr> = eq.mass.iter().flatten().copied().collect();
+        roots.extend(eq.phi_q.iter().flatten());
+        for mat in [&jac.r_q, &jac.r_qd, &jac.c_q, &jac.c_qd] {
+            roots.extend(mat.iter().flatten());
+        }
+        let b = Block::new(eq, &roots);
+        parts.statements += b.stmts.len();
+        let (s, mass, pq, rq, rqd, cq, cqd) = (
+            b.stmts(),
+            b.matrix("mass", n, n, &eq.mass),
+            b.matrix("phi_q", m_or_0, n, &eq.phi_q),
+            b.matrix("r_q", n, n, &jac.r_q),
+            b.matrix("r_qd", n, n, &jac.r_qd),
+            b.matrix("c_q", m_or_0, n, &jac.c_q),
+            b.matrix("c_qd", m_or_0, n, &jac.c_qd),
+        );
+        let a_or_n = n + m_or_0;
+        quote! {
+            const EXACT_JACOBIAN: bool = true;
+            fn jacobian(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<::mbd::__private::Matrix<#d, #d>> {
+                #split
+                #solve_qdd_lambda
+                #s #mass #pq #rq #rqd #cq #cqd
+                let (a_q, a_qd) = ::mbd::__private::solve::acceleration_jacobian::<#n, #m_or_0, #a_or_n>(
+                    t, &mass, &phi_q, &r_q, &r_qd, &c_q, &c_qd)?;
+                Ok(::mbd::__private::solve::second_order_jacobian::<#n, #d>(&a_q, &a_qd))
+            }
+        }
+    });
+    let project = constrained.then(|| {
+        quote! {
+            fn project(&self, t: f64, y: &mut ::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<()> {
+                ::mbd::__private::analysis::projection::project_state::<Self, #n, #m, #d>(self, t, y)
+            }
+        }
+    });
+    let ode_impl = quote! {
+        impl ::mbd::__private::OdeSystem<#d> for #ident {
+            fn rhs(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<::mbd::__private::Vector<#d>> {
+                ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| ::mbd::__private::Mechanism::<#n>::acceleration(self, t, q, qd))
+            }
+            #jacobian
+            #project
+        }
+    };
+
+    // Outputs, events, initial state, typed state.
+    let outputs_struct = format_ident!("{}Outputs", ident);
+    let out_names: Vec<_> = eq.outputs.iter().map(|o| o.name.clone()).collect();
+    let out_strs: Vec<String> = out_names.iter().map(|o| o.to_string()).collect();
+    let k = out_names.len();
+    let outputs = (!eq.outputs.is_empty()).then(|| {
+        parts.names.push("outputs");
+        let roots: Vec<Expr> = eq.outputs.iter().map(|o| o.expr).collect();
+        let b = Block::new(eq, &roots);
+        parts.statements += b.stmts.len();
+        let needs_qdd = uses(eq, &roots, |r| matches!(r, Role::Qdd(_) | Role::Lambda(_)));
+        let pre = needs_qdd.then(|| solve_qdd_lambda.clone());
+        let s = b.stmts();
+        let vals: Vec<TokenStream> = roots.iter().map(|e| b.leaf(*e)).collect();
+        let doc = format!("The outputs of [`{ident}`], evaluated by [`{ident}::outputs`].");
+        quote! {
+            #[doc = #doc]
+            #[derive(Debug, Clone, Copy, PartialEq)]
+            pub struct #outputs_struct { #(pub #out_names: f64,)* }
+            impl #ident {
+                /// Names of the outputs, in declaration order.
+                pub const OUTPUTS: [&'static str; #k] = [#(#out_strs),*];
+                /// Evaluate the outputs at `(t, y)`, solving for accelerations and reactions when they need them.
+                pub fn outputs(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<#outputs_struct> {
+                    #split
+                    #pre
+                    #s
+                    Ok(#outputs_struct { #(#out_names: #vals,)* })
+                }
+                /// The outputs as an array, in the order of [`Self::OUTPUTS`].
+                pub fn output_values(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<[f64; #k]> {
+                    let o = self.outputs(t, y)?;
+                    Ok([#(o.#out_names),*])
+                }
+            }
+        }
+    });
+    let events = (!eq.events.is_empty()).then(|| {
+        parts.names.push("events");
+        let fns = eq.events.iter().map(|ev| {
+            let b = Block::new(eq, &[ev.expr]);
+            let needs_qdd = uses(eq, &[ev.expr], |r| matches!(r, Role::Qdd(_) | Role::Lambda(_)));
+            let pre = needs_qdd.then(|| solve_qdd_lambda.clone());
+            let (s, v) = (b.stmts(), b.leaf(ev.expr));
+            let fname = format_ident!("event_{}", ev.name);
+            let doc = format!("The event function `{}`: its zero crossings are the events.", ev.name);
+            quote! {
+                #[doc = #doc]
+                pub fn #fname(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<f64> {
+                    #split
+                    #pre
+                    #s
+                    Ok(#v)
+                }
+            }
+        });
+        let makes = eq.events.iter().map(|ev| {
+            let fname = format_ident!("event_{}", ev.name);
+            let name = ev.name.to_string();
+            let dir = match ev.direction {
+                Direction::Rising => quote!(Rising),
+                Direction::Falling => quote!(Falling),
+                Direction::Either => quote!(Either),
+            };
+            let terminal = ev.terminal.then(|| quote!(.terminal()));
+            quote! {
+                ::mbd::__private::integrate::Event::new(
+                    #name,
+                    // An event function that cannot be evaluated (singular position) is NaN:
+                    // the locator then reports no crossing rather than a wrong one.
+                    move |t, y| self.#fname(t, y).unwrap_or(f64::NAN),
+                    ::mbd::__private::integrate::Direction::#dir,
+                ) #terminal
+            }
+        });
+        quote! {
+            impl #ident {
+                #(#fns)*
+                /// The model's events, for an integrator's `solve`.
+                pub fn events(&self) -> ::std::vec::Vec<::mbd::__private::integrate::Event<'_, #d>> {
+                    ::std::vec![#(#makes),*]
+                }
+            }
+        }
+    });
+
+    let init_roots: Vec<Expr> = eq.init_q.iter().chain(&eq.init_qd).copied().collect();
+    let init = Block::new(eq, &init_roots);
+    let (init_s, init_v) = (init.stmts(), init.vector("y", d, &init_roots));
+    let state_struct = format_ident!("{}State", ident);
+    let q_ids: Vec<_> = eq.free.clone();
+    let qd_ids: Vec<_> = eq.free.iter().map(|c| format_ident!("{}_dot", c)).collect();
+    let q_idx: Vec<usize> = (0..n).collect();
+    let qd_idx: Vec<usize> = (n..d).collect();
+    parts.statements += mf.stmts.len() + energy.stmts.len();
+    let part_names = &parts.names;
+    let statements = parts.statements;
+    let state_doc = format!(
+        "The state of [`{ident}`] by coordinate name: positions, then velocities (`_dot`)."
+    );
+
+    quote! {
+        #[doc = #state_doc]
+        #[derive(Debug, Clone, Copy, PartialEq, Default)]
+        pub struct #state_struct { #(pub #q_ids: f64,)* #(pub #qd_ids: f64,)* }
+        impl ::core::convert::From<&::mbd::__private::Vector<#d>> for #state_struct {
+            fn from(y: &::mbd::__private::Vector<#d>) -> Self {
+                #state_struct { #(#q_ids: y[#q_idx],)* #(#qd_ids: y[#qd_idx],)* }
+            }
+        }
+        impl ::core::convert::From<#state_struct> for ::mbd::__private::Vector<#d> {
+            fn from(s: #state_struct) -> Self {
+                let mut y = ::mbd::__private::Vector::<#d>::zeros();
+                #(y[#q_idx] = s.#q_ids;)*
+                #(y[#qd_idx] = s.#qd_ids;)*
+                y
+            }
+        }
+        impl #ident {
+            /// Free coordinates.
+            pub const DOF: usize = #n;
+            /// What the derive generated for this model, and how many statements.
+            pub const GENERATED: ::mbd::__private::Generated = ::mbd::__private::Generated {
+                parts: &[#(#part_names),*],
+                statements: #statements,
+                constraints: #m,
+            };
+            /// The initial state `[q; qd]` given by `#[init(..)]` (zero where not given).
+            pub fn initial_state(&self) -> ::mbd::__private::Vector<#d> {
+                let t = 0.0_f64;
+                #init_s
+                #init_v
+                y
+            }
+        }
+        #[automatically_derived]
+        #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic, reason = "generated straight-line code")]
+        const _: () = {
+            #mechanism_impl
+            #constrained_impl
+            #ode_impl
+        };
+        #outputs
+        #events
+    }
+}

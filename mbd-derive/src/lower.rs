@@ -1,0 +1,566 @@
+//! User expressions (`syn::Expr`) -> symbolic values, with spanned errors.
+//!
+//! The expression language is a small, smooth subset of Rust: numbers, names (parameters,
+//! coordinates, `t`, `PI`), `+ - * /`, unary minus, calls of the functions in [`FUNCTIONS`]
+//! in either style (`sin(x)` or `x.sin()`), vector literals `[a, b]`, indexing `v[0]`, and in
+//! outputs the body queries (`velocity(rod)`, `reaction(ux)`, `der(x)`, ...).
+
+use crate::parse::Errors;
+use crate::sym::{Expr, Func, Graph, Sym};
+use std::collections::HashMap;
+use syn::spanned::Spanned;
+
+/// A lowered value: a scalar, a vector (positions, velocities) or a 3x3 matrix (rotations).
+#[derive(Clone, Debug)]
+pub enum Value {
+    Scalar(Expr),
+    Vector(Vec<Expr>),
+    Matrix([[Expr; 3]; 3]),
+}
+
+/// Where an expression stands decides what it may name.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Context {
+    /// Drive laws and parameter-only values (mass, inertia, stiffness): `t` and parameters.
+    Constant,
+    /// Kinematics (positions, angles, constraints): coordinates too; only smooth functions.
+    Kinematics,
+    /// Forces: coordinates, `der(...)` of them.
+    Force,
+    /// Outputs and events: everything, including body queries and reactions.
+    Output,
+}
+
+/// What a name stands for.
+#[derive(Clone, Debug)]
+pub enum Binding {
+    Value(Value),
+    /// A coordinate (its position symbol), free, driven or relaxed.
+    Coord(Expr),
+    /// A body, by index; only meaningful as the argument of a body query.
+    Body(usize),
+}
+
+/// Functions the language knows, with their arity (for messages and checks).
+pub const FUNCTIONS: &[(&str, usize)] = &[
+    ("sin", 1),
+    ("cos", 1),
+    ("tan", 1),
+    ("asin", 1),
+    ("acos", 1),
+    ("atan", 1),
+    ("sinh", 1),
+    ("cosh", 1),
+    ("tanh", 1),
+    ("exp", 1),
+    ("ln", 1),
+    ("sqrt", 1),
+    ("abs", 1),
+    ("signum", 1),
+    ("atan2", 2),
+    ("hypot", 2),
+    ("powi", 2),
+    ("powf", 2),
+    ("min", 2),
+    ("max", 2),
+    ("norm", 1),
+    ("dot", 2),
+    ("cross", 2),
+    ("der", 1),
+    ("rot_x", 1),
+    ("rot_y", 1),
+    ("rot_z", 1),
+    ("diag", 3),
+    ("reaction", 1),
+    ("position", 1),
+    ("velocity", 1),
+    ("acceleration", 1),
+    ("angle", 1),
+    ("angular_velocity", 1),
+    ("angular_acceleration", 1),
+];
+
+/// Body queries answered by [`BodyQueries`] (outputs only).
+const BODY_QUERIES: &[&str] = &[
+    "position",
+    "velocity",
+    "acceleration",
+    "angle",
+    "angular_velocity",
+    "angular_acceleration",
+];
+
+/// Answers the questions an expression may ask about the model: time derivatives,
+/// body kinematics, reactions. Implemented by the mechanics stage.
+pub trait Model {
+    /// Total time derivative `de/dt` (positions -> velocities -> accelerations).
+    fn der(&mut self, g: &mut Graph, v: &Value) -> Value;
+    /// A body query (`velocity(rod)`, `position(rod, [0.1, 0.0])`, ...).
+    fn body(&mut self, g: &mut Graph, query: &str, body: usize, offset: Option<Vec<Expr>>)
+    -> Value;
+    /// The symbol standing for the reaction along relaxed or driven coordinate `coord`.
+    fn reaction(&mut self, g: &mut Graph, coord: Expr) -> Option<Expr>;
+}
+
+pub struct Lowerer<'a> {
+    pub g: &'a mut Graph,
+    pub names: &'a HashMap<String, Binding>,
+    pub struct_name: &'a str,
+    pub model: Option<&'a mut dyn Model>,
+    pub errors: &'a mut Errors,
+}
+
+type Res = Result<Value, ()>;
+
+impl Lowerer<'_> {
+    /// Lower `e`, reporting errors (and returning `None`) on anything outside `ctx`.
+    pub fn lower(&mut self, e: &syn::Expr, ctx: Context) -> Option<Value> {
+        self.expr(e, ctx).ok()
+    }
+
+    /// Lower a scalar.
+    pub fn scalar(&mut self, e: &syn::Expr, ctx: Context) -> Option<Expr> {
+        match self.expr(e, ctx).ok()? {
+            Value::Scalar(s) => Some(s),
+            _ => {
+                self.errors.at(e.span(), "expected a scalar expression");
+                None
+            }
+        }
+    }
+
+    /// Lower a vector of `len` components (`len = 0`: any length).
+    pub fn vector(&mut self, e: &syn::Expr, ctx: Context, len: usize) -> Option<Vec<Expr>> {
+        match self.expr(e, ctx).ok()? {
+            Value::Vector(v) if len == 0 || v.len() == len => Some(v),
+            Value::Vector(v) => {
+                let dims = if len == 2 {
+                    "planar (2 components)"
+                } else {
+                    "spatial (3 components)"
+                };
+                self.errors.at(
+                    e.span(),
+                    format!("expected a {dims} vector, found {} components", v.len()),
+                );
+                None
+            }
+            _ => {
+                self.errors.at(
+                    e.span(),
+                    format!("expected a vector `[..]` of {len} components"),
+                );
+                None
+            }
+        }
+    }
+
+    fn fail<T>(&mut self, span: proc_macro2::Span, msg: impl std::fmt::Display) -> Result<T, ()> {
+        self.errors.at(span, msg);
+        Err(())
+    }
+
+    fn expr(&mut self, e: &syn::Expr, ctx: Context) -> Res {
+        use syn::Expr as E;
+        match e {
+            E::Lit(l) => match &l.lit {
+                syn::Lit::Float(f) => Ok(Value::Scalar(self.g.constant(
+                    f.base10_parse::<f64>().map_err(|err| {
+                        self.errors.push(err);
+                    })?,
+                ))),
+                syn::Lit::Int(i) => Ok(Value::Scalar(self.g.constant(
+                    i.base10_parse::<f64>().map_err(|err| {
+                        self.errors.push(err);
+                    })?,
+                ))),
+                _ => self.fail(l.span(), "expected a number"),
+            },
+            E::Paren(p) => self.expr(&p.expr, ctx),
+            E::Group(p) => self.expr(&p.expr, ctx),
+            E::Path(p) => self.path(p, ctx),
+            E::Unary(u) => match u.op {
+                syn::UnOp::Neg(_) => {
+                    let v = self.expr(&u.expr, ctx)?;
+                    Ok(self.map(v, |g, x| g.neg(x)))
+                }
+                _ => self.fail(u.span(), "only unary `-` is supported"),
+            },
+            E::Binary(b) => {
+                let l = self.expr(&b.left, ctx)?;
+                let r = self.expr(&b.right, ctx)?;
+                self.binary(b, l, r)
+            }
+            E::Array(a) => {
+                let mut items = Vec::new();
+                let mut rows = Vec::new();
+                for el in &a.elems {
+                    match self.expr(el, ctx)? {
+                        Value::Scalar(s) => items.push(s),
+                        Value::Vector(v) if v.len() == 3 => rows.push(v),
+                        _ => return self.fail(el.span(), "vector components must be scalars"),
+                    }
+                }
+                match (items.is_empty(), rows.len()) {
+                    (false, 0) => Ok(Value::Vector(items)),
+                    (true, 3) => Ok(Value::Matrix([
+                        [rows[0][0], rows[0][1], rows[0][2]],
+                        [rows[1][0], rows[1][1], rows[1][2]],
+                        [rows[2][0], rows[2][1], rows[2][2]],
+                    ])),
+                    _ => self.fail(
+                        a.span(),
+                        "expected `[x, y]`, `[x, y, z]` or a 3x3 matrix `[[..], [..], [..]]`",
+                    ),
+                }
+            }
+            E::Index(i) => {
+                let v = self.expr(&i.expr, ctx)?;
+                let k = match &*i.index {
+                    E::Lit(syn::ExprLit {
+                        lit: syn::Lit::Int(k),
+                        ..
+                    }) => k.base10_parse::<usize>().map_err(|_| ())?,
+                    other => return self.fail(other.span(), "index with a constant integer"),
+                };
+                match v {
+                    Value::Vector(v) if k < v.len() => Ok(Value::Scalar(v[k])),
+                    _ => self.fail(i.span(), "index out of range, or not a vector"),
+                }
+            }
+            E::Call(c) => {
+                let E::Path(p) = &*c.func else {
+                    return self.fail(c.func.span(), "expected a function name");
+                };
+                let Some(name) = p.path.get_ident() else {
+                    return self.fail(p.span(), "expected a function name");
+                };
+                let args: Vec<&syn::Expr> = c.args.iter().collect();
+                self.call(name, &args, ctx, c.span())
+            }
+            E::MethodCall(m) => {
+                let mut args: Vec<&syn::Expr> = vec![&m.receiver];
+                args.extend(m.args.iter());
+                self.call(&m.method, &args, ctx, m.span())
+            }
+            E::Cast(c) => self.expr(&c.expr, ctx),
+            other => self.fail(
+                other.span(),
+                "unsupported expression: use numbers, names, `+ - * /`, calls, `[..]`",
+            ),
+        }
+    }
+
+    fn path(&mut self, p: &syn::ExprPath, ctx: Context) -> Res {
+        let Some(id) = p.path.get_ident() else {
+            // `std::f64::consts::PI` and friends.
+            let last = p
+                .path
+                .segments
+                .last()
+                .map(|s| s.ident.to_string())
+                .unwrap_or_default();
+            return match last.as_str() {
+                "PI" => Ok(Value::Scalar(self.g.constant(std::f64::consts::PI))),
+                "E" => Ok(Value::Scalar(self.g.constant(std::f64::consts::E))),
+                _ => self.fail(
+                    p.span(),
+                    "expected a parameter, coordinate or constant name",
+                ),
+            };
+        };
+        let name = id.to_string();
+        if name == "t" {
+            let t = self.g.symbol("t");
+            return Ok(Value::Scalar(t));
+        }
+        match self.names.get(&name) {
+            Some(Binding::Value(v)) => Ok(v.clone()),
+            Some(Binding::Coord(c)) => {
+                if ctx == Context::Constant {
+                    self.fail(id.span(), format!("`{name}` is a coordinate: not allowed here (only `t` and parameters)"))
+                } else {
+                    Ok(Value::Scalar(*c))
+                }
+            }
+            Some(Binding::Body(_)) => {
+                self.fail(id.span(), format!("`{name}` is a body: use `position({name})`, `velocity({name})`, ..."))
+            }
+            None => match name.as_str() {
+                "PI" => Ok(Value::Scalar(self.g.constant(std::f64::consts::PI))),
+                _ => self.fail(
+                    id.span(),
+                    format!(
+                        "unknown name `{name}`: not a parameter (field) of `{}`, a coordinate, a point or a body",
+                        self.struct_name
+                    ),
+                ),
+            },
+        }
+    }
+
+    fn map(&mut self, v: Value, f: impl Fn(&mut Graph, Expr) -> Expr) -> Value {
+        match v {
+            Value::Scalar(s) => Value::Scalar(f(self.g, s)),
+            Value::Vector(v) => Value::Vector(v.into_iter().map(|x| f(self.g, x)).collect()),
+            Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|x| f(self.g, x)))),
+        }
+    }
+
+    fn binary(&mut self, b: &syn::ExprBinary, l: Value, r: Value) -> Res {
+        use syn::BinOp as B;
+        let g = &mut *self.g;
+        match (b.op, l, r) {
+            (B::Add(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.add(x, y))),
+            (B::Sub(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.sub(x, y))),
+            (B::Mul(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.mul(x, y))),
+            (B::Div(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.div(x, y))),
+            (B::Add(_), Value::Vector(x), Value::Vector(y)) if x.len() == y.len() => Ok(
+                Value::Vector(x.iter().zip(&y).map(|(a, b)| g.add(*a, *b)).collect()),
+            ),
+            (B::Sub(_), Value::Vector(x), Value::Vector(y)) if x.len() == y.len() => Ok(
+                Value::Vector(x.iter().zip(&y).map(|(a, b)| g.sub(*a, *b)).collect()),
+            ),
+            (B::Mul(_), Value::Scalar(s), Value::Vector(v))
+            | (B::Mul(_), Value::Vector(v), Value::Scalar(s)) => {
+                Ok(Value::Vector(v.iter().map(|x| g.mul(s, *x)).collect()))
+            }
+            (B::Div(_), Value::Vector(v), Value::Scalar(s)) => {
+                Ok(Value::Vector(v.iter().map(|x| g.div(*x, s)).collect()))
+            }
+            (B::Mul(_), Value::Matrix(a), Value::Matrix(c)) => Ok(Value::Matrix(matmul(g, &a, &c))),
+            (B::Mul(_), Value::Matrix(a), Value::Vector(v)) if v.len() == 3 => {
+                Ok(Value::Vector((0..3).map(|i| g.dot(&a[i], &v)).collect()))
+            }
+            (B::BitXor(_), _, _) => self.fail(
+                b.op.span(),
+                "`^` is not a power in Rust: use `x.powi(2)` or `powf(x, y)`",
+            ),
+            (B::Eq(_), _, _) => self.fail(b.op.span(), "`==` belongs only in `constraint(...)`"),
+            _ => self.fail(
+                b.span(),
+                "operands do not match (scalar, vector or matrix of the wrong size)",
+            ),
+        }
+    }
+
+    fn call(
+        &mut self,
+        name: &syn::Ident,
+        args: &[&syn::Expr],
+        ctx: Context,
+        span: proc_macro2::Span,
+    ) -> Res {
+        let fname = name.to_string();
+        let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == fname) else {
+            return self.fail(name.span(), format!("unknown function `{fname}`"));
+        };
+        let arity_ok =
+            args.len() == arity || (BODY_QUERIES.contains(&fname.as_str()) && args.len() == 2);
+        if !arity_ok {
+            return self.fail(
+                span,
+                format!("`{fname}` takes {arity} argument(s), found {}", args.len()),
+            );
+        }
+        if ctx != Context::Output && (BODY_QUERIES.contains(&fname.as_str()) || fname == "reaction")
+        {
+            return self.fail(
+                name.span(),
+                format!("`{fname}(..)` is only available in outputs and events"),
+            );
+        }
+        if ctx == Context::Kinematics && matches!(fname.as_str(), "abs" | "signum" | "min" | "max")
+        {
+            return self.fail(
+                name.span(),
+                format!("`{fname}` is not smooth: kinematics must be differentiable twice (no abs, signum, min, max)"),
+            );
+        }
+        if fname == "der" {
+            if matches!(ctx, Context::Constant | Context::Kinematics) {
+                return self.fail(
+                    name.span(),
+                    "`der(..)` is not allowed in kinematics or constants",
+                );
+            }
+            let v = self.expr(args[0], ctx)?;
+            let Some(model) = self.model.as_deref_mut() else {
+                return self.fail(name.span(), "`der(..)` is not available here");
+            };
+            return Ok(model.der(self.g, &v));
+        }
+        if BODY_QUERIES.contains(&fname.as_str()) {
+            let body = match args[0] {
+                syn::Expr::Path(p) => match p
+                    .path
+                    .get_ident()
+                    .and_then(|i| self.names.get(&i.to_string()))
+                {
+                    Some(Binding::Body(b)) => *b,
+                    _ => {
+                        return self.fail(
+                            args[0].span(),
+                            format!(
+                                "`{fname}` takes a body name; `{}` is not a body",
+                                quote::ToTokens::to_token_stream(args[0])
+                            ),
+                        );
+                    }
+                },
+                other => return self.fail(other.span(), format!("`{fname}` takes a body name")),
+            };
+            let offset = match args.get(1) {
+                Some(e) => match self.expr(e, ctx)? {
+                    Value::Vector(v) => Some(v),
+                    _ => return self.fail(e.span(), "the offset is a body-fixed vector `[..]`"),
+                },
+                None => None,
+            };
+            let Some(model) = self.model.as_deref_mut() else {
+                return self.fail(name.span(), format!("`{fname}` is not available here"));
+            };
+            return Ok(model.body(self.g, &fname, body, offset));
+        }
+        if fname == "reaction" {
+            let coord = match args[0] {
+                syn::Expr::Path(p) => match p
+                    .path
+                    .get_ident()
+                    .and_then(|i| self.names.get(&i.to_string()))
+                {
+                    Some(Binding::Coord(c)) => *c,
+                    _ => {
+                        return self.fail(
+                            args[0].span(),
+                            "`reaction` takes a relaxed or driven coordinate",
+                        );
+                    }
+                },
+                other => return self.fail(other.span(), "`reaction` takes a coordinate name"),
+            };
+            let Some(model) = self.model.as_deref_mut() else {
+                return self.fail(name.span(), "`reaction` is not available here");
+            };
+            return match model.reaction(self.g, coord) {
+                Some(r) => Ok(Value::Scalar(r)),
+                None => self.fail(
+                    args[0].span(),
+                    "`reaction` needs a `relaxed` or driven coordinate",
+                ),
+            };
+        }
+        let vals = args
+            .iter()
+            .map(|a| self.expr(a, ctx))
+            .collect::<Result<Vec<_>, _>>()?;
+        let g = &mut *self.g;
+        let scalar = |v: &Value| match v {
+            Value::Scalar(s) => Some(*s),
+            _ => None,
+        };
+        let vector = |v: &Value| match v {
+            Value::Vector(s) => Some(s.clone()),
+            _ => None,
+        };
+        if let Some(f) = Func::from_name(&fname)
+            && let Some(x) = scalar(&vals[0])
+        {
+            return Ok(Value::Scalar(g.call(f, x)));
+        }
+        let two = (vals.first().and_then(scalar), vals.get(1).and_then(scalar));
+        let out = match (fname.as_str(), two) {
+            ("atan2", (Some(y), Some(x))) => Value::Scalar(g.atan2(y, x)),
+            ("hypot", (Some(x), Some(y))) => {
+                let (x2, y2) = (g.powi(x, 2), g.powi(y, 2));
+                let s = g.add(x2, y2);
+                Value::Scalar(g.call(Func::Sqrt, s))
+            }
+            ("powf", (Some(x), Some(y))) => Value::Scalar(g.powf(x, y)),
+            ("min", (Some(x), Some(y))) => Value::Scalar(g.min(x, y)),
+            ("max", (Some(x), Some(y))) => Value::Scalar(g.max(x, y)),
+            ("powi", (Some(x), Some(n))) => match g.as_const(n) {
+                Some(k) if k.fract() == 0.0 && k.abs() < 64.0 => Value::Scalar(g.powi(x, k as i32)),
+                _ => return self.fail(args[1].span(), "`powi` takes a constant integer exponent"),
+            },
+            ("rot_x" | "rot_y" | "rot_z", (Some(a), _)) => Value::Matrix(rotation(g, &fname, a)),
+            ("diag", _) => match (scalar(&vals[0]), scalar(&vals[1]), scalar(&vals[2])) {
+                (Some(a), Some(b), Some(c)) => {
+                    let z = g.zero();
+                    Value::Matrix([[a, z, z], [z, b, z], [z, z, c]])
+                }
+                _ => return self.fail(span, "`diag` takes three scalars"),
+            },
+            ("norm", _) => match vector(&vals[0]) {
+                Some(v) => {
+                    let s = g.dot(&v, &v);
+                    Value::Scalar(g.call(Func::Sqrt, s))
+                }
+                None => return self.fail(args[0].span(), "`norm` takes a vector"),
+            },
+            ("dot", _) => match (vector(&vals[0]), vector(&vals[1])) {
+                (Some(a), Some(b)) if a.len() == b.len() => Value::Scalar(g.dot(&a, &b)),
+                _ => return self.fail(span, "`dot` takes two vectors of one length"),
+            },
+            ("cross", _) => match (vector(&vals[0]), vector(&vals[1])) {
+                (Some(a), Some(b)) if a.len() == 3 && b.len() == 3 => {
+                    Value::Vector(cross(g, &a, &b).to_vec())
+                }
+                (Some(a), Some(b)) if a.len() == 2 && b.len() == 2 => {
+                    let (p, q) = (g.mul(a[0], b[1]), g.mul(a[1], b[0]));
+                    Value::Scalar(g.sub(p, q))
+                }
+                _ => return self.fail(span, "`cross` takes two vectors of one length"),
+            },
+            _ => return self.fail(span, format!("wrong argument kinds for `{fname}`")),
+        };
+        Ok(out)
+    }
+}
+
+/// Elementary rotation matrices (world from body), right-handed.
+pub fn rotation(g: &mut Graph, axis: &str, a: Expr) -> [[Expr; 3]; 3] {
+    let (c, s) = (g.call(Func::Cos, a), g.call(Func::Sin, a));
+    let ns = g.neg(s);
+    let (o, z) = (g.one(), g.zero());
+    match axis {
+        "rot_x" => [[o, z, z], [z, c, ns], [z, s, c]],
+        "rot_y" => [[c, z, s], [z, o, z], [ns, z, c]],
+        _ => [[c, ns, z], [s, c, z], [z, z, o]],
+    }
+}
+
+pub fn matmul(g: &mut Graph, a: &[[Expr; 3]; 3], b: &[[Expr; 3]; 3]) -> [[Expr; 3]; 3] {
+    let mut out = [[g.zero(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let col = [b[0][j], b[1][j], b[2][j]];
+            out[i][j] = g.dot(&a[i], &col);
+        }
+    }
+    out
+}
+
+pub fn cross(g: &mut Graph, a: &[Expr], b: &[Expr]) -> [Expr; 3] {
+    let mut c = [g.zero(); 3];
+    for (i, ci) in c.iter_mut().enumerate() {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let (p, q) = (g.mul(a[j], b[k]), g.mul(a[k], b[j]));
+        *ci = g.sub(p, q);
+    }
+    c
+}
+
+/// The symbols a lowered value depends on, for the checks.
+pub fn value_exprs(v: &Value) -> Vec<Expr> {
+    match v {
+        Value::Scalar(s) => vec![*s],
+        Value::Vector(v) => v.clone(),
+        Value::Matrix(m) => m.iter().flatten().copied().collect(),
+    }
+}
+
+#[allow(dead_code, reason = "kept for the spatial bodies' symbol bookkeeping")]
+pub fn sym_names(g: &Graph, syms: &[Sym]) -> Vec<String> {
+    syms.iter().map(|s| g.sym_name(*s).to_string()).collect()
+}

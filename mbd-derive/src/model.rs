@@ -1,0 +1,1106 @@
+//! Stage 3: the AST -> the equations of motion, as symbolic expressions.
+//!
+//! Everything is first derived in *full* coordinates `z = (free, driven, relaxed)` with
+//! symbols for `z`, `zd`, `zdd` and `t`, then *reduced*: a driven coordinate becomes its
+//! law `s(t)` (with `s'`, `s''`), a relaxed one becomes 0. Reducing after differentiating
+//! keeps every time derivative exact, and the rows of the full equations that belong to
+//! driven and relaxed coordinates are exactly their reactions:
+//! `r_u = (M zdd - f + Phi_z^T lambda)_u` (Kane's projection form; see MATH.md).
+
+use crate::lower::{self, Binding, Context, Lowerer, Value};
+use crate::parse::{self, BodyKind, Dim, End, Errors, Load, Mechanism};
+use crate::sym::{Expr, Func, Graph, Sym};
+use proc_macro2::Span;
+use std::collections::HashMap;
+use syn::Ident;
+use syn::spanned::Spanned;
+
+/// What a symbol stands for in generated code.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Role {
+    Time,
+    Param(Ident),
+    /// Free coordinate `i`: position, velocity, acceleration.
+    Q(usize),
+    Qd(usize),
+    Qdd(usize),
+    /// Multiplier of constraint `k`.
+    Lambda(usize),
+}
+
+#[derive(Clone, Debug)]
+pub enum CoordKind {
+    Free(usize),
+    /// A driven coordinate with its law `s(t)`.
+    Driven(Expr),
+    Relaxed,
+}
+
+pub struct Coord {
+    pub name: Ident,
+    pub kind: CoordKind,
+    pub z: Expr,
+    pub zd: Expr,
+    pub zdd: Expr,
+}
+
+/// One body's kinematics in full coordinates.
+struct BodyKin {
+    name: Ident,
+    mass: Expr,
+    /// Planar: `[[I]]`-like scalar in `inertia[0][0]`; spatial: the body-frame tensor.
+    inertia: Option<[[Expr; 3]; 3]>,
+    r: Vec<Expr>,
+    /// Planar angle.
+    angle: Option<Expr>,
+    /// Spatial rotation (world from body).
+    rot: Option<[[Expr; 3]; 3]>,
+}
+
+pub struct OutputEq {
+    pub name: Ident,
+    pub expr: Expr,
+}
+
+pub struct EventEq {
+    pub name: Ident,
+    pub expr: Expr,
+    pub direction: parse::Direction,
+    pub terminal: bool,
+}
+
+/// The derived model, ready for code generation.
+pub struct Equations {
+    pub g: Graph,
+    pub roles: HashMap<Sym, Role>,
+    pub coords: Vec<Coord>,
+    /// Names of the free coordinates, in state order.
+    pub free: Vec<Ident>,
+    pub mass: Vec<Vec<Expr>>,
+    pub forces: Vec<Expr>,
+    pub energy: Expr,
+    pub phi: Vec<Expr>,
+    pub phi_q: Vec<Vec<Expr>>,
+    pub phi_t: Vec<Expr>,
+    pub gamma: Vec<Expr>,
+    /// `(dR/dq, dR/dqd, dC/dq, dC/dqd)` of the residuals `R = M qdd + Phi_q^T lambda - f`
+    /// and `C = Phi_q qdd - gamma`, when exact Jacobians are asked for.
+    pub jacobian: Option<ResidualJacobian>,
+    pub outputs: Vec<OutputEq>,
+    pub events: Vec<EventEq>,
+    /// Initial positions and velocities of the free coordinates (parameters allowed).
+    pub init_q: Vec<Expr>,
+    pub init_qd: Vec<Expr>,
+    pub bodies: Vec<String>,
+    pub dim: Dim,
+}
+
+pub struct ResidualJacobian {
+    pub r_q: Vec<Vec<Expr>>,
+    pub r_qd: Vec<Vec<Expr>>,
+    pub c_q: Vec<Vec<Expr>>,
+    pub c_qd: Vec<Vec<Expr>>,
+}
+
+struct Kin<'a> {
+    coords: &'a [Coord],
+    bodies: &'a [BodyKin],
+    t: Expr,
+    dim: Dim,
+    /// Reaction symbols requested by outputs: coordinate index -> placeholder symbol.
+    reactions: &'a mut Vec<(usize, Expr)>,
+}
+
+impl Kin<'_> {
+    /// Total time derivative in full coordinates.
+    fn tder(&self, g: &mut Graph, e: Expr) -> Expr {
+        let mut terms = Vec::new();
+        for c in self.coords {
+            for (x, dx) in [(c.z, c.zd), (c.zd, c.zdd)] {
+                let s = g.as_sym(x).expect("coordinate symbol");
+                let d = g.diff(e, s);
+                if !g.is_zero(d) {
+                    terms.push(g.mul(d, dx));
+                }
+            }
+        }
+        let ts = g.as_sym(self.t).expect("time symbol");
+        terms.push(g.diff(e, ts));
+        g.sum(terms)
+    }
+
+    fn tder_value(&self, g: &mut Graph, v: &Value) -> Value {
+        match v {
+            Value::Scalar(s) => Value::Scalar(self.tder(g, *s)),
+            Value::Vector(v) => Value::Vector(v.iter().map(|x| self.tder(g, *x)).collect()),
+            Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|x| self.tder(g, x)))),
+        }
+    }
+
+    /// Position of a body-fixed point (`offset` in body axes; `None`: the mass centre).
+    fn point(&self, g: &mut Graph, b: &BodyKin, offset: Option<&[Expr]>) -> Vec<Expr> {
+        let Some(d) = offset else { return b.r.clone() };
+        match (self.dim, b.angle, b.rot) {
+            (Dim::Planar, Some(phi), _) => {
+                let (c, s) = (g.call(Func::Cos, phi), g.call(Func::Sin, phi));
+                let (xc, ys) = (g.mul(c, d[0]), g.mul(s, d[1]));
+                let (xs, yc) = (g.mul(s, d[0]), g.mul(c, d[1]));
+                let dx = g.sub(xc, ys);
+                let dy = g.add(xs, yc);
+                vec![g.add(b.r[0], dx), g.add(b.r[1], dy)]
+            }
+            (Dim::Spatial, _, Some(rot)) => (0..3)
+                .map(|i| {
+                    let rd = g.dot(&rot[i], d);
+                    g.add(b.r[i], rd)
+                })
+                .collect(),
+            _ => b.r.iter().zip(d).map(|(r, d)| g.add(*r, *d)).collect(),
+        }
+    }
+
+    /// Body-frame angular velocity `vee(R^T dR/dt)` of a spatial body.
+    fn omega_body(&self, g: &mut Graph, rot: &[[Expr; 3]; 3]) -> Vec<Expr> {
+        let rdot = rot.map(|row| row.map(|x| self.tder(g, x)));
+        let mut s = [[g.zero(); 3]; 3];
+        for (i, row) in s.iter_mut().enumerate() {
+            for (j, sij) in row.iter_mut().enumerate() {
+                let col_i = [rot[0][i], rot[1][i], rot[2][i]];
+                let col_j = [rdot[0][j], rdot[1][j], rdot[2][j]];
+                *sij = g.dot(&col_i, &col_j);
+            }
+        }
+        vec![s[2][1], s[0][2], s[1][0]]
+    }
+}
+
+impl lower::Model for Kin<'_> {
+    fn der(&mut self, g: &mut Graph, v: &Value) -> Value {
+        self.tder_value(g, v)
+    }
+
+    fn body(
+        &mut self,
+        g: &mut Graph,
+        query: &str,
+        body: usize,
+        offset: Option<Vec<Expr>>,
+    ) -> Value {
+        let b = &self.bodies[body];
+        match query {
+            "position" | "velocity" | "acceleration" => {
+                let mut v = Value::Vector(self.point(g, b, offset.as_deref()));
+                for _ in 0..["position", "velocity", "acceleration"]
+                    .iter()
+                    .position(|q| *q == query)
+                    .unwrap_or(0)
+                {
+                    v = self.tder_value(g, &v);
+                }
+                v
+            }
+            _ => {
+                let order = ["angle", "angular_velocity", "angular_acceleration"]
+                    .iter()
+                    .position(|q| *q == query)
+                    .unwrap_or(0);
+                match (b.angle, b.rot) {
+                    (Some(phi), _) => {
+                        let mut v = Value::Scalar(phi);
+                        for _ in 0..order {
+                            v = self.tder_value(g, &v);
+                        }
+                        v
+                    }
+                    (None, Some(rot)) => {
+                        // World-frame angular velocity R w_b; its derivative is R dw_b/dt.
+                        let w_b = self.omega_body(g, &rot);
+                        let w = if order == 2 {
+                            w_b.iter().map(|x| self.tder(g, *x)).collect()
+                        } else {
+                            w_b
+                        };
+                        Value::Vector((0..3).map(|i| g.dot(&rot[i], &w)).collect())
+                    }
+                    _ => Value::Scalar(g.zero()),
+                }
+            }
+        }
+    }
+
+    fn reaction(&mut self, g: &mut Graph, coord: Expr) -> Option<Expr> {
+        let idx = self.coords.iter().position(|c| c.z == coord)?;
+        if matches!(self.coords[idx].kind, CoordKind::Free(_)) {
+            return None;
+        }
+        if let Some((_, s)) = self.reactions.iter().find(|(i, _)| *i == idx) {
+            return Some(*s);
+        }
+        let s = g.symbol(&format!("reaction:{}", self.coords[idx].name));
+        self.reactions.push((idx, s));
+        Some(s)
+    }
+}
+
+/// Names bound in user expressions.
+type Names = HashMap<String, Binding>;
+
+pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
+    let mut errors = Errors::default();
+    let mut g = Graph::new();
+    let mut names: Names = HashMap::new();
+    let mut roles: HashMap<Sym, Role> = HashMap::new();
+    let struct_name = ast.ident.to_string();
+    let t = g.symbol("t");
+    roles.insert(g.as_sym(t).expect("symbol"), Role::Time);
+
+    let declare = |names: &mut Names, errors: &mut Errors, id: &Ident, b: Binding| {
+        let key = id.to_string();
+        if key == "t" {
+            errors.at(id.span(), "`t` is time and cannot be redefined");
+        } else if names.contains_key(&key) {
+            errors.at(id.span(), format!("duplicate name `{key}`"));
+        } else {
+            names.insert(key, b);
+        }
+    };
+
+    for p in &ast.params {
+        let s = g.symbol(&p.name.to_string());
+        roles.insert(g.as_sym(s).expect("symbol"), Role::Param(p.name.clone()));
+        declare(
+            &mut names,
+            &mut errors,
+            &p.name,
+            Binding::Value(Value::Scalar(s)),
+        );
+    }
+
+    // Coordinates: free, driven, relaxed.
+    let mut coords: Vec<Coord> = Vec::new();
+    let new_coord = |g: &mut Graph, name: &Ident, kind: CoordKind| {
+        let base = name.to_string();
+        Coord {
+            name: name.clone(),
+            kind,
+            z: g.symbol(&base),
+            zd: g.symbol(&format!("{base}'")),
+            zdd: g.symbol(&format!("{base}''")),
+        }
+    };
+    for (i, id) in ast.coords.iter().enumerate() {
+        if ast.drives.iter().any(|d| d.name == *id) {
+            errors.at(
+                id.span(),
+                format!("coordinate `{id}` is both free (in `coords`) and driven (in `drive`): a driven coordinate is a known function of time, remove it from `coords`"),
+            );
+        }
+        let c = new_coord(&mut g, id, CoordKind::Free(i));
+        for (s, role) in [
+            (c.z, Role::Q(i)),
+            (c.zd, Role::Qd(i)),
+            (c.zdd, Role::Qdd(i)),
+        ] {
+            roles.insert(g.as_sym(s).expect("symbol"), role);
+        }
+        declare(&mut names, &mut errors, id, Binding::Coord(c.z));
+        coords.push(c);
+    }
+    for d in &ast.drives {
+        if ast.coords.contains(&d.name) {
+            continue;
+        }
+        let law = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        }
+        .scalar(&d.expr, Context::Constant);
+        let c = new_coord(&mut g, &d.name, CoordKind::Driven(law.unwrap_or(t)));
+        declare(&mut names, &mut errors, &d.name, Binding::Coord(c.z));
+        coords.push(c);
+    }
+    for id in &ast.relaxed {
+        let c = new_coord(&mut g, id, CoordKind::Relaxed);
+        declare(&mut names, &mut errors, id, Binding::Coord(c.z));
+        coords.push(c);
+    }
+    let dim = ast.dim;
+
+    // Points, in order: a point may use the points before it.
+    for p in &ast.points {
+        let v = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        }
+        .vector(&p.at, Context::Kinematics, dim.len());
+        if let Some(v) = v {
+            declare(
+                &mut names,
+                &mut errors,
+                &p.name,
+                Binding::Value(Value::Vector(v)),
+            );
+        }
+    }
+
+    // Bodies.
+    let mut bodies: Vec<BodyKin> = Vec::new();
+    for b in &ast.bodies {
+        let mut lw = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        };
+        let mass = b
+            .mass
+            .as_ref()
+            .and_then(|m| lw.scalar(m, Context::Constant));
+        if let Some(m) = mass
+            && lw.g.as_const(m).is_some_and(|v| v <= 0.0)
+        {
+            lw.errors.at(
+                b.mass.as_ref().expect("mass").span(),
+                format!("body `{}` has no positive mass", b.name),
+            );
+        }
+        let r =
+            b.at.as_ref()
+                .and_then(|e| lw.vector(e, Context::Kinematics, dim.len()));
+        let (mut inertia, mut angle, mut rot) = (None, None, None);
+        match b.kind {
+            BodyKind::Particle => {}
+            BodyKind::Rigid => {
+                if dim == Dim::Spatial {
+                    lw.errors.at(b.name.span(), format!("`rigid` body `{}` is planar but the mechanism is spatial: use `rigid3`", b.name));
+                }
+                match &b.inertia {
+                    Some(e) => {
+                        if let Some(i) = lw.scalar(e, Context::Constant) {
+                            let z = lw.g.zero();
+                            inertia = Some([[i, z, z], [z, z, z], [z, z, z]]);
+                        }
+                    }
+                    None => lw.errors.at(
+                        b.name.span(),
+                        format!("rigid body `{}` has no `inertia`", b.name),
+                    ),
+                }
+                match &b.orientation {
+                    Some(e) => angle = lw.scalar(e, Context::Kinematics),
+                    None => lw.errors.at(
+                        b.name.span(),
+                        format!("rigid body `{}` has no `angle`", b.name),
+                    ),
+                }
+            }
+            BodyKind::Rigid3 => {
+                match &b.inertia {
+                    Some(e) => match lw.lower(e, Context::Constant) {
+                        Some(Value::Matrix(m)) => inertia = Some(m),
+                        Some(_) => lw.errors.at(
+                            e.span(),
+                            "a spatial inertia is `diag(a, b, c)` or a 3x3 matrix",
+                        ),
+                        None => {}
+                    },
+                    None => lw.errors.at(
+                        b.name.span(),
+                        format!("rigid body `{}` has no `inertia`", b.name),
+                    ),
+                }
+                match &b.orientation {
+                    Some(e) => match lw.lower(e, Context::Kinematics) {
+                        Some(Value::Matrix(m)) => rot = Some(m),
+                        Some(_) => lw.errors.at(
+                            e.span(),
+                            "a rotation is a product of `rot_x`, `rot_y`, `rot_z` or a 3x3 matrix",
+                        ),
+                        None => {}
+                    },
+                    None => lw.errors.at(
+                        b.name.span(),
+                        format!("rigid body `{}` has no `rotation`", b.name),
+                    ),
+                }
+            }
+        }
+        let idx = bodies.len();
+        if let (Some(mass), Some(r)) = (mass, r) {
+            bodies.push(BodyKin {
+                name: b.name.clone(),
+                mass,
+                inertia,
+                r,
+                angle,
+                rot,
+            });
+            declare(&mut names, &mut errors, &b.name, Binding::Body(idx));
+        }
+    }
+    errors.finish()?;
+    let mut errors = Errors::default();
+
+    let mut reactions: Vec<(usize, Expr)> = Vec::new();
+    let zero = g.zero();
+
+    // Constraints (full coordinates).
+    let mut phi_full = Vec::new();
+    let mut phi_spans = Vec::new();
+    for c in &ast.constraints {
+        let mut lw = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        };
+        if let (Some(l), Some(r)) = (
+            lw.scalar(&c.lhs, Context::Kinematics),
+            lw.scalar(&c.rhs, Context::Kinematics),
+        ) {
+            phi_full.push(g.sub(l, r));
+            phi_spans.push(c.span);
+        }
+    }
+
+    // Generalised forces (full coordinates) and potential energy.
+    let nz = coords.len();
+    let mut q_full = vec![zero; nz];
+    let mut potential = zero;
+    // Gravity enters the forces directly; its potential only the energy.
+    let mut gravity_energy = zero;
+    let kin = Kin {
+        coords: &coords,
+        bodies: &bodies,
+        t,
+        dim,
+        reactions: &mut reactions,
+    };
+    let zsyms: Vec<Sym> = coords
+        .iter()
+        .map(|c| g.as_sym(c.z).expect("symbol"))
+        .collect();
+    let zdsyms: Vec<Sym> = coords
+        .iter()
+        .map(|c| g.as_sym(c.zd).expect("symbol"))
+        .collect();
+    let add_force_at = |g: &mut Graph, q_full: &mut Vec<Expr>, at: &[Expr], force: &[Expr]| {
+        // Virtual work F . dr/dz_j.
+        for (j, zs) in zsyms.iter().enumerate() {
+            let col: Vec<Expr> = at.iter().map(|x| g.diff(*x, *zs)).collect();
+            let w = g.dot(force, &col);
+            q_full[j] = g.add(q_full[j], w);
+        }
+    };
+    let gravity = match &ast.gravity {
+        Some(e) => Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        }
+        .vector(e, Context::Constant, dim.len()),
+        None => None,
+    };
+    if let Some(grav) = &gravity {
+        for b in &bodies {
+            let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
+            add_force_at(&mut g, &mut q_full, &b.r, &w);
+            let h = g.dot(&w, &b.r);
+            gravity_energy = g.sub(gravity_energy, h);
+        }
+    }
+    let end_position = |g: &mut Graph, errors: &mut Errors, end: &End| -> Option<Vec<Expr>> {
+        match end {
+            End::Named(id) => match names.get(&id.to_string()) {
+                Some(Binding::Value(Value::Vector(v))) => Some(v.clone()),
+                Some(Binding::Body(b)) => Some(bodies[*b].r.clone()),
+                _ => {
+                    errors.at(id.span(), format!("unknown point or body `{id}`"));
+                    None
+                }
+            },
+            End::At(e) => Lowerer {
+                g,
+                names: &names,
+                struct_name: &struct_name,
+                model: None,
+                errors,
+            }
+            .vector(e, Context::Kinematics, dim.len()),
+        }
+    };
+    let length = |g: &mut Graph, a: &[Expr], b: &[Expr]| {
+        let d: Vec<Expr> = a.iter().zip(b).map(|(x, y)| g.sub(*y, *x)).collect();
+        let s = g.dot(&d, &d);
+        g.call(Func::Sqrt, s)
+    };
+    for s in &ast.springs {
+        let (a, b) = (
+            end_position(&mut g, &mut errors, &s.from),
+            end_position(&mut g, &mut errors, &s.to),
+        );
+        let mut lw = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        };
+        let k = lw.scalar(&s.k, Context::Constant);
+        let l0 = match &s.length {
+            Some(e) => lw.scalar(e, Context::Constant),
+            None => Some(lw.g.zero()),
+        };
+        if let (Some(a), Some(b), Some(k), Some(l0)) = (a, b, k, l0) {
+            let l = length(&mut g, &a, &b);
+            let stretch = g.sub(l, l0);
+            let s2 = g.powi(stretch, 2);
+            let half = g_half(&mut g);
+            let half_k = g.mul(half, k);
+            let v = g.mul(half_k, s2);
+            potential = g.add(potential, v);
+        }
+    }
+    for p in &ast.potentials {
+        if let Some(v) = (Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        })
+        .scalar(p, Context::Kinematics)
+        {
+            potential = g.add(potential, v);
+        }
+    }
+    for (j, zs) in zsyms.iter().enumerate() {
+        let dv = g.diff(potential, *zs);
+        q_full[j] = g.sub(q_full[j], dv);
+    }
+    for d in &ast.dampers {
+        let (a, b) = (
+            end_position(&mut g, &mut errors, &d.from),
+            end_position(&mut g, &mut errors, &d.to),
+        );
+        let c = (Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        })
+        .scalar(&d.c, Context::Constant);
+        if let (Some(a), Some(b), Some(c)) = (a, b, c) {
+            // Rayleigh dissipation D = c ldot^2 / 2; Q_j = -dD/dzd_j = -c ldot dldot/dzd_j.
+            let l = length(&mut g, &a, &b);
+            let ldot = kin.tder(&mut g, l);
+            let cl = g.mul(c, ldot);
+            for (j, zds) in zdsyms.iter().enumerate() {
+                let dl = g.diff(ldot, *zds);
+                let w = g.mul(cl, dl);
+                q_full[j] = g.sub(q_full[j], w);
+            }
+        }
+    }
+    for load in &ast.loads {
+        match load {
+            Load::Force { at, value } => {
+                let mut lw = Lowerer {
+                    g: &mut g,
+                    names: &names,
+                    struct_name: &struct_name,
+                    model: None,
+                    errors: &mut errors,
+                };
+                let at = lw.vector(at, Context::Kinematics, dim.len());
+                let f = lw.vector(value, Context::Force, dim.len());
+                if let (Some(at), Some(f)) = (at, f) {
+                    add_force_at(&mut g, &mut q_full, &at, &f);
+                }
+            }
+            Load::Torque { body, value } => {
+                let Some(Binding::Body(bi)) = names.get(&body.to_string()) else {
+                    errors.at(body.span(), format!("unknown body `{body}`"));
+                    continue;
+                };
+                let b = &bodies[*bi];
+                let mut lw = Lowerer {
+                    g: &mut g,
+                    names: &names,
+                    struct_name: &struct_name,
+                    model: None,
+                    errors: &mut errors,
+                };
+                match (b.angle, b.rot) {
+                    (Some(phi), _) => {
+                        if let Some(tau) = lw.scalar(value, Context::Force) {
+                            for (j, zs) in zsyms.iter().enumerate() {
+                                let d = g.diff(phi, *zs);
+                                let w = g.mul(tau, d);
+                                q_full[j] = g.add(q_full[j], w);
+                            }
+                        }
+                    }
+                    (None, Some(rot)) => {
+                        if let Some(tau) = lw.vector(value, Context::Force, 3) {
+                            // World torque . d(w_world)/dzd_j.
+                            let w_b = kin.omega_body(&mut g, &rot);
+                            let w: Vec<Expr> = (0..3).map(|i| g.dot(&rot[i], &w_b)).collect();
+                            for (j, zds) in zdsyms.iter().enumerate() {
+                                let col: Vec<Expr> = w.iter().map(|x| g.diff(*x, *zds)).collect();
+                                let p = g.dot(&tau, &col);
+                                q_full[j] = g.add(q_full[j], p);
+                            }
+                        }
+                    }
+                    _ => errors.at(
+                        body.span(),
+                        format!("`{body}` is a particle: a torque needs a rigid body"),
+                    ),
+                }
+            }
+            Load::Generalized { coord, value } => {
+                let Some(j) = coords.iter().position(|c| c.name == *coord) else {
+                    errors.at(coord.span(), format!("unknown coordinate `{coord}`"));
+                    continue;
+                };
+                if let Some(v) = (Lowerer {
+                    g: &mut g,
+                    names: &names,
+                    struct_name: &struct_name,
+                    model: None,
+                    errors: &mut errors,
+                })
+                .scalar(value, Context::Force)
+                {
+                    q_full[j] = g.add(q_full[j], v);
+                }
+            }
+        }
+    }
+    for f in &ast.frictions {
+        errors.at(
+            f.span,
+            "`friction` is not supported yet by this version of mbd",
+        );
+    }
+
+    // Kane's projection: M_jk = sum m J_j . J_k + Jw_j^T I Jw_k;
+    // f_j = Q_j - sum J_j . m a0 - Jw_j^T (I alpha0 + w x I w).
+    let mut m_full = vec![vec![zero; nz]; nz];
+    let mut f_full = q_full;
+    let mut kinetic = zero;
+    for b in &bodies {
+        let v: Vec<Expr> = b.r.iter().map(|x| kin.tder(&mut g, *x)).collect();
+        let jac: Vec<Vec<Expr>> = zdsyms
+            .iter()
+            .map(|s| v.iter().map(|x| g.diff(*x, *s)).collect())
+            .collect();
+        let a0: Vec<Expr> = v.iter().map(|x| drop_qdd(&mut g, &kin, *x)).collect();
+        let vv = g.dot(&v, &v);
+        let mv = g.mul(b.mass, vv);
+        kinetic = g.add(kinetic, mv);
+        for j in 0..nz {
+            if jac[j].iter().all(|x| g.is_zero(*x)) {
+                continue;
+            }
+            for k in j..nz {
+                let d = g.dot(&jac[j], &jac[k]);
+                let md = g.mul(b.mass, d);
+                m_full[j][k] = g.add(m_full[j][k], md);
+            }
+            let d = g.dot(&jac[j], &a0);
+            let md = g.mul(b.mass, d);
+            f_full[j] = g.sub(f_full[j], md);
+        }
+        // Rotation: planar scalar, or spatial body-frame vector.
+        let (w, inertia): (Vec<Expr>, [[Expr; 3]; 3]) = match (b.angle, b.rot, b.inertia) {
+            (Some(phi), _, Some(i)) => {
+                let z = g.zero();
+                let w = kin.tder(&mut g, phi);
+                (vec![w], [[i[0][0], z, z], [z, z, z], [z, z, z]])
+            }
+            (None, Some(rot), Some(i)) => (kin.omega_body(&mut g, &rot), i),
+            _ => continue,
+        };
+        let nw = w.len();
+        let iw: Vec<Expr> = (0..nw).map(|r| g.dot(&inertia[r][..nw], &w)).collect();
+        let wiw = g.dot(&w, &iw);
+        kinetic = g.add(kinetic, wiw);
+        let jw: Vec<Vec<Expr>> = zdsyms
+            .iter()
+            .map(|s| w.iter().map(|x| g.diff(*x, *s)).collect())
+            .collect();
+        let alpha0: Vec<Expr> = w.iter().map(|x| drop_qdd(&mut g, &kin, *x)).collect();
+        let mut inertial: Vec<Expr> = (0..nw).map(|r| g.dot(&inertia[r][..nw], &alpha0)).collect();
+        if nw == 3 {
+            let gyro = lower::cross(&mut g, &w, &iw);
+            for r in 0..3 {
+                inertial[r] = g.add(inertial[r], gyro[r]);
+            }
+        }
+        for j in 0..nz {
+            if jw[j].iter().all(|x| g.is_zero(*x)) {
+                continue;
+            }
+            let ij: Vec<Expr> = (0..nw).map(|r| g.dot(&inertia[r][..nw], &jw[j])).collect();
+            for k in j..nz {
+                let d = g.dot(&ij, &jw[k]);
+                m_full[j][k] = g.add(m_full[j][k], d);
+            }
+            let d = g.dot(&jw[j], &inertial);
+            f_full[j] = g.sub(f_full[j], d);
+        }
+    }
+    for j in 0..nz {
+        for k in 0..j {
+            m_full[j][k] = m_full[k][j];
+        }
+    }
+    let half = g_half(&mut g);
+    let kinetic = g.mul(half, kinetic);
+    let potential_all = g.add(potential, gravity_energy);
+    let energy_full = g.add(kinetic, potential_all);
+
+    // Reduction: driven -> s(t), relaxed -> 0.
+    let ts = g.as_sym(t).expect("symbol");
+    let mut reduce: HashMap<Sym, Expr> = HashMap::new();
+    for c in &coords {
+        let (z, zd, zdd) = match &c.kind {
+            CoordKind::Free(_) => continue,
+            CoordKind::Driven(law) => {
+                let d1 = g.diff(*law, ts);
+                let d2 = g.diff(d1, ts);
+                (*law, d1, d2)
+            }
+            CoordKind::Relaxed => (zero, zero, zero),
+        };
+        for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd)] {
+            reduce.insert(g.as_sym(s).expect("symbol"), v);
+        }
+    }
+    let free_idx: Vec<usize> = coords
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| matches!(c.kind, CoordKind::Free(_)))
+        .map(|(i, _)| i)
+        .collect();
+    let n = free_idx.len();
+    let red = |g: &mut Graph, e: Expr| g.substitute(e, &reduce);
+    let mut mass = vec![vec![zero; n]; n];
+    let mut forces = vec![zero; n];
+    for (a, &i) in free_idx.iter().enumerate() {
+        for (b, &j) in free_idx.iter().enumerate() {
+            mass[a][b] = red(&mut g, m_full[i][j]);
+        }
+        // Move the driven coordinates' known accelerations to the right side.
+        let mut fi = f_full[i];
+        for (j, c) in coords.iter().enumerate() {
+            if let CoordKind::Driven(_) = c.kind {
+                let mz = g.mul(m_full[i][j], c.zdd);
+                fi = g.sub(fi, mz);
+            }
+        }
+        forces[a] = red(&mut g, fi);
+    }
+    let energy = red(&mut g, energy_full);
+
+    // Constraints in free coordinates.
+    let qsyms: Vec<Sym> = free_idx.iter().map(|&i| zsyms[i]).collect();
+    let phi: Vec<Expr> = phi_full.iter().map(|e| red(&mut g, *e)).collect();
+    let phi_q: Vec<Vec<Expr>> = phi
+        .iter()
+        .map(|p| qsyms.iter().map(|s| g.diff(*p, *s)).collect())
+        .collect();
+    let phi_t: Vec<Expr> = phi.iter().map(|p| g.diff(*p, ts)).collect();
+    let qd: Vec<Expr> = free_idx.iter().map(|&i| coords[i].zd).collect();
+    let qdd: Vec<Expr> = free_idx.iter().map(|&i| coords[i].zdd).collect();
+    let mut gamma = Vec::new();
+    for (k, row) in phi_q.iter().enumerate() {
+        let phidot0 = g.dot(row, &qd);
+        let phidot = g.add(phidot0, phi_t[k]);
+        let mut terms: Vec<Expr> = qsyms
+            .iter()
+            .zip(&qd)
+            .map(|(s, v)| {
+                let d = g.diff(phidot, *s);
+                g.mul(d, *v)
+            })
+            .collect();
+        terms.push(g.diff(phidot, ts));
+        let s = g.sum(terms);
+        gamma.push(g.neg(s));
+    }
+    let m_con = phi.len();
+    let lambdas: Vec<Expr> = (0..m_con)
+        .map(|k| {
+            let s = g.symbol(&format!("lambda:{k}"));
+            roles.insert(g.as_sym(s).expect("symbol"), Role::Lambda(k));
+            s
+        })
+        .collect();
+
+    // Checks that need the equations.
+    if m_con > n {
+        for span in &phi_spans[n..] {
+            errors.at(*span, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
+        }
+    }
+    for (a, &i) in free_idx.iter().enumerate() {
+        let in_constraint = phi.iter().any(|p| g.depends_on(*p, qsyms[a]));
+        if g.is_zero(mass[a][a]) && !in_constraint {
+            errors.at(
+                coords[i].name.span(),
+                format!("coordinate `{}` moves no mass and no constraint fixes it: the mass matrix would be singular", coords[i].name),
+            );
+        }
+    }
+
+    // Outputs and events, with reactions on request.
+    let mut outputs = Vec::new();
+    let mut events = Vec::new();
+    {
+        let mut kin = Kin {
+            coords: &coords,
+            bodies: &bodies,
+            t,
+            dim,
+            reactions: &mut reactions,
+        };
+        for o in &ast.outputs {
+            let mut lw = Lowerer {
+                g: &mut g,
+                names: &names,
+                struct_name: &struct_name,
+                model: Some(&mut kin),
+                errors: &mut errors,
+            };
+            if let Some(e) = lw.scalar(&o.expr, Context::Output) {
+                outputs.push(OutputEq {
+                    name: o.name.clone(),
+                    expr: e,
+                });
+            }
+        }
+        for ev in &ast.events {
+            let mut lw = Lowerer {
+                g: &mut g,
+                names: &names,
+                struct_name: &struct_name,
+                model: Some(&mut kin),
+                errors: &mut errors,
+            };
+            if let Some(e) = lw.scalar(&ev.expr, Context::Output) {
+                events.push(EventEq {
+                    name: ev.name.clone(),
+                    expr: e,
+                    direction: ev.direction,
+                    terminal: ev.terminal,
+                });
+            }
+        }
+    }
+    // r_u = (M zdd - f + Phi_z^T lambda)_u, then reduced.
+    let mut reaction_map: HashMap<Sym, Expr> = HashMap::new();
+    for (u, placeholder) in &reactions {
+        let zdd: Vec<Expr> = coords.iter().map(|c| c.zdd).collect();
+        let ma = g.dot(&m_full[*u], &zdd);
+        let mut r = g.sub(ma, f_full[*u]);
+        for (k, p) in phi_full.iter().enumerate() {
+            let d = g.diff(*p, zsyms[*u]);
+            let dl = g.mul(d, lambdas[k]);
+            r = g.add(r, dl);
+        }
+        reaction_map.insert(g.as_sym(*placeholder).expect("symbol"), r);
+    }
+    let finish = |g: &mut Graph, e: Expr| {
+        let e = g.substitute(e, &reaction_map);
+        g.substitute(e, &reduce)
+    };
+    for o in &mut outputs {
+        o.expr = finish(&mut g, o.expr);
+    }
+    for e in &mut events {
+        e.expr = finish(&mut g, e.expr);
+    }
+
+    // Residual Jacobians for implicit methods.
+    let jacobian = ast.jacobian.then(|| {
+        let qdsyms: Vec<Sym> = qd.iter().map(|e| g.as_sym(*e).expect("symbol")).collect();
+        let mut r = Vec::new();
+        for a in 0..n {
+            let ma = g.dot(&mass[a], &qdd);
+            let mut ra = g.sub(ma, forces[a]);
+            for k in 0..m_con {
+                let pl = g.mul(phi_q[k][a], lambdas[k]);
+                ra = g.add(ra, pl);
+            }
+            r.push(ra);
+        }
+        let c: Vec<Expr> = (0..m_con)
+            .map(|k| {
+                let pa = g.dot(&phi_q[k], &qdd);
+                g.sub(pa, gamma[k])
+            })
+            .collect();
+        let jac = |g: &mut Graph, rows: &[Expr], by: &[Sym]| -> Vec<Vec<Expr>> {
+            rows.iter()
+                .map(|e| by.iter().map(|s| g.diff(*e, *s)).collect())
+                .collect()
+        };
+        ResidualJacobian {
+            r_q: jac(&mut g, &r, &qsyms),
+            r_qd: jac(&mut g, &r, &qdsyms),
+            c_q: jac(&mut g, &c, &qsyms),
+            c_qd: jac(&mut g, &c, &qdsyms),
+        }
+    });
+
+    // Initial conditions.
+    let mut init_q = vec![zero; n];
+    let mut init_qd = vec![zero; n];
+    for i in &ast.inits {
+        let Some(a) = free_idx.iter().position(|&j| coords[j].name == i.coord) else {
+            errors.at(
+                i.coord.span(),
+                format!("`{}` is not a free coordinate", i.coord),
+            );
+            continue;
+        };
+        if let Some(v) = (Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        })
+        .scalar(&i.value, Context::Constant)
+        {
+            if i.velocity {
+                init_qd[a] = v
+            } else {
+                init_q[a] = v
+            }
+        }
+    }
+    check_default_configuration(ast, &mut g, &phi, &phi_spans, &init_q, &roles, &mut errors);
+    errors.finish()?;
+
+    Ok(Equations {
+        free: free_idx.iter().map(|&i| coords[i].name.clone()).collect(),
+        g,
+        roles,
+        coords,
+        mass,
+        forces,
+        energy,
+        phi,
+        phi_q,
+        phi_t,
+        gamma,
+        jacobian,
+        outputs,
+        events,
+        init_q,
+        init_qd,
+        bodies: bodies.iter().map(|b| b.name.to_string()).collect(),
+        dim,
+    })
+}
+
+fn g_half(g: &mut Graph) -> Expr {
+    g.constant(0.5)
+}
+
+/// `[d/dt e]` without its `zdd` terms: the acceleration-like part that does not depend on
+/// the unknown accelerations (`a0`, `alpha0`).
+fn drop_qdd(g: &mut Graph, kin: &Kin<'_>, v: Expr) -> Expr {
+    let mut terms = Vec::new();
+    for c in kin.coords {
+        let s = g.as_sym(c.z).expect("symbol");
+        let d = g.diff(v, s);
+        if !g.is_zero(d) {
+            terms.push(g.mul(d, c.zd));
+        }
+    }
+    let ts = g.as_sym(kin.t).expect("symbol");
+    terms.push(g.diff(v, ts));
+    g.sum(terms)
+}
+
+/// When every parameter has a default and the initial positions are given, the default
+/// configuration must satisfy the constraints: checked here, at compile time.
+fn check_default_configuration(
+    ast: &Mechanism,
+    g: &mut Graph,
+    phi: &[Expr],
+    spans: &[Span],
+    init_q: &[Expr],
+    roles: &HashMap<Sym, Role>,
+    errors: &mut Errors,
+) {
+    let positioned = |c: &Ident| ast.inits.iter().any(|i| !i.velocity && i.coord == *c);
+    if phi.is_empty()
+        || ast.params.iter().any(|p| p.default.is_none())
+        || !ast.coords.iter().all(positioned)
+    {
+        return;
+    }
+    let mut values: HashMap<Sym, f64> = HashMap::new();
+    let no_names = HashMap::new();
+    let mut scratch = Errors::default();
+    for p in &ast.params {
+        let e = Lowerer {
+            g,
+            names: &no_names,
+            struct_name: "",
+            model: None,
+            errors: &mut scratch,
+        }
+        .scalar(p.default.as_ref().expect("checked"), Context::Constant);
+        match e.and_then(|e| g.as_const(e)) {
+            Some(v) => {
+                let s = g.symbol(&p.name.to_string());
+                values.insert(g.as_sym(s).expect("symbol"), v);
+            }
+            None => return,
+        }
+    }
+    let env_params = values.clone();
+    for (a, e) in init_q.iter().enumerate() {
+        let v = g.eval(*e, &|s| env_params.get(&s).copied().unwrap_or(f64::NAN));
+        if let Some((s, _)) = roles.iter().find(|(_, r)| **r == Role::Q(a)) {
+            values.insert(*s, v);
+        }
+    }
+    for (k, p) in phi.iter().enumerate() {
+        let r = g.eval(*p, &|s| {
+            if g_is_time(roles, s) {
+                0.0
+            } else {
+                values.get(&s).copied().unwrap_or(f64::NAN)
+            }
+        });
+        if r.is_finite() && r.abs() > 1e-9 {
+            errors.at(
+                spans[k],
+                format!("the default configuration (parameter defaults and `init` positions at t = 0) violates this constraint: residual {r:.3e}"),
+            );
+        }
+    }
+}
+
+fn g_is_time(roles: &HashMap<Sym, Role>, s: Sym) -> bool {
+    roles.get(&s) == Some(&Role::Time)
+}

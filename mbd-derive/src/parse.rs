@@ -1,0 +1,710 @@
+//! Stage 1: `syn` attributes -> a plain AST of the mechanism.
+//!
+//! Every attribute's arguments are read as a comma-separated list of Rust expressions:
+//! a bare name (`rod`, `falling`), a keyed value (`mass = m`), or an equation
+//! (`x == l * cos(beta)`). Values stay `syn::Expr`, so every later error can point at
+//! the user's own tokens.
+
+use proc_macro2::Span;
+use syn::punctuated::Punctuated;
+use syn::spanned::Spanned;
+use syn::{Attribute, Data, DeriveInput, Expr, Fields, Ident, Token};
+
+/// Whether bodies move in a plane (x, y; one angle) or in space (x, y, z; a rotation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dim {
+    Planar,
+    Spatial,
+}
+
+impl Dim {
+    pub fn len(self) -> usize {
+        match self {
+            Dim::Planar => 2,
+            Dim::Spatial => 3,
+        }
+    }
+}
+
+pub struct Param {
+    pub name: Ident,
+    pub default: Option<Expr>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum BodyKind {
+    Particle,
+    Rigid,
+    Rigid3,
+}
+
+pub struct Body {
+    pub name: Ident,
+    pub kind: BodyKind,
+    pub mass: Option<Expr>,
+    pub inertia: Option<Expr>,
+    pub at: Option<Expr>,
+    /// Planar rigid body: its angle. Spatial: its rotation (world from body).
+    pub orientation: Option<Expr>,
+}
+
+/// A named point: fixed (`at` holds constants) or moving (an expression of the coordinates).
+pub struct Point {
+    pub name: Ident,
+    pub at: Expr,
+}
+
+/// Two ends of a spring or a damper: a point name, a body name (its mass centre), or a position.
+pub enum End {
+    Named(Ident),
+    At(Expr),
+}
+
+pub struct Spring {
+    pub name: Ident,
+    pub from: End,
+    pub to: End,
+    pub k: Expr,
+    pub length: Option<Expr>,
+}
+
+pub struct Damper {
+    pub name: Ident,
+    pub from: End,
+    pub to: End,
+    pub c: Expr,
+}
+
+/// A force applied at a point, or a torque on a body, or a generalised force on a coordinate.
+pub enum Load {
+    Force { at: Expr, value: Expr },
+    Torque { body: Ident, value: Expr },
+    Generalized { coord: Ident, value: Expr },
+}
+
+pub struct Friction {
+    pub along: Ident,
+    pub mu: Expr,
+    pub normal: Expr,
+    pub span: Span,
+}
+
+pub struct Named {
+    pub name: Ident,
+    pub expr: Expr,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Direction {
+    Rising,
+    Falling,
+    Either,
+}
+
+pub struct Event {
+    pub name: Ident,
+    pub expr: Expr,
+    pub direction: Direction,
+    pub terminal: bool,
+}
+
+/// An initial value: `theta = 0.5` (position) or `der(theta) = 1.0` (velocity).
+pub struct Init {
+    pub coord: Ident,
+    pub velocity: bool,
+    pub value: Expr,
+}
+
+pub struct Constraint {
+    pub lhs: Expr,
+    pub rhs: Expr,
+    pub span: Span,
+}
+
+pub struct Mechanism {
+    pub ident: Ident,
+    pub params: Vec<Param>,
+    pub dim: Dim,
+    pub dim_span: Span,
+    pub gravity: Option<Expr>,
+    pub coords: Vec<Ident>,
+    pub drives: Vec<Named>,
+    pub relaxed: Vec<Ident>,
+    pub constraints: Vec<Constraint>,
+    pub bodies: Vec<Body>,
+    pub points: Vec<Point>,
+    pub springs: Vec<Spring>,
+    pub dampers: Vec<Damper>,
+    pub loads: Vec<Load>,
+    pub potentials: Vec<Expr>,
+    pub frictions: Vec<Friction>,
+    pub outputs: Vec<Named>,
+    pub events: Vec<Event>,
+    pub inits: Vec<Init>,
+    /// Generate exact Jacobians `d qdd / dq`, `d qdd / dqd` for implicit methods.
+    pub jacobian: bool,
+}
+
+/// The attribute names the derive reads, each defined once.
+pub const ATTRIBUTES: &[&str] = &[
+    "mechanism",
+    "gravity",
+    "coords",
+    "drive",
+    "relaxed",
+    "constraint",
+    "particle",
+    "rigid",
+    "rigid3",
+    "point",
+    "spring",
+    "damper",
+    "force",
+    "torque",
+    "generalized_force",
+    "potential",
+    "friction",
+    "output",
+    "event",
+    "init",
+];
+
+/// Collects errors so a model reports all its mistakes at once (serde's `Ctxt`).
+#[derive(Default)]
+pub struct Errors(Option<syn::Error>);
+
+impl Errors {
+    pub fn push(&mut self, err: syn::Error) {
+        match &mut self.0 {
+            Some(e) => e.combine(err),
+            None => self.0 = Some(err),
+        }
+    }
+    pub fn at(&mut self, span: Span, msg: impl std::fmt::Display) {
+        self.push(syn::Error::new(span, msg));
+    }
+    pub fn finish(self) -> syn::Result<()> {
+        self.0.map_or(Ok(()), Err)
+    }
+}
+
+/// One argument of an attribute list.
+enum Arg {
+    Flag(Ident),
+    Keyed(Ident, Expr),
+    Other(Expr),
+}
+
+fn args(attr: &Attribute) -> syn::Result<Vec<Arg>> {
+    let list = attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated)?;
+    Ok(list.into_iter().map(classify).collect())
+}
+
+fn classify(e: Expr) -> Arg {
+    match e {
+        Expr::Path(p) if p.qself.is_none() && p.path.get_ident().is_some() => {
+            Arg::Flag(p.path.get_ident().cloned().expect("checked"))
+        }
+        Expr::Assign(a) => match &*a.left {
+            Expr::Path(p) if p.path.get_ident().is_some() => {
+                Arg::Keyed(p.path.get_ident().cloned().expect("checked"), *a.right)
+            }
+            _ => Arg::Other(Expr::Assign(a)),
+        },
+        other => Arg::Other(other),
+    }
+}
+
+/// The keyed arguments of a named item, e.g. `rigid(rod, mass = m, at = [..])`.
+struct Item {
+    name: Ident,
+    keys: Vec<(Ident, Expr)>,
+    flags: Vec<Ident>,
+}
+
+impl Item {
+    fn read(
+        attr: &Attribute,
+        errors: &mut Errors,
+        allowed: &[&str],
+        flags: &[&str],
+    ) -> Option<Item> {
+        let args = match args(attr) {
+            Ok(a) => a,
+            Err(e) => {
+                errors.push(e);
+                return None;
+            }
+        };
+        let mut it = args.into_iter();
+        let name = match it.next() {
+            Some(Arg::Flag(name)) => name,
+            _ => {
+                errors.at(
+                    attr.span(),
+                    format!(
+                        "`{}` needs a name first, e.g. `{}(name, ...)`",
+                        attr_name(attr),
+                        attr_name(attr)
+                    ),
+                );
+                return None;
+            }
+        };
+        let mut item = Item {
+            name,
+            keys: Vec::new(),
+            flags: Vec::new(),
+        };
+        for arg in it {
+            match arg {
+                Arg::Keyed(k, v) if allowed.contains(&k.to_string().as_str()) => {
+                    if item.keys.iter().any(|(k2, _)| *k2 == k) {
+                        errors.at(k.span(), format!("duplicate key `{k}`"));
+                    }
+                    item.keys.push((k, v));
+                }
+                Arg::Keyed(k, _) => errors.at(
+                    k.span(),
+                    format!(
+                        "unknown key `{k}` in `{}`, expected one of `{}`",
+                        attr_name(attr),
+                        allowed.join("`, `")
+                    ),
+                ),
+                Arg::Flag(f) if flags.contains(&f.to_string().as_str()) => item.flags.push(f),
+                Arg::Flag(f) => errors.at(
+                    f.span(),
+                    format!("unexpected `{f}` in `{}`", attr_name(attr)),
+                ),
+                Arg::Other(e) => errors.at(
+                    e.span(),
+                    format!("expected `key = value` in `{}`", attr_name(attr)),
+                ),
+            }
+        }
+        Some(item)
+    }
+    fn take(&mut self, key: &str) -> Option<Expr> {
+        let i = self.keys.iter().position(|(k, _)| k == key)?;
+        Some(self.keys.remove(i).1)
+    }
+    fn require(&mut self, key: &str, errors: &mut Errors, what: &str) -> Option<Expr> {
+        let v = self.take(key);
+        if v.is_none() {
+            errors.at(
+                self.name.span(),
+                format!("{what} `{}` has no `{key}`", self.name),
+            );
+        }
+        v
+    }
+}
+
+fn attr_name(attr: &Attribute) -> String {
+    attr.path()
+        .get_ident()
+        .map(|i| i.to_string())
+        .unwrap_or_default()
+}
+
+fn end(e: Expr) -> End {
+    match classify(e) {
+        Arg::Flag(name) => End::Named(name),
+        Arg::Keyed(k, v) => End::At(syn::parse_quote!(#k = #v)),
+        Arg::Other(e) => End::At(e),
+    }
+}
+
+/// `name = expr` pairs, as in `drive(theta = omega * t)` and `output(v = speed(ball))`.
+fn named_list(attr: &Attribute, errors: &mut Errors) -> Vec<Named> {
+    let mut out = Vec::new();
+    match args(attr) {
+        Ok(args) => {
+            for arg in args {
+                match arg {
+                    Arg::Keyed(name, expr) => out.push(Named { name, expr }),
+                    Arg::Flag(f) => errors.at(f.span(), format!("expected `{f} = <expression>`")),
+                    Arg::Other(e) => errors.at(e.span(), "expected `name = <expression>`"),
+                }
+            }
+        }
+        Err(e) => errors.push(e),
+    }
+    out
+}
+
+fn ident_list(attr: &Attribute, errors: &mut Errors) -> Vec<Ident> {
+    match attr.parse_args_with(Punctuated::<Ident, Token![,]>::parse_terminated) {
+        Ok(list) => list.into_iter().collect(),
+        Err(e) => {
+            errors.push(e);
+            Vec::new()
+        }
+    }
+}
+
+impl Mechanism {
+    pub fn from_syn(input: &DeriveInput) -> syn::Result<Mechanism> {
+        let mut errors = Errors::default();
+        let params = params(input, &mut errors)?;
+        let mut m = Mechanism {
+            ident: input.ident.clone(),
+            params,
+            dim: Dim::Planar,
+            dim_span: Span::call_site(),
+            gravity: None,
+            coords: Vec::new(),
+            drives: Vec::new(),
+            relaxed: Vec::new(),
+            constraints: Vec::new(),
+            bodies: Vec::new(),
+            points: Vec::new(),
+            springs: Vec::new(),
+            dampers: Vec::new(),
+            loads: Vec::new(),
+            potentials: Vec::new(),
+            frictions: Vec::new(),
+            outputs: Vec::new(),
+            events: Vec::new(),
+            inits: Vec::new(),
+            jacobian: false,
+        };
+        let mut dim_given = false;
+        for attr in &input.attrs {
+            let name = attr_name(attr);
+            match name.as_str() {
+                "mechanism" => {
+                    for arg in args(attr).unwrap_or_else(|e| {
+                        errors.push(e);
+                        Vec::new()
+                    }) {
+                        match arg {
+                            Arg::Flag(f) if f == "planar" || f == "spatial" => {
+                                m.dim = if f == "planar" { Dim::Planar } else { Dim::Spatial };
+                                m.dim_span = f.span();
+                                dim_given = true;
+                            }
+                            Arg::Flag(f) if f == "jacobian" => m.jacobian = true,
+                            Arg::Flag(f) => errors.at(
+                                f.span(),
+                                format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`"),
+                            ),
+                            Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
+                            Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),
+                        }
+                    }
+                }
+                "gravity" => {
+                    let list =
+                        attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated);
+                    match list {
+                        Ok(list) => {
+                            let items: Vec<Expr> = list.into_iter().collect();
+                            if !dim_given {
+                                m.dim = if items.len() == 3 {
+                                    Dim::Spatial
+                                } else {
+                                    Dim::Planar
+                                };
+                                m.dim_span = attr.span();
+                            }
+                            m.gravity =
+                                Some(syn::parse_quote_spanned!(attr.span()=> [#(#items),*]));
+                        }
+                        Err(e) => errors.push(e),
+                    }
+                }
+                "coords" => m.coords.extend(ident_list(attr, &mut errors)),
+                "relaxed" => m.relaxed.extend(ident_list(attr, &mut errors)),
+                "drive" => m.drives.extend(named_list(attr, &mut errors)),
+                "output" => m.outputs.extend(named_list(attr, &mut errors)),
+                "constraint" => match attr.parse_args::<Expr>() {
+                    Ok(Expr::Binary(b)) if matches!(b.op, syn::BinOp::Eq(_)) => {
+                        m.constraints.push(Constraint {
+                            span: b.span(),
+                            lhs: *b.left,
+                            rhs: *b.right,
+                        })
+                    }
+                    Ok(e) => errors.at(e.span(), "a constraint is an equation: `lhs == rhs`"),
+                    Err(e) => errors.push(e),
+                },
+                "particle" | "rigid" | "rigid3" => {
+                    let (kind, keys): (BodyKind, &[&str]) = match name.as_str() {
+                        "particle" => (BodyKind::Particle, &["mass", "at"]),
+                        "rigid" => (BodyKind::Rigid, &["mass", "inertia", "at", "angle"]),
+                        _ => (BodyKind::Rigid3, &["mass", "inertia", "at", "rotation"]),
+                    };
+                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &[]) {
+                        if kind == BodyKind::Rigid3 && !dim_given {
+                            m.dim = Dim::Spatial;
+                            m.dim_span = item.name.span();
+                        }
+                        let orientation = match kind {
+                            BodyKind::Particle => None,
+                            BodyKind::Rigid => item.take("angle"),
+                            BodyKind::Rigid3 => item.take("rotation"),
+                        };
+                        m.bodies.push(Body {
+                            mass: item.require("mass", &mut errors, "body"),
+                            inertia: item.take("inertia"),
+                            at: item.require("at", &mut errors, "body"),
+                            orientation,
+                            kind,
+                            name: item.name,
+                        });
+                    }
+                }
+                "point" => {
+                    if let Some(mut item) = Item::read(attr, &mut errors, &["at"], &[])
+                        && let Some(at) = item.require("at", &mut errors, "point")
+                    {
+                        m.points.push(Point {
+                            name: item.name,
+                            at,
+                        });
+                    }
+                }
+                "spring" => {
+                    if let Some(mut item) =
+                        Item::read(attr, &mut errors, &["from", "to", "k", "length"], &[])
+                    {
+                        let (from, to, k) = (
+                            item.require("from", &mut errors, "spring"),
+                            item.require("to", &mut errors, "spring"),
+                            item.require("k", &mut errors, "spring"),
+                        );
+                        if let (Some(from), Some(to), Some(k)) = (from, to, k) {
+                            let length = item.take("length");
+                            m.springs.push(Spring {
+                                name: item.name,
+                                from: end(from),
+                                to: end(to),
+                                k,
+                                length,
+                            });
+                        }
+                    }
+                }
+                "damper" => {
+                    if let Some(mut item) = Item::read(attr, &mut errors, &["from", "to", "c"], &[])
+                    {
+                        let (from, to, c) = (
+                            item.require("from", &mut errors, "damper"),
+                            item.require("to", &mut errors, "damper"),
+                            item.require("c", &mut errors, "damper"),
+                        );
+                        if let (Some(from), Some(to), Some(c)) = (from, to, c) {
+                            m.dampers.push(Damper {
+                                name: item.name,
+                                from: end(from),
+                                to: end(to),
+                                c,
+                            });
+                        }
+                    }
+                }
+                "force" | "torque" | "generalized_force" => {
+                    let key = match name.as_str() {
+                        "force" => "at",
+                        "torque" => "on",
+                        _ => "along",
+                    };
+                    if let Some(mut item) = Item::read(attr, &mut errors, &[key, "value"], &[]) {
+                        let target = item.require(key, &mut errors, &name);
+                        let value = item.require("value", &mut errors, &name);
+                        if let (Some(target), Some(value)) = (target, value) {
+                            match (name.as_str(), classify(target)) {
+                                ("force", Arg::Flag(id)) => m.loads.push(Load::Force {
+                                    at: syn::parse_quote!(#id),
+                                    value,
+                                }),
+                                ("force", Arg::Other(at)) => {
+                                    m.loads.push(Load::Force { at, value })
+                                }
+                                ("torque", Arg::Flag(body)) => {
+                                    m.loads.push(Load::Torque { body, value })
+                                }
+                                (_, Arg::Flag(coord)) if name == "generalized_force" => {
+                                    m.loads.push(Load::Generalized { coord, value })
+                                }
+                                (_, _) => errors.at(
+                                    item.name.span(),
+                                    format!("`{key}` of `{name}` must be a name"),
+                                ),
+                            }
+                        }
+                    }
+                }
+                "potential" => match attr.parse_args::<Expr>() {
+                    Ok(e) => m.potentials.push(e),
+                    Err(e) => errors.push(e),
+                },
+                "friction" => match args(attr) {
+                    Ok(list) => {
+                        let (mut along, mut mu, mut normal) = (None, None, None);
+                        for arg in list {
+                            match arg {
+                                Arg::Keyed(k, v) if k == "along" => match classify(v) {
+                                    Arg::Flag(c) => along = Some(c),
+                                    _ => errors.at(k.span(), "`along` names a coordinate"),
+                                },
+                                Arg::Keyed(k, v) if k == "mu" => mu = Some(v),
+                                Arg::Keyed(k, v) if k == "normal" => normal = Some(v),
+                                Arg::Keyed(k, _) | Arg::Flag(k) => errors.at(
+                                    k.span(),
+                                    format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `normal`"),
+                                ),
+                                Arg::Other(e) => errors.at(e.span(), "expected `key = value` in `friction`"),
+                            }
+                        }
+                        match (along, mu, normal) {
+                            (Some(along), Some(mu), Some(normal)) => m.frictions.push(Friction {
+                                along,
+                                mu,
+                                normal,
+                                span: attr.span(),
+                            }),
+                            _ => errors
+                                .at(attr.span(), "`friction` needs `along`, `mu` and `normal`"),
+                        }
+                    }
+                    Err(e) => errors.push(e),
+                },
+                "event" => match args(attr) {
+                    Ok(list) => {
+                        let mut it = list.into_iter();
+                        let Some(Arg::Keyed(name, expr)) = it.next() else {
+                            errors.at(attr.span(), "an event starts with `name = <expression>`");
+                            continue;
+                        };
+                        let mut ev = Event {
+                            name,
+                            expr,
+                            direction: Direction::Either,
+                            terminal: false,
+                        };
+                        for arg in it {
+                            match arg {
+                                Arg::Flag(f) if f == "rising" => ev.direction = Direction::Rising,
+                                Arg::Flag(f) if f == "falling" => ev.direction = Direction::Falling,
+                                Arg::Flag(f) if f == "terminal" => ev.terminal = true,
+                                Arg::Flag(f) | Arg::Keyed(f, _) => errors.at(
+                                    f.span(),
+                                    format!("unknown event option `{f}`, expected one of `rising`, `falling`, `terminal`"),
+                                ),
+                                Arg::Other(e) => errors.at(e.span(), "expected an event option"),
+                            }
+                        }
+                        m.events.push(ev);
+                    }
+                    Err(e) => errors.push(e),
+                },
+                "init" => {
+                    match attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated) {
+                        Ok(list) => {
+                            for e in list {
+                                match init(e) {
+                                    Ok(i) => m.inits.push(i),
+                                    Err(e) => errors.push(e),
+                                }
+                            }
+                        }
+                        Err(e) => errors.push(e),
+                    }
+                }
+                _ => {}
+            }
+        }
+        errors.finish()?;
+        Ok(m)
+    }
+}
+
+fn init(e: Expr) -> syn::Result<Init> {
+    let span = e.span();
+    let Expr::Assign(a) = e else {
+        return Err(syn::Error::new(
+            span,
+            "expected `coordinate = value` or `der(coordinate) = value`",
+        ));
+    };
+    let (coord, velocity) = match &*a.left {
+        Expr::Path(p) if p.path.get_ident().is_some() => {
+            (p.path.get_ident().cloned().expect("checked"), false)
+        }
+        Expr::Call(c)
+            if matches!(&*c.func, Expr::Path(p) if p.path.is_ident("der")) && c.args.len() == 1 =>
+        {
+            match &c.args[0] {
+                Expr::Path(p) if p.path.get_ident().is_some() => {
+                    (p.path.get_ident().cloned().expect("checked"), true)
+                }
+                other => {
+                    return Err(syn::Error::new(
+                        other.span(),
+                        "`der` takes a coordinate name",
+                    ));
+                }
+            }
+        }
+        other => {
+            return Err(syn::Error::new(
+                other.span(),
+                "expected `coordinate` or `der(coordinate)`",
+            ));
+        }
+    };
+    Ok(Init {
+        coord,
+        velocity,
+        value: *a.right,
+    })
+}
+
+fn params(input: &DeriveInput, errors: &mut Errors) -> syn::Result<Vec<Param>> {
+    let Data::Struct(data) = &input.data else {
+        return Err(syn::Error::new(
+            input.ident.span(),
+            "`Mechanism` is derived for a struct of parameters",
+        ));
+    };
+    if !input.generics.params.is_empty() {
+        return Err(syn::Error::new(
+            input.generics.span(),
+            "a mechanism's parameter struct cannot be generic",
+        ));
+    }
+    let fields = match &data.fields {
+        Fields::Named(f) => f.named.iter().collect::<Vec<_>>(),
+        Fields::Unit => Vec::new(),
+        Fields::Unnamed(f) => {
+            return Err(syn::Error::new(
+                f.span(),
+                "parameters are named fields of type `f64`",
+            ));
+        }
+    };
+    let mut out = Vec::new();
+    for field in fields {
+        let name = field.ident.clone().expect("named field");
+        if !matches!(&field.ty, syn::Type::Path(p) if p.path.is_ident("f64")) {
+            errors.at(
+                field.ty.span(),
+                format!("parameter `{name}` must be an `f64`"),
+            );
+        }
+        let mut default = None;
+        for attr in &field.attrs {
+            if attr.path().is_ident("default") {
+                match attr.parse_args::<Expr>() {
+                    Ok(e) => default = Some(e),
+                    Err(e) => errors.push(e),
+                }
+            }
+        }
+        out.push(Param { name, default });
+    }
+    Ok(out)
+}
