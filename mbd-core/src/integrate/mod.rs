@@ -4,6 +4,34 @@
 //! returns a [`Solution`]: the accepted steps, the dense output between them (one
 //! [`Segment`] per step), the events found, and the work done ([`Stats`]).
 
+pub mod dense;
+pub mod events;
+pub mod solution;
+
+pub use dense::Segment;
+pub use events::{Direction, Event, EventHit};
+pub use solution::{Flow, Recorder, Solution};
+
+use crate::error::{Error, Result};
+use crate::model::{OdeSystem, Vector};
+
+/// A time-integration method: advance `sys` from `(t0, y0)` to `t1`, locating `events`.
+pub trait Integrator {
+    /// Short name for reports ("DOPRI5", "RK4", ...).
+    fn name(&self) -> &'static str;
+
+    /// Integrate `y' = f(t, y)` from `t0` to `t1 >= t0`. The solution ends at `t1`, or at
+    /// the first terminal event.
+    fn solve<S: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        y0: Vector<D>,
+        t1: f64,
+        events: &[Event<'_, D>],
+    ) -> Result<Solution<D>>;
+}
+
 /// Step size and tolerance settings shared by all methods. `Default` gives Hairer's defaults.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
@@ -52,4 +80,62 @@ pub struct Stats {
     pub n_accepted: usize,
     /// Steps rejected.
     pub n_rejected: usize,
+}
+
+impl Options {
+    /// Reject options outside their domain: `rtol > 0` and `atol >= 0` finite, `h0` and
+    /// `h_max` finite and positive when given, `max_steps >= 1`.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |what: &'static str, detail: String| Err(Error::InvalidInput { what, detail });
+        if !(self.rtol > 0.0 && self.rtol.is_finite()) {
+            return bad(
+                "rtol",
+                format!("must be positive and finite, got {}", self.rtol),
+            );
+        }
+        if !(self.atol >= 0.0 && self.atol.is_finite()) {
+            return bad(
+                "atol",
+                format!("must be non-negative and finite, got {}", self.atol),
+            );
+        }
+        if let Some(h) = self.h0
+            && !(h > 0.0 && h.is_finite())
+        {
+            return bad("h0", format!("must be positive and finite, got {h}"));
+        }
+        if let Some(h) = self.h_max
+            && !(h > 0.0 && h.is_finite())
+        {
+            return bad("h_max", format!("must be positive and finite, got {h}"));
+        }
+        if self.max_steps == 0 {
+            return bad("max_steps", "must be at least 1".to_string());
+        }
+        Ok(())
+    }
+}
+
+/// Reject an integration interval or initial state outside the domain: `t0`, `t1` finite
+/// with `t1 >= t0`, and every component of `y0` finite.
+pub fn validate_problem<const D: usize>(t0: f64, y0: &Vector<D>, t1: f64) -> Result<()> {
+    if !(t0.is_finite() && t1.is_finite()) {
+        return Err(Error::InvalidInput {
+            what: "t0/t1",
+            detail: format!("must be finite, got t0 = {t0}, t1 = {t1}"),
+        });
+    }
+    if t1 < t0 {
+        return Err(Error::InvalidInput {
+            what: "t1",
+            detail: format!("must not precede t0 = {t0}, got {t1}"),
+        });
+    }
+    if !y0.iter().all(|v| v.is_finite()) {
+        return Err(Error::InvalidInput {
+            what: "y0",
+            detail: format!("must be finite, got {:?}", y0.as_slice()),
+        });
+    }
+    Ok(())
 }

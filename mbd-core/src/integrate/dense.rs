@@ -1,0 +1,131 @@
+//! Dense output of one accepted step: a polynomial in the normalised time `theta`.
+
+use crate::model::Vector;
+
+/// The continuous solution over one accepted step `[t0, t0 + h]`:
+/// `y(t0 + theta h) = sum_k coeffs[k] theta^k`, `theta` in `[0, 1]` (monomial basis,
+/// degree at most 5, unused coefficients zero).
+///
+/// Every method converts its own interpolant (Hermite, Hairer's DOPRI5 continuous
+/// extension, Radau's collocation polynomial) into this one basis, so event location and
+/// `Solution::at` need to know nothing about the method.
+#[derive(Debug, Clone)]
+pub struct Segment<const D: usize> {
+    /// Start of the step.
+    pub t0: f64,
+    /// Step size (positive).
+    pub h: f64,
+    /// Monomial coefficients in `theta = (t - t0) / h`, lowest degree first.
+    pub coeffs: [Vector<D>; 6],
+}
+
+impl<const D: usize> Segment<D> {
+    /// End of the step, `t0 + h`.
+    pub fn t1(&self) -> f64 {
+        self.t0 + self.h
+    }
+
+    /// `y(t)` by Horner's rule in `theta = (t - t0) / h`. Meant for `t` in `[t0, t1]`;
+    /// outside it extrapolates.
+    pub fn eval(&self, t: f64) -> Vector<D> {
+        self.eval_theta((t - self.t0) / self.h)
+    }
+
+    /// `y(t0 + theta h)` by Horner's rule.
+    pub fn eval_theta(&self, theta: f64) -> Vector<D> {
+        let mut y = self.coeffs[5];
+        for c in self.coeffs[..5].iter().rev() {
+            y = y * theta + c;
+        }
+        y
+    }
+
+    /// The cubic Hermite interpolant through `(t0, y0, f0)` and `(t0 + h, y1, f1)`
+    /// (Hairer–Nørsett–Wanner I, Sect. II.6, eq. (6.7)), in the monomial basis:
+    /// `y0 + theta h f0 + theta^2 (3 d - h (2 f0 + f1)) + theta^3 (h (f0 + f1) - 2 d)`,
+    /// `d = y1 - y0`. Third order; exact for cubics.
+    pub fn hermite(
+        t0: f64,
+        h: f64,
+        y0: &Vector<D>,
+        f0: &Vector<D>,
+        y1: &Vector<D>,
+        f1: &Vector<D>,
+    ) -> Self {
+        let d = y1 - y0;
+        let hf0 = f0 * h;
+        let hf1 = f1 * h;
+        let zero = Vector::<D>::zeros();
+        Segment {
+            t0,
+            h,
+            coeffs: [
+                *y0,
+                hf0,
+                d * 3.0 - hf0 * 2.0 - hf1,
+                hf0 + hf1 - d * 2.0,
+                zero,
+                zero,
+            ],
+        }
+    }
+
+    /// The same polynomial restricted to `[t0, t_end]` (`t_end` inside the step): the
+    /// coefficients are rescaled by `s^k`, `s = (t_end - t0) / h`, so values are unchanged.
+    pub fn truncated(&self, t_end: f64) -> Self {
+        let s = (t_end - self.t0) / self.h;
+        let mut coeffs = self.coeffs;
+        let mut sk = 1.0;
+        for c in coeffs.iter_mut() {
+            *c *= sk;
+            sk *= s;
+        }
+        Segment {
+            t0: self.t0,
+            h: t_end - self.t0,
+            coeffs,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Hermite cubic reproduces any cubic exactly: y = 1 + 2 t - t^2 + 0.5 t^3.
+    #[test]
+    fn hermite_is_exact_for_a_cubic() {
+        let y = |t: f64| Vector::<1>::new(1.0 + 2.0 * t - t * t + 0.5 * t * t * t);
+        let f = |t: f64| Vector::<1>::new(2.0 - 2.0 * t + 1.5 * t * t);
+        let (t0, h) = (0.3, 0.7);
+        let seg = Segment::hermite(t0, h, &y(t0), &f(t0), &y(t0 + h), &f(t0 + h));
+        for i in 0..=10 {
+            let t = t0 + h * i as f64 / 10.0;
+            assert!((seg.eval(t)[0] - y(t)[0]).abs() < 1e-14);
+        }
+        assert_eq!(seg.t1(), t0 + h);
+    }
+
+    /// Truncation keeps the values: the truncated segment agrees with the original inside.
+    #[test]
+    fn truncation_keeps_values() {
+        let z = Vector::<1>::zeros();
+        let seg = Segment {
+            t0: 1.0,
+            h: 2.0,
+            coeffs: [
+                Vector::<1>::new(1.0),
+                Vector::<1>::new(-2.0),
+                Vector::<1>::new(0.5),
+                Vector::<1>::new(3.0),
+                Vector::<1>::new(-1.0),
+                z,
+            ],
+        };
+        let cut = seg.truncated(2.2);
+        for t in [1.0, 1.5, 2.0, 2.2] {
+            assert!((cut.eval(t)[0] - seg.eval(t)[0]).abs() < 1e-13);
+        }
+        assert!((cut.t1() - 2.2).abs() < 1e-15);
+    }
+}
