@@ -381,6 +381,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             #[doc = #doc]
             #[derive(Debug, Clone, Copy, PartialEq)]
             pub struct #outputs_struct { #(pub #out_names: f64,)* }
+            #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
             impl #ident {
                 /// Names of the outputs, in declaration order.
                 pub const OUTPUTS: [&'static str; #k] = [#(#out_strs),*];
@@ -438,6 +439,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             }
         });
         quote! {
+            #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
             impl #ident {
                 #(#fns)*
                 /// The model's events, for an integrator's `solve`.
@@ -445,6 +447,47 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                     ::std::vec![#(#makes),*]
                 }
             }
+        }
+    });
+
+    // Coulomb friction: the stick test at rest, per friction.
+    let frictions = eq.frictionless.as_ref().map(|frictionless| {
+        parts.names.push("friction");
+        let m1 = m + 1;
+        let a1 = n + m1;
+        let fns = eq.frictions.iter().map(|fr| {
+            let mut roots: Vec<Expr> = eq.mass.iter().flatten().chain(frictionless).copied().collect();
+            roots.extend(eq.phi_q.iter().flatten().chain(&eq.gamma));
+            roots.extend([fr.normal, fr.mu_static]);
+            let b = Block::new(eq, &roots);
+            let (s, mass, f) = (b.stmts(), b.matrix("mass", n, n, &eq.mass), b.vector("f", n, frictionless));
+            let mut rows = eq.phi_q.clone();
+            let mut e_s = vec![eq.g_zero(); n];
+            e_s[fr.coord] = eq.g_one();
+            rows.push(e_s);
+            let mut gamma = eq.gamma.clone();
+            gamma.push(eq.g_zero());
+            let (pq, gm) = (b.matrix("phi_q", m1, n, &rows), b.vector("gamma", m1, &gamma));
+            let (normal, mu_static) = (b.leaf(fr.normal), b.leaf(fr.mu_static));
+            let coord = &eq.free[fr.coord];
+            let fname = format_ident!("{}_sticks", coord);
+            let doc = format!(
+                "At rest along `{coord}` (`der({coord}) = 0`): whether static friction can hold it, i.e. whether the \
+                 force needed to keep `{coord}` still is at most `mu_static |N|`."
+            );
+            quote! {
+                #[doc = #doc]
+                pub fn #fname(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<bool> {
+                    #split
+                    #s #mass #f #pq #gm
+                    let (_, lambda) = ::mbd::__private::solve::solve_augmented::<#n, #m1, #a1>(t, &mass, &f, &phi_q, &gamma)?;
+                    Ok(lambda[#m].abs() <= #mu_static * (#normal).abs())
+                }
+            }
+        });
+        quote! {
+            #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
+            impl #ident { #(#fns)* }
         }
     });
 
@@ -480,6 +523,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 y
             }
         }
+        #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
         impl #ident {
             /// Free coordinates.
             pub const DOF: usize = #n;
@@ -506,5 +550,6 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         };
         #outputs
         #events
+        #frictions
     }
 }

@@ -6,7 +6,7 @@
 //! outputs the body queries (`velocity(rod)`, `reaction(ux)`, `der(x)`, ...).
 
 use crate::parse::Errors;
-use crate::sym::{Expr, Func, Graph, Sym};
+use crate::sym::{Expr, Func, Graph};
 use std::collections::HashMap;
 use syn::spanned::Spanned;
 
@@ -549,18 +549,4 @@ pub fn cross(g: &mut Graph, a: &[Expr], b: &[Expr]) -> [Expr; 3] {
         *ci = g.sub(p, q);
     }
     c
-}
-
-/// The symbols a lowered value depends on, for the checks.
-pub fn value_exprs(v: &Value) -> Vec<Expr> {
-    match v {
-        Value::Scalar(s) => vec![*s],
-        Value::Vector(v) => v.clone(),
-        Value::Matrix(m) => m.iter().flatten().copied().collect(),
-    }
-}
-
-#[allow(dead_code, reason = "kept for the spatial bodies' symbol bookkeeping")]
-pub fn sym_names(g: &Graph, syms: &[Sym]) -> Vec<String> {
-    syms.iter().map(|s| g.sym_name(*s).to_string()).collect()
 }

@@ -30,7 +30,7 @@ pub enum Role {
 
 #[derive(Clone, Debug)]
 pub enum CoordKind {
-    Free(usize),
+    Free,
     /// A driven coordinate with its law `s(t)`.
     Driven(Expr),
     Relaxed,
@@ -46,7 +46,6 @@ pub struct Coord {
 
 /// One body's kinematics in full coordinates.
 struct BodyKin {
-    name: Ident,
     mass: Expr,
     /// Planar: `[[I]]`-like scalar in `inertia[0][0]`; spatial: the body-frame tensor.
     inertia: Option<[[Expr; 3]; 3]>,
@@ -55,6 +54,15 @@ struct BodyKin {
     angle: Option<Expr>,
     /// Spatial rotation (world from body).
     rot: Option<[[Expr; 3]; 3]>,
+}
+
+/// Coulomb friction along free coordinate `coord` with the (reduced) normal force `normal`.
+pub struct FrictionEq {
+    pub coord: usize,
+    pub mu: Expr,
+    pub mu_static: Expr,
+    pub normal: Expr,
+    pub span: Span,
 }
 
 pub struct OutputEq {
@@ -73,7 +81,6 @@ pub struct EventEq {
 pub struct Equations {
     pub g: Graph,
     pub roles: HashMap<Sym, Role>,
-    pub coords: Vec<Coord>,
     /// Names of the free coordinates, in state order.
     pub free: Vec<Ident>,
     pub mass: Vec<Vec<Expr>>,
@@ -88,11 +95,14 @@ pub struct Equations {
     pub jacobian: Option<ResidualJacobian>,
     pub outputs: Vec<OutputEq>,
     pub events: Vec<EventEq>,
+    pub frictions: Vec<FrictionEq>,
+    /// The forces without friction, for the stick test (present when there is friction).
+    pub frictionless: Option<Vec<Expr>>,
     /// Initial positions and velocities of the free coordinates (parameters allowed).
     pub init_q: Vec<Expr>,
     pub init_qd: Vec<Expr>,
-    pub bodies: Vec<String>,
-    pub dim: Dim,
+    zero: Expr,
+    one: Expr,
 }
 
 pub struct ResidualJacobian {
@@ -230,7 +240,7 @@ impl lower::Model for Kin<'_> {
 
     fn reaction(&mut self, g: &mut Graph, coord: Expr) -> Option<Expr> {
         let idx = self.coords.iter().position(|c| c.z == coord)?;
-        if matches!(self.coords[idx].kind, CoordKind::Free(_)) {
+        if matches!(self.coords[idx].kind, CoordKind::Free) {
             return None;
         }
         if let Some((_, s)) = self.reactions.iter().find(|(i, _)| *i == idx) {
@@ -295,7 +305,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                 format!("coordinate `{id}` is both free (in `coords`) and driven (in `drive`): a driven coordinate is a known function of time, remove it from `coords`"),
             );
         }
-        let c = new_coord(&mut g, id, CoordKind::Free(i));
+        let c = new_coord(&mut g, id, CoordKind::Free);
         for (s, role) in [
             (c.z, Role::Q(i)),
             (c.zd, Role::Qd(i)),
@@ -435,7 +445,6 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         let idx = bodies.len();
         if let (Some(mass), Some(r)) = (mass, r) {
             bodies.push(BodyKin {
-                name: b.name.clone(),
                 mass,
                 inertia,
                 r,
@@ -443,6 +452,18 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                 rot,
             });
             declare(&mut names, &mut errors, &b.name, Binding::Body(idx));
+        }
+    }
+    // Springs and dampers are named too; their names must not clash with anything else.
+    let mut element_names = std::collections::HashSet::new();
+    for id in ast
+        .springs
+        .iter()
+        .map(|s| &s.name)
+        .chain(ast.dampers.iter().map(|d| &d.name))
+    {
+        if names.contains_key(&id.to_string()) || !element_names.insert(id.to_string()) {
+            errors.at(id.span(), format!("duplicate name `{id}`"));
         }
     }
     errors.finish()?;
@@ -689,12 +710,6 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             }
         }
     }
-    for f in &ast.frictions {
-        errors.at(
-            f.span,
-            "`friction` is not supported yet by this version of mbd",
-        );
-    }
 
     // Kane's projection: M_jk = sum m J_j . J_k + Jw_j^T I Jw_k;
     // f_j = Q_j - sum J_j . m a0 - Jw_j^T (I alpha0 + w x I w).
@@ -778,7 +793,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let mut reduce: HashMap<Sym, Expr> = HashMap::new();
     for c in &coords {
         let (z, zd, zdd) = match &c.kind {
-            CoordKind::Free(_) => continue,
+            CoordKind::Free => continue,
             CoordKind::Driven(law) => {
                 let d1 = g.diff(*law, ts);
                 let d2 = g.diff(d1, ts);
@@ -793,7 +808,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let free_idx: Vec<usize> = coords
         .iter()
         .enumerate()
-        .filter(|(_, c)| matches!(c.kind, CoordKind::Free(_)))
+        .filter(|(_, c)| matches!(c.kind, CoordKind::Free))
         .map(|(i, _)| i)
         .collect();
     let n = free_idx.len();
@@ -870,6 +885,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     // Outputs and events, with reactions on request.
     let mut outputs = Vec::new();
     let mut events = Vec::new();
+    let mut frictions = Vec::new();
     {
         let mut kin = Kin {
             coords: &coords,
@@ -910,6 +926,40 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                 });
             }
         }
+        for f in &ast.frictions {
+            let Some(a) = free_idx.iter().position(|&i| coords[i].name == f.along) else {
+                errors.at(
+                    f.along.span(),
+                    format!(
+                        "friction acts along a free coordinate; `{}` is not one",
+                        f.along
+                    ),
+                );
+                continue;
+            };
+            let mut lw = Lowerer {
+                g: &mut g,
+                names: &names,
+                struct_name: &struct_name,
+                model: Some(&mut kin),
+                errors: &mut errors,
+            };
+            let mu = lw.scalar(&f.mu, Context::Constant);
+            let mu_static = match &f.mu_static {
+                Some(e) => lw.scalar(e, Context::Constant),
+                None => mu,
+            };
+            let normal = lw.scalar(&f.normal, Context::Output);
+            if let (Some(mu), Some(mu_static), Some(normal)) = (mu, mu_static, normal) {
+                frictions.push(FrictionEq {
+                    coord: a,
+                    mu,
+                    mu_static,
+                    normal,
+                    span: f.span,
+                });
+            }
+        }
     }
     // r_u = (M zdd - f + Phi_z^T lambda)_u, then reduced.
     let mut reaction_map: HashMap<Sym, Expr> = HashMap::new();
@@ -933,6 +983,26 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     }
     for e in &mut events {
         e.expr = finish(&mut g, e.expr);
+    }
+    // Coulomb friction while sliding: Q_s = -mu |N| sign(qd_s). The normal force must not
+    // depend on the accelerations it helps determine (checked), so the solve stays linear.
+    let frictionless = (!frictions.is_empty()).then(|| forces.clone());
+    for f in &mut frictions {
+        f.normal = finish(&mut g, f.normal);
+        if uses_roles(&g, &roles, f.normal, |r| {
+            matches!(r, Role::Qdd(_) | Role::Lambda(_))
+        }) {
+            errors.at(
+                f.span,
+                "this normal force depends on the accelerations (the friction would make the equations implicit): not supported",
+            );
+            continue;
+        }
+        let abs_n = g.call(Func::Abs, f.normal);
+        let sign = g.call(Func::Signum, qd[f.coord]);
+        let mn = g.mul(f.mu, abs_n);
+        let q = g.mul(mn, sign);
+        forces[f.coord] = g.sub(forces[f.coord], q);
     }
 
     // Residual Jacobians for implicit methods.
@@ -997,11 +1067,13 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     check_default_configuration(ast, &mut g, &phi, &phi_spans, &init_q, &roles, &mut errors);
     errors.finish()?;
 
+    let one = g.one();
     Ok(Equations {
+        zero,
+        one,
         free: free_idx.iter().map(|&i| coords[i].name.clone()).collect(),
         g,
         roles,
-        coords,
         mass,
         forces,
         energy,
@@ -1012,11 +1084,22 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         jacobian,
         outputs,
         events,
+        frictions,
+        frictionless,
         init_q,
         init_qd,
-        bodies: bodies.iter().map(|b| b.name.to_string()).collect(),
-        dim,
     })
+}
+
+impl Equations {
+    /// The constant 0 of this model's graph (already interned: every graph has it).
+    pub fn g_zero(&self) -> Expr {
+        self.zero
+    }
+    /// The constant 1 of this model's graph.
+    pub fn g_one(&self) -> Expr {
+        self.one
+    }
 }
 
 fn g_half(g: &mut Graph) -> Expr {
@@ -1103,4 +1186,16 @@ fn check_default_configuration(
 
 fn g_is_time(roles: &HashMap<Sym, Role>, s: Sym) -> bool {
     roles.get(&s) == Some(&Role::Time)
+}
+
+/// Whether `e` uses a symbol whose role satisfies `pred`.
+pub fn uses_roles(
+    g: &Graph,
+    roles: &HashMap<Sym, Role>,
+    e: Expr,
+    pred: impl Fn(&Role) -> bool,
+) -> bool {
+    g.free_symbols(e)
+        .iter()
+        .any(|s| roles.get(s).is_some_and(&pred))
 }

@@ -85,6 +85,8 @@ pub enum Load {
 pub struct Friction {
     pub along: Ident,
     pub mu: Expr,
+    /// Static coefficient for the stick test (default: `mu`).
+    pub mu_static: Option<Expr>,
     pub normal: Expr,
     pub span: Span,
 }
@@ -144,30 +146,6 @@ pub struct Mechanism {
     /// Generate exact Jacobians `d qdd / dq`, `d qdd / dqd` for implicit methods.
     pub jacobian: bool,
 }
-
-/// The attribute names the derive reads, each defined once.
-pub const ATTRIBUTES: &[&str] = &[
-    "mechanism",
-    "gravity",
-    "coords",
-    "drive",
-    "relaxed",
-    "constraint",
-    "particle",
-    "rigid",
-    "rigid3",
-    "point",
-    "spring",
-    "damper",
-    "force",
-    "torque",
-    "generalized_force",
-    "potential",
-    "friction",
-    "output",
-    "event",
-    "init",
-];
 
 /// Collects errors so a model reports all its mistakes at once (serde's `Ctxt`).
 #[derive(Default)]
@@ -543,7 +521,8 @@ impl Mechanism {
                 },
                 "friction" => match args(attr) {
                     Ok(list) => {
-                        let (mut along, mut mu, mut normal) = (None, None, None);
+                        let (mut along, mut mu, mut normal, mut mu_static) =
+                            (None, None, None, None);
                         for arg in list {
                             match arg {
                                 Arg::Keyed(k, v) if k == "along" => match classify(v) {
@@ -552,9 +531,10 @@ impl Mechanism {
                                 },
                                 Arg::Keyed(k, v) if k == "mu" => mu = Some(v),
                                 Arg::Keyed(k, v) if k == "normal" => normal = Some(v),
+                                Arg::Keyed(k, v) if k == "mu_static" => mu_static = Some(v),
                                 Arg::Keyed(k, _) | Arg::Flag(k) => errors.at(
                                     k.span(),
-                                    format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `normal`"),
+                                    format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `mu_static`, `normal`"),
                                 ),
                                 Arg::Other(e) => errors.at(e.span(), "expected `key = value` in `friction`"),
                             }
@@ -563,6 +543,7 @@ impl Mechanism {
                             (Some(along), Some(mu), Some(normal)) => m.frictions.push(Friction {
                                 along,
                                 mu,
+                                mu_static,
                                 normal,
                                 span: attr.span(),
                             }),
