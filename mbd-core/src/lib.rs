@@ -13,6 +13,6 @@ pub mod solve;
 
 pub use error::{Error, Result};
 pub use integrate::{
-    Direction, Event, EventHit, Integrator, Options, Segment, Solution, Stats,
+    Direction, Dopri5, Event, EventHit, Integrator, Options, Rk4, Segment, Solution, Stats,
 };
 pub use model::{Constrained, Generated, Matrix, Mechanism, OdeSystem, Vector};

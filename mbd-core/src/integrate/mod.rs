@@ -4,12 +4,20 @@
 //! returns a [`Solution`]: the accepted steps, the dense output between them (one
 //! [`Segment`] per step), the events found, and the work done ([`Stats`]).
 
+pub mod control;
 pub mod dense;
+pub mod dopri5;
 pub mod events;
+pub mod radau5;
+pub mod rk4;
 pub mod solution;
+pub mod tableau;
 
 pub use dense::Segment;
+pub use dopri5::Dopri5;
 pub use events::{Direction, Event, EventHit};
+pub use radau5::Radau5;
+pub use rk4::Rk4;
 pub use solution::{Flow, Recorder, Solution};
 
 use crate::error::{Error, Result};

@@ -1,0 +1,121 @@
+//! Error norm and step-size control of the embedded explicit methods.
+
+use crate::model::Vector;
+
+/// The scaled RMS norm of a local error estimate `e` for a step from `y0` to `y1`:
+///
+/// `err = sqrt( (1/D) sum_i ( e_i / (atol + rtol max(|y0_i|, |y1_i|)) )^2 )`
+///
+/// (Hairer–Nørsett–Wanner I, Sect. II.4, eq. (4.11); `dopri5.f`, label 41). A step is
+/// accepted when `err <= 1`.
+pub fn error_norm<const D: usize>(
+    e: &Vector<D>,
+    y0: &Vector<D>,
+    y1: &Vector<D>,
+    rtol: f64,
+    atol: f64,
+) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..D {
+        let sk = atol + rtol * y0[i].abs().max(y1[i].abs());
+        sum += (e[i] / sk).powi(2);
+    }
+    (sum / D as f64).sqrt()
+}
+
+/// The PI step-size controller of `dopri5.f` (Gustafsson's "Lund stabilisation";
+/// Hairer–Nørsett–Wanner I, Sect. IV.2, eq. (2.43c)):
+///
+/// `h_new = h / clamp( err^ALPHA / err_old^BETA / SAFETY, 1/FAC_MAX, 1/FAC_MIN )`,
+///
+/// with `err_old = max(err, 1e-4)` of the last accepted step (`1e-4` before the first).
+/// After a rejection `h_new = h / min(1/FAC_MIN, err^ALPHA / SAFETY)`, and the step that
+/// follows a rejection may not grow.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PiController {
+    err_old: f64,
+    rejected: bool,
+}
+
+impl PiController {
+    /// Safety factor on the predicted optimal step (`dopri5.f` `WORK(2)`).
+    pub const SAFETY: f64 = 0.9;
+    /// Smallest ratio `h_new / h` (`WORK(3)`).
+    pub const FAC_MIN: f64 = 0.2;
+    /// Largest ratio `h_new / h` (`WORK(4)`).
+    pub const FAC_MAX: f64 = 10.0;
+    /// Exponent on the previous error (`WORK(5)`).
+    pub const BETA: f64 = 0.04;
+    /// Exponent on the current error, `1/5 - 0.75 BETA` (`EXPO1`).
+    pub const ALPHA: f64 = 0.2 - 0.75 * Self::BETA;
+    /// Floor on the remembered error, and its value before the first accepted step (`FACOLD`).
+    pub const ERR_OLD_MIN: f64 = 1e-4;
+
+    /// A controller with no history.
+    pub fn new() -> Self {
+        PiController {
+            err_old: Self::ERR_OLD_MIN,
+            rejected: false,
+        }
+    }
+
+    /// The next step after an accepted step of size `h` with error `err <= 1`; updates the
+    /// memory. Never larger than `h` right after a rejection.
+    pub fn accept(&mut self, h: f64, err: f64) -> f64 {
+        let fac11 = err.powf(Self::ALPHA);
+        let fac = (fac11 / self.err_old.powf(Self::BETA) / Self::SAFETY)
+            .clamp(1.0 / Self::FAC_MAX, 1.0 / Self::FAC_MIN);
+        let mut h_new = h / fac;
+        self.err_old = err.max(Self::ERR_OLD_MIN);
+        if self.rejected {
+            h_new = h_new.min(h);
+        }
+        self.rejected = false;
+        h_new
+    }
+
+    /// The retry step after a rejected step of size `h` with error `err > 1`.
+    pub fn reject(&mut self, h: f64, err: f64) -> f64 {
+        self.rejected = true;
+        h / (err.powf(Self::ALPHA) / Self::SAFETY).min(1.0 / Self::FAC_MIN)
+    }
+}
+
+impl Default for PiController {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Hand-computed: with no history, err = 0.5 gives
+    /// fac = 0.5^0.17 / 1e-4^0.04 / 0.9, h_new = h / fac.
+    #[test]
+    fn first_accept_follows_the_formula() {
+        let mut c = PiController::new();
+        let fac = 0.5f64.powf(0.17) / 1e-4f64.powf(0.04) / 0.9;
+        assert!((c.accept(1.0, 0.5) - 1.0 / fac).abs() < 1e-15);
+    }
+
+    #[test]
+    fn growth_and_shrink_are_bounded() {
+        let mut c = PiController::new();
+        assert_eq!(c.accept(1.0, 0.0), 10.0);
+        assert!((c.reject(1.0, 1e12) - 0.2).abs() < 1e-15);
+        // After a rejection, even a perfect step does not grow.
+        assert_eq!(c.accept(1.0, 0.0), 1.0);
+    }
+
+    /// err = 1 in every component gives norm 1; scale uses the larger of |y0|, |y1|.
+    #[test]
+    fn norm_scales_by_tolerance() {
+        let y0 = Vector::<2>::new(1.0, -3.0);
+        let y1 = Vector::<2>::new(2.0, 0.0);
+        let (rtol, atol) = (1e-3, 1e-6);
+        let e = Vector::<2>::new(atol + rtol * 2.0, atol + rtol * 3.0);
+        assert!((error_norm(&e, &y0, &y1, rtol, atol) - 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,108 @@
+//! The classic fourth-order Runge–Kutta method with fixed steps.
+
+use super::tableau::{Erk, RK4};
+use super::{Event, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem};
+use crate::error::{Error, Result};
+use crate::model::{OdeSystem, Vector};
+
+/// Classic RK4 with a fixed step `h` (the last step is shortened to end exactly at `t1`)
+/// and cubic Hermite dense output ([`Segment::hermite`]). The end derivative of one step is
+/// the first stage of the next, so the dense output costs one extra `rhs` call per run.
+/// [`OdeSystem::project`] is called after every step (its default does nothing).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rk4 {
+    /// Step size.
+    pub h: f64,
+    /// Steps allowed before [`Error::TooManySteps`].
+    pub max_steps: usize,
+}
+
+impl Rk4 {
+    /// RK4 with step `h` and at most a million steps.
+    pub fn new(h: f64) -> Self {
+        Rk4 {
+            h,
+            max_steps: 1_000_000,
+        }
+    }
+}
+
+fn non_finite<const D: usize>(v: &Vector<D>) -> bool {
+    !v.iter().all(|x| x.is_finite())
+}
+
+impl Integrator for Rk4 {
+    fn name(&self) -> &'static str {
+        "RK4"
+    }
+
+    fn solve<S: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        y0: Vector<D>,
+        t1: f64,
+        events: &[Event<'_, D>],
+    ) -> Result<Solution<D>> {
+        if !(self.h > 0.0 && self.h.is_finite()) {
+            return Err(Error::InvalidInput {
+                what: "h",
+                detail: format!("must be positive and finite, got {}", self.h),
+            });
+        }
+        validate_problem(t0, &y0, t1)?;
+        let opts = Options {
+            dense: true,
+            ..Options::default()
+        };
+        let mut rec = Recorder::new(events, t0, y0, &opts);
+        let mut stats = Stats::default();
+        // Number of steps: the last one may be shorter, but not by a rounding sliver.
+        let n = ((t1 - t0) / self.h * (1.0 - 1e-12)).ceil() as usize;
+        let (mut t, mut y) = (t0, y0);
+        let mut k = [Vector::<D>::zeros(); 4];
+        let mut z = [Vector::<D>::zeros(); 4];
+        if n > 0 {
+            k[0] = sys.rhs(t0, &y0)?;
+            stats.n_rhs += 1;
+            if non_finite(&k[0]) {
+                return Err(Error::NonFinite { t: t0 });
+            }
+        }
+        for step in 1..=n {
+            if stats.n_steps >= self.max_steps {
+                return Err(Error::TooManySteps {
+                    t,
+                    steps: stats.n_steps,
+                });
+            }
+            let t_new = if step == n {
+                t1
+            } else {
+                t0 + step as f64 * self.h
+            };
+            let h = t_new - t;
+            RK4.stages(sys, t, &y, h, &mut k, &mut z)?;
+            stats.n_rhs += 3;
+            stats.n_steps += 1;
+            stats.n_accepted += 1;
+            let mut y1 = y + Erk::combine(&RK4.b, &k, h);
+            sys.project(t_new, &mut y1)?;
+            if non_finite(&y1) {
+                return Err(Error::NonFinite { t: t_new });
+            }
+            let f1 = sys.rhs(t_new, &y1)?;
+            stats.n_rhs += 1;
+            if non_finite(&f1) {
+                return Err(Error::NonFinite { t: t_new });
+            }
+            let seg = Segment::hermite(t, h, &y, &k[0], &y1, &f1);
+            let flow = rec.accept(seg, &y1);
+            (t, y, k[0]) = (t_new, y1, f1);
+            if flow == super::Flow::Stop {
+                break;
+            }
+        }
+        Ok(rec.finish(stats))
+    }
+}

@@ -1,0 +1,303 @@
+//! Explicit Runge–Kutta tableaus as data, and the one stage routine that runs any of them.
+
+use crate::error::{Error, Result};
+use crate::model::{OdeSystem, Vector};
+
+/// An explicit Butcher tableau with `S` stages: nodes `c`, strictly lower-triangular
+/// coefficients `a`, weights `b`, and the error weights `e = b - b_hat` of an embedded
+/// method (all zero when there is none).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Erk<const S: usize> {
+    /// Nodes `c_i = sum_j a_ij`.
+    pub c: [f64; S],
+    /// Stage coefficients, `a[i][j] = 0` for `j >= i`.
+    pub a: [[f64; S]; S],
+    /// Weights of the propagated solution.
+    pub b: [f64; S],
+    /// `b - b_hat`: the local error estimate is `h sum_i e_i k_i`.
+    pub e: [f64; S],
+    /// Order of the propagated solution.
+    pub order: usize,
+    /// Order of the embedded solution (`0` when there is none).
+    pub embedded_order: usize,
+    /// First same as last: the last stage is `f(t + h, y1)`, reused as the next step's first.
+    pub fsal: bool,
+}
+
+/// The classic fourth-order Runge–Kutta method (Kutta 1901; Hairer–Nørsett–Wanner I,
+/// Sect. II.1, Table 1.2, left).
+pub const RK4: Erk<4> = Erk {
+    c: [0.0, 1.0 / 2.0, 1.0 / 2.0, 1.0],
+    a: [
+        [0.0, 0.0, 0.0, 0.0],
+        [1.0 / 2.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0 / 2.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ],
+    b: [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+    e: [0.0; 4],
+    order: 4,
+    embedded_order: 0,
+    fsal: false,
+};
+
+/// Dormand & Prince 5(4) (J. Comput. Appl. Math. 6 (1980) 19–26; Hairer–Nørsett–Wanner I,
+/// Sect. II.5, Table 5.2), with the coefficients of Hairer's `dopri5.f`.
+pub const DOPRI5: Erk<7> = Erk {
+    c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0],
+    a: [
+        [0.0; 7],
+        [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0, 0.0],
+        [
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+            0.0,
+            0.0,
+        ],
+        [
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+            0.0,
+        ],
+    ],
+    b: [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+        0.0,
+    ],
+    e: [
+        71.0 / 57600.0,
+        0.0,
+        -71.0 / 16695.0,
+        71.0 / 1920.0,
+        -17253.0 / 339200.0,
+        22.0 / 525.0,
+        -1.0 / 40.0,
+    ],
+    order: 5,
+    embedded_order: 4,
+    fsal: true,
+};
+
+/// Shampine's (1986) fourth-order continuous extension of DOPRI5 as in `dopri5.f`
+/// (`D1..D7`): the fifth coefficient of Hairer's dense output is `h sum_i d_i k_i`.
+pub const DOPRI5_DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+impl<const S: usize> Erk<S> {
+    /// Evaluate stages `1..S` of a step of size `h` from `(t, y)`. On entry `k[0]` holds
+    /// `f(t, y)`; on return `k[i] = f(t + c_i h, z[i])` with the stage arguments
+    /// `z[i] = y + h sum_{j<i} a_ij k_j` (`z[0] = y`). Makes `S - 1` calls of `rhs`; a
+    /// non-finite stage value stops with [`Error::NonFinite`]. Stage storage is the caller's
+    /// fixed arrays, so a step does not allocate.
+    #[inline]
+    pub fn stages<F: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &F,
+        t: f64,
+        y: &Vector<D>,
+        h: f64,
+        k: &mut [Vector<D>; S],
+        z: &mut [Vector<D>; S],
+    ) -> Result<()> {
+        z[0] = *y;
+        for i in 1..S {
+            let mut acc = Vector::<D>::zeros();
+            for (a, kj) in self.a[i][..i].iter().zip(k.iter()) {
+                if *a != 0.0 {
+                    acc += kj * *a;
+                }
+            }
+            z[i] = y + acc * h;
+            let ti = t + self.c[i] * h;
+            k[i] = sys.rhs(ti, &z[i])?;
+            if !k[i].iter().all(|v| v.is_finite()) {
+                return Err(Error::NonFinite { t: ti });
+            }
+        }
+        Ok(())
+    }
+
+    /// `h sum_i w_i k_i` for weights `w` (the increment `b`, or the error `e`).
+    #[inline]
+    pub fn combine<const D: usize>(w: &[f64; S], k: &[Vector<D>; S], h: f64) -> Vector<D> {
+        let mut acc = Vector::<D>::zeros();
+        for (wi, ki) in w.iter().zip(k) {
+            if *wi != 0.0 {
+                acc += ki * *wi;
+            }
+        }
+        acc * h
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rooted tree as the list of its subtrees (a leaf has none).
+    #[derive(Debug, Clone)]
+    struct Tree(Vec<Tree>);
+
+    impl Tree {
+        fn order(&self) -> usize {
+            1 + self.0.iter().map(Tree::order).sum::<usize>()
+        }
+        /// gamma(t) = |t| prod gamma(t_k) (Hairer–Nørsett–Wanner I, Def. II.2.10).
+        fn density(&self) -> f64 {
+            self.order() as f64 * self.0.iter().map(Tree::density).product::<f64>()
+        }
+        /// Internal weights g_i(t) = prod_k (A g(t_k))_i, so that the elementary weight is
+        /// Phi(t) = sum_i b_i g_i(t) (Hairer–Nørsett–Wanner I, Def. II.2.9).
+        fn weights<const S: usize>(&self, a: &[[f64; S]; S]) -> [f64; S] {
+            let mut g = [1.0; S];
+            for child in &self.0 {
+                let gc = child.weights(a);
+                for (i, gi) in g.iter_mut().enumerate() {
+                    *gi *= (0..S).map(|j| a[i][j] * gc[j]).sum::<f64>();
+                }
+            }
+            g
+        }
+    }
+
+    /// All rooted trees of order `n`, as multisets of subtrees (non-decreasing index order
+    /// in a canonical list, so every tree appears once).
+    fn trees(n: usize) -> Vec<Tree> {
+        // by_order[m] lists the trees of order m.
+        let mut by_order: Vec<Vec<Tree>> = vec![vec![], vec![Tree(vec![])]];
+        for m in 2..=n {
+            let all: Vec<(usize, Tree)> = (1..m)
+                .flat_map(|o| by_order[o].iter().cloned().map(move |t| (o, t)))
+                .collect();
+            let mut out = Vec::new();
+            // Choose a multiset of subtrees from `all` with total order m - 1.
+            fn pick(
+                all: &[(usize, Tree)],
+                from: usize,
+                left: usize,
+                cur: &mut Vec<Tree>,
+                out: &mut Vec<Tree>,
+            ) {
+                if left == 0 {
+                    out.push(Tree(cur.clone()));
+                    return;
+                }
+                for idx in from..all.len() {
+                    if all[idx].0 <= left {
+                        cur.push(all[idx].1.clone());
+                        pick(all, idx, left - all[idx].0, cur, out);
+                        cur.pop();
+                    }
+                }
+            }
+            pick(&all, 0, m - 1, &mut Vec::new(), &mut out);
+            by_order.push(out);
+        }
+        by_order.swap_remove(n)
+    }
+
+    fn check_order<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], p: usize) {
+        for n in 1..=p {
+            for t in trees(n) {
+                let phi: f64 = t.weights(a).iter().zip(b).map(|(g, b)| g * b).sum();
+                let want = 1.0 / t.density();
+                assert!(
+                    (phi - want).abs() < 1e-14,
+                    "order condition for {t:?}: {phi} != {want}"
+                );
+            }
+        }
+    }
+
+    fn check_tableau<const S: usize>(tab: &Erk<S>) {
+        for i in 0..S {
+            let row: f64 = tab.a[i].iter().sum();
+            assert!(
+                (row - tab.c[i]).abs() < 1e-15,
+                "row {i}: {row} != {}",
+                tab.c[i]
+            );
+            assert!(
+                tab.a[i][i..].iter().all(|&a| a == 0.0),
+                "row {i} not explicit"
+            );
+        }
+        assert!((tab.b.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        check_order(&tab.a, &tab.b, tab.order);
+        if tab.embedded_order > 0 {
+            let b_hat: [f64; S] = std::array::from_fn(|i| tab.b[i] - tab.e[i]);
+            check_order(&tab.a, &b_hat, tab.embedded_order);
+        }
+        if tab.fsal {
+            assert_eq!(tab.a[S - 1], tab.b);
+            assert_eq!(tab.c[S - 1], 1.0);
+        }
+    }
+
+    /// The number of rooted trees of orders 1..=5 is 1, 1, 2, 4, 9 (OEIS A000081).
+    #[test]
+    fn tree_counts() {
+        let counts: Vec<usize> = (1..=5).map(|n| trees(n).len()).collect();
+        assert_eq!(counts, [1, 1, 2, 4, 9]);
+    }
+
+    #[test]
+    fn rk4_tableau_is_consistent_and_of_order_4() {
+        check_tableau(&RK4);
+    }
+
+    /// Order 5 for `b`, order 4 for `b_hat`, FSAL row, and that it is not of order 6
+    /// (so the order check can fail).
+    #[test]
+    fn dopri5_tableau_is_consistent_and_of_order_5_4() {
+        check_tableau(&DOPRI5);
+        let fails_order_6 = trees(6).iter().any(|t| {
+            let phi: f64 = t
+                .weights(&DOPRI5.a)
+                .iter()
+                .zip(&DOPRI5.b)
+                .map(|(g, b)| g * b)
+                .sum();
+            (phi - 1.0 / t.density()).abs() > 1e-6
+        });
+        assert!(fails_order_6);
+    }
+
+    /// Shampine's dense weights at theta = 1 reproduce nothing new: the fifth dense
+    /// coefficient must vanish for a linear test function with k_i = 1 (sum d_i = 0),
+    /// since the dense polynomial of y' = 1 is exactly y0 + theta h.
+    #[test]
+    fn dopri5_dense_weights_sum_to_zero() {
+        assert!(DOPRI5_DENSE.iter().sum::<f64>().abs() < 1e-13);
+    }
+}
