@@ -453,7 +453,11 @@ mod tests {
         let s2 = g.call(Func::Sin, x);
         let p2 = g.mul(y, s2);
         assert_eq!((s1, p1), (s2, p2));
-        assert_eq!(g.len(), before, "rebuilding an existing expression adds no node");
+        assert_eq!(
+            g.len(),
+            before,
+            "rebuilding an existing expression adds no node"
+        );
         let a = g.add(x, y);
         let b = g.add(y, x);
         assert_eq!(a, b);
@@ -479,7 +483,10 @@ mod tests {
         let e = g.add(syms[3], syms[140]);
         let e = g.mul(e, c);
         let e = g.call(Func::Cos, e);
-        let expected: BTreeSet<Sym> = [3, 140].iter().map(|&i| g.as_sym(syms[i]).unwrap()).collect();
+        let expected: BTreeSet<Sym> = [3, 140]
+            .iter()
+            .map(|&i| g.as_sym(syms[i]).unwrap())
+            .collect();
         assert_eq!(g.free_symbols(e), expected);
         for (i, &s) in syms.iter().enumerate() {
             let s = g.as_sym(s).unwrap();

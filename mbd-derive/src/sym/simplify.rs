@@ -551,7 +551,7 @@ mod tests {
         let s = g.call(Func::Sin, x);
         let e = g.atan2(s, y);
         let e = g.powf(e, x);
-        let e = g.sub(e, y);
+        let _ = g.sub(e, y);
         for n in g.exprs().collect::<Vec<_>>() {
             assert_eq!(g.build(g.node(n)), n, "{}", g.display(n));
         }
