@@ -28,8 +28,8 @@ use nalgebra::{Complex, SMatrix, SVector};
 /// Coefficients of the 3-stage Radau IIA method, exact closed forms in `√6` where
 /// possible (Hairer & Wanner II, Table IV.5.6; `radau5.f`).
 pub mod tableau {
-    /// `√6`, to more digits than `f64` holds (`f64::sqrt` is not `const`).
-    pub const SQRT6: f64 = 2.449_489_742_783_178_098_197_284;
+    /// `√6`, correctly rounded (`f64::sqrt` is not `const`).
+    pub const SQRT6: f64 = 2.449489742783178;
 
     /// Nodes `c = ((4 − √6)/10, (4 + √6)/10, 1)`: the zeros of the Radau polynomial
     /// `d²/dx² [x² (x − 1)³]`.
@@ -55,49 +55,38 @@ pub mod tableau {
 
     /// The real eigenvalue of `A⁻¹`, `γ = 3 + 3^(2/3) − 3^(1/3)`: a root of its
     /// characteristic polynomial `λ³ − 9λ² + 36λ − 60`.
-    pub const GAMMA: f64 = 3.637_834_252_744_495_732_21;
+    pub const GAMMA: f64 = 3.637834252744496;
 
     /// Real part of the complex eigenvalues `α ± iβ` of `A⁻¹`, `α = 3 − (3^(2/3) − 3^(1/3))/2`.
-    pub const ALPHA: f64 = 2.681_082_873_627_752_133_9;
+    pub const ALPHA: f64 = 2.6810828736277523;
 
     /// Imaginary part of the complex eigenvalues of `A⁻¹`, `β = (√3/2)(3^(2/3) + 3^(1/3))`.
-    pub const BETA: f64 = 3.050_430_199_247_410_569_43;
+    pub const BETA: f64 = 3.0504301992474105;
 
     /// `T` with `T⁻¹ A⁻¹ T = [[γ, 0, 0], [0, α, −β], [0, β, α]]`: first column the real
     /// eigenvector of `A⁻¹` (unit length), second and third the real and minus the
     /// imaginary part of the eigenvector of `α + iβ` scaled to last component 1
-    /// (radau5.f's normalisation of that pair). Computed to 30 digits with mpmath.
+    /// (radau5.f's normalisation of that pair). Computed to 30 digits with mpmath and
+    /// rounded to `f64`.
     pub const T: [[f64; 3]; 3] = [
         [
-            0.091_149_127_316_166_166_268_4,
-            -0.141_255_295_020_954_208_428,
-            -0.030_029_194_105_147_424_491_9,
+            0.09114912731616617,
+            -0.1412552950209542,
+            -0.030029194105147424,
         ],
-        [
-            0.241_497_317_417_783_360_301,
-            0.204_129_352_293_799_931_996,
-            0.382_942_112_757_261_937_795,
-        ],
-        [0.965_166_473_107_977_177_897, 1.0, 0.0],
+        [0.24149731741778335, 0.20412935229379994, 0.3829421127572619],
+        [0.9651664731079772, 1.0, 0.0],
     ];
 
     /// `T⁻¹`.
     pub const T_INV: [[f64; 3]; 3] = [
+        [4.329531441447422, 0.3395091208523601, 0.5422654641267229],
         [
-            4.329_531_441_447_421_828_01,
-            0.339_509_120_852_360_098_86,
-            0.542_265_464_126_722_990_255,
+            -4.178718591551905,
+            -0.32768282076106237,
+            0.47662355450055044,
         ],
-        [
-            -4.178_718_591_551_904_727_35,
-            -0.327_682_820_761_062_387_083,
-            0.476_623_554_500_550_451_96,
-        ],
-        [
-            -0.502_872_634_945_786_875_951,
-            2.571_926_949_855_605_429_19,
-            -0.596_039_204_828_224_924_969,
-        ],
+        [-0.5028726349457868, 2.571926949855605, -0.5960392048282249],
     ];
 
     /// Monomial coefficients of the collocation polynomial from the stage increments:
@@ -107,7 +96,11 @@ pub mod tableau {
     /// Row 0 is `u'(t0) h`; minus it, it carries the error constants of IV.8 eq. (8.20):
     /// `e_i / γ0 = (−(13 + 7√6)/3, (−13 + 7√6)/3, −1/3)` (radau5.f's `DD1..DD3`).
     pub const DENSE: [[f64; 3]; 3] = [
-        [(13.0 + 7.0 * SQRT6) / 3.0, (13.0 - 7.0 * SQRT6) / 3.0, 1.0 / 3.0],
+        [
+            (13.0 + 7.0 * SQRT6) / 3.0,
+            (13.0 - 7.0 * SQRT6) / 3.0,
+            1.0 / 3.0,
+        ],
         [
             -(23.0 + 22.0 * SQRT6) / 3.0,
             (-23.0 + 22.0 * SQRT6) / 3.0,
@@ -216,7 +209,11 @@ impl<const D: usize> Factors<D> {
         let e1 = Lu::factor(Matrix::<D, D>::identity() * fac1 - jac)?;
         let shift = Complex::new(alpha_n, beta_n);
         let e2 = SMatrix::<Complex<f64>, D, D>::from_fn(|i, j| {
-            let diag = if i == j { shift } else { Complex::new(0.0, 0.0) };
+            let diag = if i == j {
+                shift
+            } else {
+                Complex::new(0.0, 0.0)
+            };
             diag - Complex::new(jac[(i, j)], 0.0)
         });
         let e2 = Lu::factor(e2)?;
@@ -573,7 +570,9 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
             iterations += 1;
 
             let sum: f64 = (0..D)
-                .map(|i| (dw[0][i].powi(2) + dw[1][i].powi(2) + dw[2][i].powi(2)) / scale[i].powi(2))
+                .map(|i| {
+                    (dw[0][i].powi(2) + dw[1][i].powi(2) + dw[2][i].powi(2)) / scale[i].powi(2)
+                })
                 .sum();
             let dw_norm = (sum / (3 * D).max(1) as f64).sqrt();
             if !dw_norm.is_finite() {
@@ -637,7 +636,11 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                 err = error_norm(&e, y, y_new, self.rtol, self.atol);
             }
         }
-        Ok(if err.is_finite() { err.max(ERR_FLOOR) } else { f64::INFINITY })
+        Ok(if err.is_finite() {
+            err.max(ERR_FLOOR)
+        } else {
+            f64::INFINITY
+        })
     }
 }
 
