@@ -170,6 +170,33 @@ fn van_der_pol_matches_scipy() {
     assert!(sol.stats.n_steps < 1_000, "{:?}", sol.stats);
 }
 
+/// The same problem without an analytic Jacobian: `OdeSystem::jacobian`'s forward
+/// differences (radau5.f's increments) must give the same accuracy (`< rtol` relative) and
+/// nearly the same work (measured: 489 steps against 488, within 10 %).
+#[test]
+fn van_der_pol_with_a_finite_difference_jacobian() {
+    struct VanDerPolFd;
+    impl OdeSystem<2> for VanDerPolFd {
+        fn rhs(&self, t: f64, y: &Vector<2>) -> Result<Vector<2>> {
+            VanDerPol { eps: 1e-6 }.rhs(t, y)
+        }
+    }
+    let sol = radau(1e-6, 1e-6)
+        .solve(&VanDerPolFd, 0.0, Vector2::new(2.0, 0.0), 2.0, &[])
+        .unwrap();
+    let (_, y) = sol.last();
+    let reference = Vector2::new(1.706167732170483, -0.8928097010248125);
+    let rel = (y - reference).component_div(&reference).abs();
+    let exact = vdp(Vector2::new(2.0, 0.0)).stats;
+    println!(
+        "vdp fd: rel err = {rel:?}, stats = {:?} (exact Jacobian: {exact:?})",
+        sol.stats
+    );
+    assert!(rel.max() < 1e-6, "relative error {rel:?}");
+    let ratio = sol.stats.n_steps as f64 / exact.n_steps as f64;
+    assert!((0.9..=1.1).contains(&ratio), "{:?} vs {exact:?}", sol.stats);
+}
+
 /// Controller fidelity against Hairer's own code: radau5.f (driver `dr1_radau5.f`) on this
 /// problem from `y(0) = (2, −0.6)`, rtol = atol = 1e-4, `h0 = 1e-6`, analytic Jacobian, takes
 /// 280 steps (242 accepted), 162 Jacobians, 252 factorisations and 2247 f-calls, ending at
@@ -562,6 +589,17 @@ fn bad_options_and_arguments_are_invalid_input() {
             "({t0}, {y0:?}, {t1}): {result:?}"
         );
     }
+}
+
+/// radau5.f refuses `atol <= 0` (its Newton norm divides by `atol + rtol |y0|`), and so
+/// does this port, with a typed error rather than a division by zero on `y0 = (1, 0)`.
+#[test]
+fn zero_absolute_tolerance_is_invalid_input() {
+    let result = radau(1e-6, 0.0).solve(&Harmonic, 0.0, Vector2::new(1.0, 0.0), 1.0, &[]);
+    assert!(
+        matches!(result, Err(Error::InvalidInput { what: "atol", .. })),
+        "{result:?}"
+    );
 }
 
 #[test]

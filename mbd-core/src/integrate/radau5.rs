@@ -17,6 +17,7 @@
 //! - the step size follows Gustafsson's predictive controller (IV.8, eq. (8.25));
 //! - the dense output is the collocation polynomial itself (degree 3).
 
+use super::control::error_norm;
 use super::{
     Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
 };
@@ -137,7 +138,18 @@ const ERR_FLOOR: f64 = 1e-10;
 ///
 /// Tolerances are mapped as radau5.f does, `rtol' = 0.1 rtol^(2/3)`,
 /// `atol' = rtol' atol / rtol`: the embedded estimate is of order 3, and this makes the
-/// global error follow the requested tolerance.
+/// global error follow the requested tolerance (it scales like `tol^(5/6)`); `atol` must be
+/// positive. Without `h0` the first step is radau5.f's `1e-6`.
+///
+/// Counters: `n_rhs` counts the calls made by the method itself (as radau5.f, not those a
+/// finite-difference [`OdeSystem::jacobian`] makes); `n_lu` counts factorisations of the
+/// pair `E1`, `E2`; `n_rejected` counts every failed attempt (error test, Newton
+/// divergence or slow convergence), so `n_steps = n_accepted + n_rejected`.
+///
+/// A step whose Newton iteration meets non-finite values is retried with half the step; if
+/// the step size then underflows, the run ends with [`Error::NonFinite`] (or
+/// [`Error::NewtonFailed`] when the iteration merely diverged), as do five singular
+/// iteration matrices in a row.
 #[derive(Debug, Clone, Default)]
 pub struct Radau5 {
     /// Tolerances and step settings.
@@ -165,6 +177,14 @@ impl Integrator for Radau5 {
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
         self.opts.validate()?;
+        if self.opts.atol <= 0.0 {
+            // radau5.f refuses atol <= 0 too: the Newton increments are measured against
+            // `atol + rtol |y0|`, which vanishes on a zero component.
+            return Err(Error::InvalidInput {
+                what: "atol",
+                detail: format!("Radau5 needs atol > 0, got {}", self.opts.atol),
+            });
+        }
         validate_problem(t0, &y0, t1)?;
         let mut recorder = Recorder::new(events, t0, y0, &self.opts);
         let mut stats = Stats::default();
@@ -249,24 +269,6 @@ fn increment<const D: usize>(a: &[Vector<D>; 3], theta: f64) -> Vector<D> {
 /// `Σ_j m[k][j] v_j` for each `k`: the stage-wise linear maps `T`, `T⁻¹`, `DENSE`.
 fn mix<const D: usize>(m: &[[f64; 3]; 3], v: &[Vector<D>; 3]) -> [Vector<D>; 3] {
     std::array::from_fn(|k| v[0] * m[k][0] + v[1] * m[k][1] + v[2] * m[k][2])
-}
-
-/// The scaled root-mean-square norm of the shared error control,
-/// `sqrt(mean_i (e_i / (atol + rtol max(|y0_i|, |y1_i|)))²)` (Hairer I, II.4, eq. (4.11)).
-fn error_norm<const D: usize>(
-    e: &Vector<D>,
-    y0: &Vector<D>,
-    y1: &Vector<D>,
-    rtol: f64,
-    atol: f64,
-) -> f64 {
-    let sum: f64 = (0..D)
-        .map(|i| {
-            let scale = atol + rtol * y0[i].abs().max(y1[i].abs());
-            (e[i] / scale).powi(2)
-        })
-        .sum();
-    (sum / D.max(1) as f64).sqrt()
 }
 
 /// One integration: the state radau5.f's `RADCOR` keeps between steps.
