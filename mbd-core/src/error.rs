@@ -28,6 +28,13 @@ pub enum Error {
     NewtonFailed { t: f64, h: f64 },
     /// A state or a right-hand side value became NaN or infinite at `t`.
     NonFinite { t: f64 },
+    /// Newton's method on the static equilibrium `f(q, 0, t) = 0` (with `Phi = 0` for closed
+    /// loops) did not converge, or met a singular stiffness (a neutral equilibrium).
+    StaticsFailed {
+        t: f64,
+        iterations: usize,
+        residual: f64,
+    },
     /// An option or an argument is out of its domain (`what` names it).
     InvalidInput { what: &'static str, detail: String },
 }
@@ -65,6 +72,14 @@ impl fmt::Display for Error {
                 )
             }
             Error::NonFinite { t } => write!(f, "state became NaN or infinite at t = {t}"),
+            Error::StaticsFailed {
+                t,
+                iterations,
+                residual,
+            } => write!(
+                f,
+                "static equilibrium not found at t = {t}: residual {residual:.3e} after {iterations} Newton iterations"
+            ),
             Error::InvalidInput { what, detail } => write!(f, "invalid `{what}`: {detail}"),
         }
     }

@@ -4,6 +4,7 @@
 //! Users normally depend on the facade crate `mbd`, which re-exports this crate and the
 //! `#[derive(Mechanism)]`.
 
+pub mod analysis;
 pub mod error;
 pub mod integrate;
 pub mod jacobian;

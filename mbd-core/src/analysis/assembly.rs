@@ -1,0 +1,88 @@
+//! Assembly: close the loops of a mechanism, `Phi(q, t) = 0`, moving only the coordinates
+//! that are not held, and make the velocities consistent, `Phi_q qd + Phi_t = 0`.
+//!
+//! Haug (1989), Sect. 3.5 (Newton–Raphson assembly) and Sect. 6.3 (consistent initial
+//! conditions). When more coordinates are free than there are constraints, the update is
+//! the minimum-norm Gauss–Newton step, so the result is the assembled configuration
+//! closest (to first order) to the one given.
+
+use super::{NewtonOptions, max_norm, min_norm_solve};
+use crate::error::{Error, Result};
+use crate::model::{Constrained, Vector};
+
+/// Solve `Phi(q, t) = 0` for the coordinates with `held[i] == false`, starting from `q0`
+/// and keeping `q_i = q0_i` where `held[i]`.
+///
+/// Newton / Gauss–Newton: `dq_F = -J_F^+ Phi` with `J_F` the columns of `Phi_q` of the free
+/// coordinates and `J_F^+` its minimum-norm right inverse. Converged when
+/// `max |Phi_i| <= tol (1 + max |q_i|)`; the Jacobian must then have full row rank, or
+/// the configuration is a toggle (dead-centre) position or the constraints are redundant.
+///
+/// Errors: [`Error::AssemblyFailed`] (with the residual) when the iterations run out or a
+/// Newton step cannot be taken because `J_F` lost rank far from a solution (a loop that
+/// cannot close ends, at best, stretched straight, where the Jacobian is singular);
+/// [`Error::SingularConstraintJacobian`] when a solution is found at which `J_F` has lost rank;
+/// [`Error::NonFinite`] when `Phi` is not finite.
+pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    t: f64,
+    q0: &Vector<N>,
+    held: &[bool; N],
+    opts: &NewtonOptions,
+) -> Result<Vector<N>> {
+    opts.validate()?;
+    let free = free_set(held);
+    let mut q = *q0;
+    let mut iterations = 0;
+    loop {
+        let phi = sys.phi(t, &q);
+        if !phi.iter().all(|v| v.is_finite()) || !q.iter().all(|v| v.is_finite()) {
+            return Err(Error::NonFinite { t });
+        }
+        let residual = max_norm(&phi);
+        let step = min_norm_solve(&sys.phi_q(t, &q), &free, &(-phi));
+        if residual <= opts.tol * (1.0 + max_norm(&q)) {
+            return step
+                .map(|_| q)
+                .ok_or(Error::SingularConstraintJacobian { t });
+        }
+        match step {
+            Some(dq) if iterations < opts.max_iterations => q += dq,
+            _ => {
+                return Err(Error::AssemblyFailed {
+                    t,
+                    iterations,
+                    residual,
+                });
+            }
+        }
+        iterations += 1;
+    }
+}
+
+/// Velocities consistent with the constraints, `Phi_q qd + Phi_t = 0`, keeping
+/// `qd_i = qd0_i` where `held[i]` (the independent velocities, e.g. the crank speed).
+///
+/// The free components get the minimum-norm correction `dqd_F = -J_F^+ (Phi_q qd0 + Phi_t)`:
+/// unique when the held components are a set of independent velocities, otherwise the
+/// consistent velocity closest to `qd0`.
+///
+/// Errors: [`Error::SingularConstraintJacobian`] when `J_F` lacks full row rank (toggle
+/// position, or the held velocities are not independent).
+pub fn consistent_velocities<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd0: &Vector<N>,
+    held: &[bool; N],
+) -> Result<Vector<N>> {
+    let jac = sys.phi_q(t, q);
+    let violation = jac * qd0 + sys.phi_t(t, q);
+    let dqd = min_norm_solve(&jac, &free_set(held), &(-violation))
+        .ok_or(Error::SingularConstraintJacobian { t })?;
+    Ok(qd0 + dqd)
+}
+
+fn free_set<const N: usize>(held: &[bool; N]) -> [bool; N] {
+    held.map(|h| !h)
+}
