@@ -156,6 +156,23 @@ impl Node {
         a.into_iter().chain(b)
     }
 
+    /// The same operation with each operand `c` replaced by `f(c)`.
+    pub fn with_children(self, mut f: impl FnMut(Expr) -> Expr) -> Node {
+        match self {
+            Node::Const(_) | Node::Sym(_) => self,
+            Node::Add(a, b) => Node::Add(f(a), f(b)),
+            Node::Mul(a, b) => Node::Mul(f(a), f(b)),
+            Node::Neg(a) => Node::Neg(f(a)),
+            Node::Div(a, b) => Node::Div(f(a), f(b)),
+            Node::Powi(a, n) => Node::Powi(f(a), n),
+            Node::Powf(a, b) => Node::Powf(f(a), f(b)),
+            Node::Call(func, a) => Node::Call(func, f(a)),
+            Node::Atan2(y, x) => Node::Atan2(f(y), f(x)),
+            Node::Min(a, b) => Node::Min(f(a), f(b)),
+            Node::Max(a, b) => Node::Max(f(a), f(b)),
+        }
+    }
+
     /// Constants and symbols: the nodes code generation reads rather than computes.
     pub fn is_leaf(self) -> bool {
         matches!(self, Node::Const(_) | Node::Sym(_))
