@@ -213,6 +213,18 @@ enum Refresh {
     Nothing,
 }
 
+impl Refresh {
+    /// After a failed attempt: refactor with the new `h`, and re-evaluate the Jacobian
+    /// unless it is already that of the current point (radau5.f: `IF (CALJAC) GOTO 20`).
+    fn retry(jacobian_is_current: bool) -> Self {
+        if jacobian_is_current {
+            Refresh::Factors
+        } else {
+            Refresh::Jacobian
+        }
+    }
+}
+
 /// The factorised iteration matrices `E1 = (γ/h) I − J` and `E2 = ((α + iβ)/h) I − J`.
 struct Factors<const D: usize> {
     fac1: f64,
@@ -228,14 +240,8 @@ impl<const D: usize> Factors<D> {
         let (fac1, alpha_n, beta_n) = (GAMMA / h, ALPHA / h, BETA / h);
         let e1 = Lu::factor(Matrix::<D, D>::identity() * fac1 - jac)?;
         let shift = Complex::new(alpha_n, beta_n);
-        let e2 = SMatrix::<Complex<f64>, D, D>::from_fn(|i, j| {
-            let diag = if i == j {
-                shift
-            } else {
-                Complex::new(0.0, 0.0)
-            };
-            diag - Complex::new(jac[(i, j)], 0.0)
-        });
+        let e2 = SMatrix::<Complex<f64>, D, D>::from_diagonal_element(shift)
+            - jac.map(|v| Complex::new(v, 0.0));
         let e2 = Lu::factor(e2)?;
         Some(Factors {
             fac1,
@@ -373,11 +379,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                     }
                     h *= 0.5;
                     (reject, last, setback) = (true, false, Setback::Newton);
-                    refresh = if jac_current {
-                        Refresh::Factors
-                    } else {
-                        Refresh::Jacobian
-                    };
+                    refresh = Refresh::retry(jac_current);
                     continue;
                 }
                 self.stats.n_lu += 1;
@@ -417,11 +419,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                     self.stats.n_rejected += 1;
                     h *= factor;
                     (reject, last, setback) = (true, false, Setback::Newton);
-                    refresh = if jac_current {
-                        Refresh::Factors
-                    } else {
-                        Refresh::Jacobian
-                    };
+                    refresh = Refresh::retry(jac_current);
                     continue;
                 }
                 Newton::Failed { non_finite } => {
@@ -433,11 +431,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                         Setback::Newton
                     };
                     (reject, last) = (true, false);
-                    refresh = if jac_current {
-                        Refresh::Factors
-                    } else {
-                        Refresh::Jacobian
-                    };
+                    refresh = Refresh::retry(jac_current);
                     continue;
                 }
             };
@@ -459,11 +453,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                 self.stats.n_rejected += 1;
                 h = if first { h * 0.1 } else { h_new };
                 (reject, last, setback) = (true, false, Setback::ErrorTest);
-                refresh = if jac_current {
-                    Refresh::Factors
-                } else {
-                    Refresh::Jacobian
-                };
+                refresh = Refresh::retry(jac_current);
                 continue;
             }
 
