@@ -76,7 +76,7 @@ fn transformation_block_diagonalises_the_inverse_tableau() {
 }
 
 /// `DENSE` inverts `V_ik = c_i^(k+1)`, and its first row carries Hairer & Wanner's error
-/// constants (IV.8, eq. (8.20), written independently here): `e_i/γ0 = (−(13 + 7√6)/3,
+/// constants (IV.8, error estimation, written independently here): `e_i/γ0 = (−(13 + 7√6)/3,
 /// (−13 + 7√6)/3, −1/3)`. The estimate `γ0 h f(y0) + Σ e_i z_i` then vanishes on cubics
 /// (embedded order 3) but not on a quartic.
 #[test]

@@ -8,13 +8,15 @@
 //! - the stage increments `Z = (z1, z2, z3)` solve `Z = h (A ⊗ I) F(Z)` by a simplified
 //!   Newton iteration on the transformed variables `W = (T⁻¹ ⊗ I) Z`, which splits the
 //!   `3D × 3D` system into one real system with `(γ/h) I − J` and one complex system with
-//!   `((α + iβ)/h) I − J` (IV.8, eq. (8.15)–(8.18));
+//!   `((α + iβ)/h) I − J` (IV.8, "Simplified Newton iterations");
 //! - the Jacobian and both factorisations are kept across steps while the Newton iteration
 //!   converges fast (`θ ≤ 0.001`) and `h` hardly changes;
 //! - starting values come from the previous step's collocation polynomial;
-//! - the error estimate uses the extra stage `γ0 = 1/γ` at `t0` (eq. (8.19)–(8.20)) and,
-//!   after a first or rejected step, radau5.f's refined estimate (eq. (8.21));
-//! - the step size follows Gustafsson's predictive controller (IV.8, eq. (8.25));
+//! - the error estimate uses the extra stage `γ0 = 1/γ` at `t0` (IV.8, "Step size
+//!   selection") and,
+//!   after a first or rejected step, radau5.f's refined estimate;
+//! - the step size follows Gustafsson's predictive controller (IV.8; K. Gustafsson,
+//!   ACM TOMS 20 (1994) 496–517);
 //! - the dense output is the collocation polynomial itself (degree 3).
 
 use super::control::error_norm;
@@ -27,7 +29,7 @@ use crate::model::{Matrix, OdeSystem, Vector};
 use nalgebra::{Complex, SMatrix, SVector};
 
 /// Coefficients of the 3-stage Radau IIA method, exact closed forms in `√6` where
-/// possible (Hairer & Wanner II, Table IV.5.6; `radau5.f`).
+/// possible (Hairer & Wanner II, Sect. IV.5; `radau5.f`).
 pub mod tableau {
     /// `√6`, correctly rounded (`f64::sqrt` is not `const`).
     pub const SQRT6: f64 = 2.449489742783178;
@@ -94,7 +96,7 @@ pub mod tableau {
     /// `u(t0 + θh) = y0 + Σ_k a_k θ^(k+1)` with `a_k = Σ_i DENSE[k][i] z_i`, the inverse of
     /// the matrix `V_ik = c_i^(k+1)` (the polynomial passes through `y0` and `y0 + z_i`).
     ///
-    /// Row 0 is `u'(t0) h`; minus it, it carries the error constants of IV.8 eq. (8.20):
+    /// Row 0 is `u'(t0) h`; minus it, it carries the error constants of IV.8:
     /// `e_i / γ0 = (−(13 + 7√6)/3, (−13 + 7√6)/3, −1/3)` (radau5.f's `DD1..DD3`).
     pub const DENSE: [[f64; 3]; 3] = [
         [
@@ -461,7 +463,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
             self.stats.n_accepted += 1;
             first = false;
             if self.stats.n_accepted > 1 {
-                // Gustafsson's predictive controller, IV.8 eq. (8.25).
+                // Gustafsson's predictive controller (IV.8, "Step size selection").
                 let fac_gus = (h_acc / h) * (err * err / err_acc).powf(0.25) / SAFETY;
                 quot = quot.max(fac_gus.clamp(1.0 / ratio_max, 1.0 / ratio_min));
                 h_new = h / quot;
@@ -601,7 +603,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
         }
     }
 
-    /// The error estimate of IV.8 eq. (8.19)–(8.21): `err = E1⁻¹ (f(t0, y0) − u'(t0))`,
+    /// The error estimate of IV.8: `err = E1⁻¹ (f(t0, y0) − u'(t0))`,
     /// the defect of the collocation polynomial at `t0` smoothed by `E1`; after a first or
     /// rejected step radau5.f refines a large estimate once more,
     /// `E1⁻¹ (f(t0, y0 + err) − u'(t0))`, which stays bounded for very stiff components.
