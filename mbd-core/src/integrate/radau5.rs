@@ -13,8 +13,7 @@
 //!   converges fast (`θ ≤ 0.001`) and `h` hardly changes;
 //! - starting values come from the previous step's collocation polynomial;
 //! - the error estimate uses the extra stage `γ0 = 1/γ` at `t0` (IV.8, "Step size
-//!   selection") and,
-//!   after a first or rejected step, radau5.f's refined estimate;
+//!   selection") and, after a first or rejected step, radau5.f's refined estimate;
 //! - the step size follows Gustafsson's predictive controller (IV.8; K. Gustafsson,
 //!   ACM TOMS 20 (1994) 496–517);
 //! - the dense output is the collocation polynomial itself (degree 3).
