@@ -178,20 +178,25 @@ impl Node {
         matches!(self, Node::Const(_) | Node::Sym(_))
     }
 
-    /// The bit of this node's own non-smooth operation in [`NONSMOOTH_NAMES`], if any.
-    fn nonsmooth_bit(self) -> u8 {
+    /// This node's own flags: its non-smooth operation (bit `i` for `NONSMOOTH_NAMES[i]`)
+    /// or `NONFINITE` for a NaN or infinite constant.
+    fn own_flags(self) -> u8 {
         match self {
             Node::Call(Func::Abs, _) => 1,
             Node::Call(Func::Signum, _) => 2,
             Node::Min(..) => 4,
             Node::Max(..) => 8,
+            Node::Const(c) if !c.value().is_finite() => NONFINITE,
             _ => 0,
         }
     }
 }
 
-/// Names reported by [`Graph::nonsmooth_calls`], indexed by bit.
+/// Names reported by [`Graph::nonsmooth_calls`], indexed by flag bit.
 const NONSMOOTH_NAMES: [&str; 4] = ["abs", "signum", "min", "max"];
+
+/// Flag bit of a NaN or infinite constant.
+const NONFINITE: u8 = 16;
 
 /// Free-symbol sets of all nodes as one flat bit table, `words` `u64`s per node.
 /// A node only depends on symbols that existed when it was created; the table is widened
@@ -254,8 +259,8 @@ pub struct Graph {
     symbols: HashMap<String, Sym>,
     symbol_exprs: Vec<Expr>,
     free: SymSets,
-    /// Per node: bit set of the non-smooth operations used inside it (see `NONSMOOTH_NAMES`).
-    nonsmooth: Vec<u8>,
+    /// Per node: the union of `Node::own_flags` over the node and everything below it.
+    flags: Vec<u8>,
     /// `d e / d x` for every `(e, x)` differentiated so far.
     pub(super) derivatives: HashMap<(Expr, Sym), Expr>,
 }
@@ -279,8 +284,8 @@ impl Graph {
         self.free.push(node.children(), own);
         let mask = node
             .children()
-            .fold(node.nonsmooth_bit(), |m, c| m | self.nonsmooth[c.index()]);
-        self.nonsmooth.push(mask);
+            .fold(node.own_flags(), |m, c| m | self.flags[c.index()]);
+        self.flags.push(mask);
         self.nodes.push(node);
         self.interned.insert(node, e);
         e
@@ -368,11 +373,18 @@ impl Graph {
     /// Names (`"abs"`, `"signum"`, `"min"`, `"max"`) of the non-smooth operations inside `e`,
     /// in that order, each once.
     pub fn nonsmooth_calls(&self, e: Expr) -> Vec<&'static str> {
-        let mask = self.nonsmooth[e.index()];
+        let mask = self.flags[e.index()];
         (0..NONSMOOTH_NAMES.len())
             .filter(|b| mask & (1 << b) != 0)
             .map(|b| NONSMOOTH_NAMES[b])
             .collect()
+    }
+
+    /// Whether a NaN or infinite constant occurs in `e` (constant folding of `ln(-1)`,
+    /// `1/0`, or a substitution that puts a singular point in): such an expression has no
+    /// meaningful value and no Rust float literal.
+    pub fn has_nonfinite_constant(&self, e: Expr) -> bool {
+        self.flags[e.index()] & NONFINITE != 0
     }
 
     /// Number of interned nodes.
@@ -527,6 +539,25 @@ mod tests {
         assert_eq!(g.nonsmooth_calls(mn), vec!["abs", "signum", "min", "max"]);
         let smooth = g.call(Func::Exp, x);
         assert!(g.nonsmooth_calls(smooth).is_empty());
+    }
+
+    #[test]
+    fn nonfinite_constants_are_flagged() {
+        let mut g = Graph::new();
+        let x = g.symbol("x");
+        let sx = g.as_sym(x).unwrap();
+        let root = g.call(Func::Sqrt, x);
+        let slope = g.diff(root, sx);
+        assert!(!g.has_nonfinite_constant(slope));
+        let zero = g.zero();
+        let at_zero = g.substitute(slope, &[(sx, zero)].into());
+        assert_eq!(g.as_const(at_zero), Some(f64::INFINITY));
+        assert!(g.has_nonfinite_constant(at_zero));
+        let minus_one = g.constant(-1.0);
+        let nan = g.call(Func::Ln, minus_one);
+        let e = g.add(x, nan);
+        assert!(g.has_nonfinite_constant(e));
+        assert!(!g.has_nonfinite_constant(x));
     }
 
     #[test]

@@ -9,6 +9,12 @@
 //! - `simplify.rs`: the simplifying constructors (`add`, `mul`, …) and their rewrite rules;
 //! - `diff.rs`: memoised differentiation; `subs.rs`: substitution; `eval.rs`: evaluation;
 //! - `schedule.rs`: topological order and use counts for code generation.
+//!
+//! Node ids are a topological order (operands are always created first), which every
+//! pass uses to work bottom-up without recursion. Free symbols and the non-smooth /
+//! non-finite flags of each node are computed once, when it is interned, so
+//! `depends_on`, `free_symbols`, `nonsmooth_calls` and `has_nonfinite_constant` never
+//! walk the graph.
 #![allow(
     dead_code,
     unused_imports,

@@ -16,13 +16,17 @@
 //! - commutative operands (`Add`, `Mul`, `Min`, `Max`) are put in a canonical order
 //!   (constant first, then by id), so `a + b` and `b + a` are one node.
 //!
-//! Not done, on purpose: `sqrt(x^2) = x` and `sqrt(x)^2 = x` (wrong for `x < 0`), `x / x = 1`.
+//! Not done, on purpose: `sqrt(x^2) = x` and `sqrt(x)^2 = x` (wrong for `x < 0`), `x / x = 1`
+//! (wrong for `x = 0`). Not done for now: flattening sums and products into a canonical
+//! n-ary form, so like terms are collected only when they meet in one `add`
+//! (`(a + b) + a` stays as it is).
 //!
 //! IEEE caveats: the rewrites are identities of real arithmetic on finite values.
 //! `0 * x = 0` and `x - x = 0` differ from IEEE when `x` is infinite or NaN, `0 / x = 0`
 //! when `x = 0`, and `x^a x^b = x^(a+b)` when `x = 0` and `a + b = 0`; `x + 0 = x` may
-//! flip the sign of a zero result. Reassociating constants and collecting like terms
-//! change rounding, by a few ulps of the operands' magnitude.
+//! flip the sign of a zero result. Reassociating constants, collecting like terms and
+//! powers, and `powf(x, n) = powi(x, n)` change rounding (by a few ulps of the operands'
+//! magnitude), and `(x^a)^b = x^(a b)` can avoid or cause an intermediate overflow.
 
 use super::eval::apply;
 use super::expr::{Const, Expr, Func, Graph, Node};
