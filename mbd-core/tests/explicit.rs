@@ -95,6 +95,19 @@ fn dopri5_global_error_is_proportional_to_tolerance() {
 // ---------------------------------------------------------------------------------------
 // Controller fidelity: Hairer's dopri5.f on the Arenstorf orbit
 
+/// Initial y2' and period of the Arenstorf orbit, as published (Hairer–Nørsett–Wanner I,
+/// Sect. II.0, eq. (0.2)); y(0) = (0.994, 0, 0, y2'(0)).
+#[allow(
+    clippy::excessive_precision,
+    reason = "the published digits, rounded by the compiler"
+)]
+const ARENSTORF_V0: f64 = -2.00158510637908252240537862224;
+#[allow(
+    clippy::excessive_precision,
+    reason = "the published digits, rounded by the compiler"
+)]
+const ARENSTORF_PERIOD: f64 = 17.0652165601579625588917206249;
+
 /// The restricted three-body problem (Hairer–Nørsett–Wanner I, Sect. II.0, eq. (0.1)),
 /// y = (y1, y2, y1', y2'), mu = 0.012277471.
 fn arenstorf() -> Ode<impl Fn(f64, &Vector<4>) -> Vector<4>> {
@@ -126,8 +139,8 @@ fn dopri5_reproduces_hairers_arenstorf_run() {
         h0: Some(1e-4),
         ..Options::default()
     });
-    let y0 = Vector::<4>::new(0.994, 0.0, 0.0, -2.00158510637908252240537862224);
-    let period = 17.0652165601579625588917206249;
+    let y0 = Vector::<4>::new(0.994, 0.0, 0.0, ARENSTORF_V0);
+    let period = ARENSTORF_PERIOD;
     let sol = solver.solve(&arenstorf(), 0.0, y0, period, &[]).unwrap();
     let s = sol.stats;
     assert_eq!(
@@ -245,9 +258,9 @@ fn dopri5_pendulum_matches_the_elliptic_solution() {
 /// rounding of that sum), and `at(t_end)` is exactly the last accepted state.
 #[test]
 fn dopri5_segments_end_at_the_accepted_states() {
-    let y0 = Vector::<4>::new(0.994, 0.0, 0.0, -2.00158510637908252240537862224);
+    let y0 = Vector::<4>::new(0.994, 0.0, 0.0, ARENSTORF_V0);
     let sol = dopri5(1e-7, 1e-7)
-        .solve(&arenstorf(), 0.0, y0, 17.0652165601579625588917206249, &[])
+        .solve(&arenstorf(), 0.0, y0, ARENSTORF_PERIOD, &[])
         .unwrap();
     assert_eq!(sol.segments.len(), sol.t.len() - 1);
     for (i, seg) in sol.segments.iter().enumerate() {
