@@ -1,0 +1,41 @@
+//! The integration settings the cases share, in one place.
+
+use mbd::integrate::{Event, Integrator, Radau5, Solution};
+use mbd::{OdeSystem, Options, Vector};
+
+/// Tolerance of the reference runs: tight enough that the integration error is far below
+/// the 1e-6 relative the cases are judged at.
+pub const TOL: f64 = 1e-12;
+
+/// The method name reported for [`integrate`].
+pub const METHOD: &str = "Radau IIA 5, rtol = atol = 1e-12";
+
+/// Integrate `sys` from `(0, y0)` to `t1` with the cases' reference settings.
+pub fn integrate<'e, S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    y0: Vector<D>,
+    t1: f64,
+    events: &[Event<'e, D>],
+) -> mbd::Result<Solution<D>> {
+    let opts = Options {
+        rtol: TOL,
+        atol: TOL,
+        ..Options::default()
+    };
+    Radau5::new(opts).solve(sys, 0.0, y0, t1, events)
+}
+
+/// Sample a solution's dense output at `n + 1` equally spaced times, mapped by `f`.
+pub fn sample<const D: usize>(
+    sol: &Solution<D>,
+    n: usize,
+    f: impl Fn(f64, &Vector<D>) -> (f64, f64),
+) -> Vec<(f64, f64)> {
+    let (t0, (t1, _)) = (sol.t[0], sol.last());
+    (0..=n)
+        .filter_map(|i| {
+            let t = t0 + (t1 - t0) * i as f64 / n as f64;
+            sol.at(t).map(|y| f(t, &y))
+        })
+        .collect()
+}

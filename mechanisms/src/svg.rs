@@ -1,0 +1,140 @@
+//! A minimal SVG line plot: one curve, labelled axes with ticks, an optional marked point.
+//! Enough for the report's per-case plots without a plotting dependency.
+
+use std::fmt::Write;
+
+const W: f64 = 640.0;
+const H: f64 = 400.0;
+const PAD_L: f64 = 70.0;
+const PAD_R: f64 = 20.0;
+const PAD_T: f64 = 30.0;
+const PAD_B: f64 = 50.0;
+
+/// `points` as an SVG document, with `mark` drawn as a red dot and its coordinates.
+pub fn line_plot(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    points: &[(f64, f64)],
+    mark: Option<(f64, f64)>,
+) -> String {
+    let finite: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect();
+    let all = finite.iter().chain(mark.iter());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in all {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if x0 > x1 {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if x1 - x0 < 1e-300 {
+        x1 = x0 + 1.0;
+    }
+    if y1 - y0 < 1e-12 * y0.abs().max(1e-300) {
+        y0 -= 0.5 * y0.abs().max(1.0);
+        y1 += 0.5 * y1.abs().max(1.0);
+    }
+    let sx = |x: f64| PAD_L + (x - x0) / (x1 - x0) * (W - PAD_L - PAD_R);
+    let sy = |y: f64| H - PAD_B - (y - y0) / (y1 - y0) * (H - PAD_T - PAD_B);
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">"#
+    );
+    let _ = write!(s, r#"<rect width="{W}" height="{H}" fill="white"/>"#);
+    let _ = write!(
+        s,
+        r#"<text x="{}" y="18" text-anchor="middle" font-size="14">{}</text>"#,
+        W / 2.0,
+        esc(title)
+    );
+    let (bx, by) = (sx(x0), sy(y0));
+    let _ = write!(
+        s,
+        r#"<polyline fill="none" stroke="black" points="{bx},{} {bx},{by} {},{by}"/>"#,
+        sy(y1),
+        sx(x1)
+    );
+    for i in 0..=5 {
+        let (xv, yv) = (
+            x0 + (x1 - x0) * i as f64 / 5.0,
+            y0 + (y1 - y0) * i as f64 / 5.0,
+        );
+        let _ = write!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+            sx(xv),
+            by + 18.0,
+            tick(xv)
+        );
+        let _ = write!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#,
+            bx - 6.0,
+            sy(yv) + 4.0,
+            tick(yv)
+        );
+    }
+    let _ = write!(
+        s,
+        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
+        W / 2.0,
+        H - 10.0,
+        esc(x_label)
+    );
+    let _ = write!(
+        s,
+        r#"<text x="16" y="{}" text-anchor="middle" transform="rotate(-90 16 {})">{}</text>"#,
+        H / 2.0,
+        H / 2.0,
+        esc(y_label)
+    );
+    let path: Vec<String> = finite
+        .iter()
+        .map(|&(x, y)| format!("{:.2},{:.2}", sx(x), sy(y)))
+        .collect();
+    let _ = write!(
+        s,
+        r#"<polyline fill="none" stroke="steelblue" stroke-width="1.5" points="{}"/>"#,
+        path.join(" ")
+    );
+    if let Some((x, y)) = mark {
+        let _ = write!(
+            s,
+            r#"<circle cx="{:.2}" cy="{:.2}" r="4" fill="crimson"/>"#,
+            sx(x),
+            sy(y)
+        );
+        let _ = write!(
+            s,
+            r#"<text x="{:.2}" y="{:.2}" fill="crimson">({}, {})</text>"#,
+            sx(x) + 6.0,
+            sy(y) - 6.0,
+            tick(x),
+            tick(y)
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+fn tick(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
