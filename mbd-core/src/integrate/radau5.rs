@@ -283,6 +283,13 @@ fn mix<const D: usize>(m: &[[f64; 3]; 3], v: &[Vector<D>; 3]) -> [Vector<D>; 3] 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ErrorScale {
     StartAndEnd,
+    #[cfg_attr(
+        not(test),
+        expect(
+            dead_code,
+            reason = "only the count-for-count test against radau5.f uses it"
+        )
+    )]
     Start,
 }
 
