@@ -1,0 +1,12 @@
+//! Compile-time model checking: every mistake in `tests/ui/**` must be rejected by
+//! `#[derive(Mechanism)]` with a clear message pointing at the wrong tokens (the expected
+//! compiler output is pinned in the `.stderr` next to each case), and every model in
+//! `tests/ui-pass/` must compile.
+
+#[rustversion::attr(not(stable(1.95)), ignore = "stderr is pinned to rustc 1.95")]
+#[test]
+fn ui() {
+    let t = trybuild::TestCases::new();
+    t.compile_fail("tests/ui/**/*.rs");
+    t.pass("tests/ui-pass/*.rs");
+}

@@ -1,0 +1,14 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(theta)]
+#[particle(bob, mass = m, at = [l * sin(theta), -l * cos(theta)])]
+#[output(speed = norm(velocity(bobb)))]
+pub struct Pendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+fn main() {}
