@@ -706,8 +706,8 @@ mod tests {
     }
 
     /// Controller fidelity, count for count, against Hairer's radau5.f run by the driver
-    /// `dr1_radau5.f` (log `fortran_radau5_van_der_pol.txt` of the russell crate):
-    /// `y(0) = (2, −0.6)` on [0, 2], rtol = atol = 1e-4, `h0 = 1e-6`, analytic Jacobian.
+    /// `examples/radau5_vdp.f` of cpmech/hwode (log `fortran_radau5_van_der_pol.txt` of the
+    /// russell crate): `y(0) = (2, −0.6)` on [0, 2], rtol = atol = 1e-4, `h0 = 1e-6`, analytic Jacobian.
     /// radau5.f reports 280 steps, 242 accepted, 162 Jacobians, 252 factorisations,
     /// NFCN = 2247 and `y(2) = (1.706163410178079, −0.8927971289301175)`. With radau5.f's
     /// error scale `atol + rtol |y0|` every count must match exactly; the end state agrees
