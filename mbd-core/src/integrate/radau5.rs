@@ -707,12 +707,12 @@ mod tests {
 
     /// Controller fidelity, count for count, against Hairer's radau5.f run by the driver
     /// `examples/radau5_vdp.f` of cpmech/hwode (log `fortran_radau5_van_der_pol.txt` of the
-    /// russell crate): `y(0) = (2, −0.6)` on [0, 2], rtol = atol = 1e-4, `h0 = 1e-6`, analytic Jacobian.
-    /// radau5.f reports 280 steps, 242 accepted, 162 Jacobians, 252 factorisations,
-    /// NFCN = 2247 and `y(2) = (1.706163410178079, −0.8927971289301175)`. With radau5.f's
-    /// error scale `atol + rtol |y0|` every count must match exactly; the end state agrees
-    /// to rounding amplified through 242 steps (measured 6e-8 relative, asked 1e-6; both
-    /// codes are 1e-5 away from the true solution at this tolerance).
+    /// russell crate): `y(0) = (2, −0.6)` on [0, 2], rtol = atol = 1e-4, `h0 = 1e-6`,
+    /// analytic Jacobian. radau5.f reports 280 steps, 242 accepted, 162 Jacobians, 252
+    /// factorisations, NFCN = 2247 and `y(2) = (1.706163410178079, −0.8927971289301175)`.
+    /// With radau5.f's error scale `atol + rtol |y0|` every count must match exactly; the
+    /// end state agrees to rounding amplified through 242 steps (measured 6e-8 relative,
+    /// asked 1e-6; both codes are some 1e-6 to 1e-5 from the true solution at this tolerance).
     #[test]
     fn reproduces_radau5_f_step_for_step() {
         let opts = Options {
