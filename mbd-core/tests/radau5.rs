@@ -201,11 +201,11 @@ fn van_der_pol_with_a_finite_difference_jacobian() {
 /// of cpmech/hwode) on this problem from `y(0) = (2, −0.6)`, rtol = atol = 1e-4,
 /// `h0 = 1e-6`, analytic Jacobian, takes 280 steps (242 accepted), 162 Jacobians, 252
 /// factorisations and 2247 f-calls, ending at `y(2) = (1.706163410178079,
-/// −0.8927971289301175)` (run log `fortran_radau5_van_der_pol.txt` of the russell crate). With radau5.f's scale `atol + rtol |y0|` in the error norm this
-/// implementation reproduces those five counts exactly (unit test
-/// `reproduces_radau5_f_step_for_step` in `radau5.rs`); the shared norm scales with
-/// `max(|y0|, |y1|)`, which moves a few steps (measured 282, 238, 161, 255, 2270): counts
-/// within 3 %.
+/// −0.8927971289301175)` (run log `fortran_radau5_van_der_pol.txt` of the russell crate).
+/// With radau5.f's scale `atol + rtol |y0|` in the error norm this implementation
+/// reproduces those five counts exactly (unit test `reproduces_radau5_f_step_for_step` in
+/// `radau5.rs`); the shared norm scales with `max(|y0|, |y1|)`, which moves a few steps
+/// (measured 282, 238, 161, 255, 2270): counts within 3 %.
 #[test]
 fn van_der_pol_counts_follow_radau5_f() {
     let opts = Options {
