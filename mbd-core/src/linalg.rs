@@ -29,7 +29,8 @@ impl<T: ComplexField<RealField = f64> + Copy, const N: usize> Lu<T, N> {
                         (k, -1.0),
                         |best, cur| if cur.1 > best.1 { cur } else { best },
                     );
-            if !(pivot > scale * f64::EPSILON * N as f64) || !pivot.is_finite() {
+            // Written so that a NaN pivot also counts as singular.
+            if pivot.is_nan() || pivot <= scale * f64::EPSILON * N as f64 || !pivot.is_finite() {
                 return None;
             }
             if p != k {

@@ -268,10 +268,10 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         let key = id.to_string();
         if key == "t" {
             errors.at(id.span(), "`t` is time and cannot be redefined");
-        } else if names.contains_key(&key) {
-            errors.at(id.span(), format!("duplicate name `{key}`"));
+        } else if let std::collections::hash_map::Entry::Vacant(slot) = names.entry(key.clone()) {
+            slot.insert(b);
         } else {
-            names.insert(key, b);
+            errors.at(id.span(), format!("duplicate name `{key}`"));
         }
     };
 
@@ -778,9 +778,11 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             f_full[j] = g.sub(f_full[j], d);
         }
     }
-    for j in 0..nz {
-        for k in 0..j {
-            m_full[j][k] = m_full[k][j];
+    // Symmetric: fill the lower triangle from the upper one.
+    for j in 1..nz {
+        let (upper, lower) = m_full.split_at_mut(j);
+        for (k, row) in upper.iter().enumerate() {
+            lower[0][k] = row[j];
         }
     }
     let half = g_half(&mut g);

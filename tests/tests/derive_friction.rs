@@ -40,9 +40,11 @@ fn block_stops_where_constant_deceleration_says() {
     let normal = b.outputs(0.0, &y0).unwrap().normal;
     assert_relative_eq!(normal, 50.0 * 9.81 * b.slope.cos(), max_relative = 1e-14);
     let events = b.events();
-    let mut opts = Options::default();
-    opts.rtol = 1e-10;
-    opts.atol = 1e-10;
+    let opts = Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Options::default()
+    };
     let sol = Radau5::new(opts).solve(&b, 0.0, y0, 20.0, &events).unwrap();
     assert_eq!(sol.stopped_by, Some(0));
     let hit = &sol.events[0];
