@@ -1,9 +1,8 @@
 //! Numeric evaluation, with exactly the `f64` operations generated code performs, so that
 //! constant folding at compile time and evaluation at run time agree.
 
-use std::collections::HashMap;
-
 use super::expr::{Expr, Func, Graph, Node, Sym};
+use super::hash::FastMap;
 
 impl Func {
     /// `f(x)` by the `f64` method of the same name.
@@ -50,7 +49,7 @@ impl Graph {
     /// The value of `e` with each symbol `s` set to `env(s)`. Each shared node is
     /// evaluated once; no recursion, so deep expressions are fine.
     pub fn eval(&self, e: Expr, env: &dyn Fn(Sym) -> f64) -> f64 {
-        let mut values: HashMap<Expr, f64> = HashMap::new();
+        let mut values: FastMap<Expr, f64> = FastMap::default();
         for n in self.reachable([e], |_| true) {
             let node = self.node(n);
             let v = match node {

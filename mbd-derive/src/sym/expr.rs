@@ -5,7 +5,9 @@
 //! a child's id is always smaller than its parent's. `diff`, `substitute`, `eval` and
 //! `schedule` rely on this to work bottom-up without recursion.
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeSet, HashMap};
+
+use super::hash::{FastMap, FastSet};
 use std::fmt;
 
 /// A node of the expression DAG, an index into [`Graph`].
@@ -254,7 +256,7 @@ impl SymSets {
 #[derive(Default, Debug, Clone)]
 pub struct Graph {
     nodes: Vec<Node>,
-    interned: HashMap<Node, Expr>,
+    interned: FastMap<Node, Expr>,
     names: Vec<String>,
     symbols: HashMap<String, Sym>,
     symbol_exprs: Vec<Expr>,
@@ -262,7 +264,7 @@ pub struct Graph {
     /// Per node: the union of `Node::own_flags` over the node and everything below it.
     flags: Vec<u8>,
     /// `d e / d x` for every `(e, x)` differentiated so far.
-    pub(super) derivatives: HashMap<(Expr, Sym), Expr>,
+    pub(super) derivatives: FastMap<(Expr, Sym), Expr>,
 }
 
 impl Graph {
@@ -408,7 +410,7 @@ impl Graph {
         roots: impl IntoIterator<Item = Expr>,
         mut descend: impl FnMut(Expr) -> bool,
     ) -> Vec<Expr> {
-        let mut seen = HashSet::new();
+        let mut seen = FastSet::default();
         let mut stack: Vec<Expr> = roots.into_iter().filter(|&r| seen.insert(r)).collect();
         let mut out = Vec::new();
         while let Some(e) = stack.pop() {

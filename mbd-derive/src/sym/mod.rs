@@ -24,6 +24,7 @@
 mod diff;
 mod eval;
 mod expr;
+mod hash;
 mod schedule;
 mod simplify;
 mod subs;

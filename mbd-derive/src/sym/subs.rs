@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 
 use super::expr::{Expr, Graph, Node, Sym};
+use super::hash::FastMap;
 
 impl Graph {
     /// `e` with every symbol `s` in `map` replaced by `map[s]`, all at once (a symbol
@@ -24,7 +25,7 @@ impl Graph {
                 .filter(|&r| self.depends_on_any(r, &mask)),
             |c| self.depends_on_any(c, &mask),
         );
-        let mut image: HashMap<Expr, Expr> = HashMap::new();
+        let mut image: FastMap<Expr, Expr> = FastMap::default();
         for n in affected {
             let node = self.node(n);
             let rebuilt = match node {

@@ -629,3 +629,31 @@ fn chain_of_32_links_stays_polynomial() {
         );
     }
 }
+
+/// Every pass works bottom-up over ids instead of recursing, so expression depth is not
+/// limited by the stack (a 20 000-deep chain here; `display` is the one recursive pass).
+/// `e_k = sin(e_{k-1}) + x`: its x-derivative obeys `e'_k = cos(e_{k-1}) e'_{k-1} + 1`.
+#[test]
+fn very_deep_expressions_do_not_recurse() {
+    const DEPTH: usize = 20_000;
+    let mut g = Graph::new();
+    let x = g.symbol("x");
+    let (sx, y) = (g.as_sym(x).unwrap(), g.symbol("y"));
+    let mut e = x;
+    for _ in 0..DEPTH {
+        let s = g.call(Func::Sin, e);
+        e = g.add(s, x);
+    }
+    let d = g.diff(e, sx);
+    let x0 = 0.4f64;
+    let (mut v, mut dv) = (x0, 1.0f64);
+    for _ in 0..DEPTH {
+        dv = v.cos() * dv + 1.0;
+        v = v.sin() + x0;
+    }
+    // a contraction (|cos| < 0.8 at the fixed point near 1.4): rounding does not accumulate
+    assert!((g.eval(d, &|_| x0) - dv).abs() <= 1e-12 * dv.abs());
+    let swapped = g.substitute(e, &[(sx, y)].into());
+    assert!((g.eval(swapped, &|_| x0) - v).abs() <= 1e-12 * v.abs());
+    assert_eq!(super::schedule(&g, &[e]).len(), 2 * DEPTH);
+}
