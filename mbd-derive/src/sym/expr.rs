@@ -425,7 +425,8 @@ impl Graph {
         out
     }
 
-    /// A readable infix rendering of `e`, for messages and test failures.
+    /// A readable infix rendering of `e`, for messages and test failures. Recursive and
+    /// unshared (a DAG prints as its tree): meant for small expressions.
     pub fn display(&self, e: Expr) -> impl fmt::Display + '_ {
         Display { graph: self, e }
     }

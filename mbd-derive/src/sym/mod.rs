@@ -8,7 +8,8 @@
 //! - `expr.rs`: the arena, interning, symbols, free-symbol and non-smooth summaries;
 //! - `simplify.rs`: the simplifying constructors (`add`, `mul`, …) and their rewrite rules;
 //! - `diff.rs`: memoised differentiation; `subs.rs`: substitution; `eval.rs`: evaluation;
-//! - `schedule.rs`: topological order and use counts for code generation.
+//! - `schedule.rs`: topological order and use counts for code generation;
+//! - `hash.rs`: the fast hasher of the internal maps.
 //!
 //! Node ids are a topological order (operands are always created first), which every
 //! pass uses to work bottom-up without recursion. Free symbols and the non-smooth /
