@@ -467,6 +467,36 @@ proptest! {
         prop_assert_eq!(build(&mut g, &mirror(&t)), e);
     }
 
+    /// The schedule is closed under operands, ordered children-first, duplicate-free, and
+    /// the use counts add up to the operand slots of scheduled nodes that hold scheduled
+    /// nodes, plus the roots that are scheduled nodes.
+    #[test]
+    fn schedule_is_a_topological_order(t in raw(), u in raw()) {
+        let (mut g, e, _, _) = setup(&t);
+        let f = build(&mut g, &u);
+        let roots = [e, f, e];
+        let order = super::schedule(&g, &roots);
+        let pos: HashMap<Expr, usize> = order.iter().enumerate().map(|(i, &n)| (n, i)).collect();
+        prop_assert_eq!(pos.len(), order.len());
+        let mut slots = roots.iter().filter(|r| pos.contains_key(r)).count();
+        for (i, &n) in order.iter().enumerate() {
+            prop_assert!(!g.node(n).is_leaf());
+            for c in g.node(n).children() {
+                if !g.node(c).is_leaf() {
+                    prop_assert!(pos[&c] < i);
+                    slots += 1;
+                }
+            }
+        }
+        for r in roots {
+            prop_assert_eq!(pos.contains_key(&r), !g.node(r).is_leaf());
+        }
+        let counts = super::use_counts(&g, &roots);
+        prop_assert_eq!(counts.len(), order.len());
+        prop_assert_eq!(counts.values().sum::<usize>(), slots);
+        prop_assert!(counts.values().all(|&c| c >= 1));
+    }
+
     /// `free_symbols` lists exactly the symbols `depends_on` reports, and the derivative
     /// by an absent symbol is the zero node.
     #[test]
