@@ -8,6 +8,7 @@ use crate::model::Vector;
 ///
 /// (Hairer–Nørsett–Wanner I, Sect. II.4, eq. (4.11); `dopri5.f`, label 41). A step is
 /// accepted when `err <= 1`.
+#[inline]
 pub fn error_norm<const D: usize>(
     e: &Vector<D>,
     y0: &Vector<D>,
@@ -61,6 +62,7 @@ impl PiController {
 
     /// The next step after an accepted step of size `h` with error `err <= 1`; updates the
     /// memory. Never larger than `h` right after a rejection.
+    #[inline]
     pub fn accept(&mut self, h: f64, err: f64) -> f64 {
         let fac11 = err.powf(Self::ALPHA);
         let fac = (fac11 / self.err_old.powf(Self::BETA) / Self::SAFETY)
@@ -75,6 +77,7 @@ impl PiController {
     }
 
     /// The retry step after a rejected step of size `h` with error `err > 1`.
+    #[inline]
     pub fn reject(&mut self, h: f64, err: f64) -> f64 {
         self.rejected = true;
         h / (err.powf(Self::ALPHA) / Self::SAFETY).min(1.0 / Self::FAC_MIN)

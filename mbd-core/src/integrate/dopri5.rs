@@ -226,23 +226,25 @@ impl Integrator for Dopri5 {
                 }
             }
 
-            let seg = dense_segment(t, h, &y, &y1, &k);
             let mut y_acc = y1;
+            let mut f_acc = None;
             if opts.project {
                 sys.project(t_new, &mut y_acc)?;
                 if non_finite(&y_acc) {
                     return Err(Error::NonFinite { t: t_new });
                 }
                 if y_acc != y1 {
-                    k[6] = sys.rhs(t_new, &y_acc)?;
+                    let f = sys.rhs(t_new, &y_acc)?;
                     stats.n_rhs += 1;
-                    if non_finite(&k[6]) {
+                    if non_finite(&f) {
                         return Err(Error::NonFinite { t: t_new });
                     }
+                    f_acc = Some(f);
                 }
             }
-            k[0] = k[6];
-            let flow = rec.accept(seg, &y_acc);
+            // The segment interpolates the step as computed (before any projection).
+            let flow = rec.accept_with(t_new, &y_acc, || dense_segment(t, h, &y, &y1, &k));
+            k[0] = f_acc.unwrap_or(k[6]);
             (t, y) = (t_new, y_acc);
             if flow == Flow::Stop || last {
                 break;

@@ -96,8 +96,7 @@ impl Integrator for Rk4 {
             if non_finite(&f1) {
                 return Err(Error::NonFinite { t: t_new });
             }
-            let seg = Segment::hermite(t, h, &y, &k[0], &y1, &f1);
-            let flow = rec.accept(seg, &y1);
+            let flow = rec.accept_with(t_new, &y1, || Segment::hermite(t, h, &y, &k[0], &y1, &f1));
             (t, y, k[0]) = (t_new, y1, f1);
             if flow == super::Flow::Stop {
                 break;

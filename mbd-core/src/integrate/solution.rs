@@ -97,7 +97,29 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
     /// at `seg.t1()`. Returns [`Flow::Stop`] when a terminal event fired inside the step;
     /// the record then ends at that event (its segment truncated there).
     pub fn accept(&mut self, seg: Segment<D>, y1: &Vector<D>) -> Flow {
-        let t1 = seg.t1();
+        self.accept_with(seg.t1(), y1, || seg)
+    }
+
+    /// Whether [`Self::accept_with`] will build the step's segment: it is kept
+    /// (`Options::dense`) or needed to locate events.
+    pub fn needs_segment(&self) -> bool {
+        self.dense || !self.events.is_empty()
+    }
+
+    /// [`Self::accept`] for a step ending at `(t1, y1)` whose segment is built only when
+    /// [`Self::needs_segment`]: a run without dense output and events pays nothing for it.
+    pub fn accept_with(
+        &mut self,
+        t1: f64,
+        y1: &Vector<D>,
+        segment: impl FnOnce() -> Segment<D>,
+    ) -> Flow {
+        if !self.needs_segment() {
+            self.sol.t.push(t1);
+            self.sol.y.push(*y1);
+            return Flow::Continue;
+        }
+        let seg = segment();
         let mut crossings: Vec<(f64, usize)> = Vec::new();
         for (i, ev) in self.events.iter().enumerate() {
             let g1 = (ev.g)(t1, y1);
@@ -142,6 +164,7 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         }
     }
 
+    #[inline]
     fn push_step(&mut self, seg: Segment<D>, t1: f64, y1: Vector<D>) {
         self.sol.t.push(t1);
         self.sol.y.push(y1);
