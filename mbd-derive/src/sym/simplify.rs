@@ -11,7 +11,8 @@
 //!   `(c1 + x) + y = c1 + (x + y)`, and the same for products, so `c1 (c2 x) = (c1 c2) x`;
 //! - signs move outwards: `(-a) b = -(a b)`, `-(c x) = (-c) x`, `(-a)/b = -(a/b)`,
 //!   `(-x)^n = ±x^n`, `|-x| = |x|`;
-//! - `x / c = (1/c) x` only when `c` is a power of two (then `1/c` is exact);
+//! - `x / c = (1/c) x` only when `c` is a power of two (then `1/c` is exact), and
+//!   `(c x) / y = c (x / y)`;
 //! - `powf(x, n)` with an integer constant `n` becomes `powi(x, n)`;
 //! - commutative operands (`Add`, `Mul`, `Min`, `Max`) are put in a canonical order
 //!   (constant first, then by id), so `a + b` and `b + a` are one node.
