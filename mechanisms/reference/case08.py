@@ -6,7 +6,7 @@ value: sqrt(2 g 4.5) = 9.395 needs 9.807). Only m/k = 5e-5 s^2 is pinned by the 
 delta = 54.24 mm; 1.2 kg and 24 kN/m are the textbook's data.
 Closed form: v_B = sqrt(2 g h_A), delta = sqrt(2 m g (h_A - h_F) / k).
 Independent check: a concrete smooth guide y(x) = 1.5 + (3 + p x) exp(-x^2) with
-y(0) = 4.5 and minimum exactly 0 at x_B (p, x_B below), level (to 1e-27) beyond x = 8,
+y(0) = 4.5 and minimum exactly 0 at x_B (p, x_B below), level (|f - 1.5| < 1e-26) beyond x = 8,
 where a one-sided spring (bumper) engages at x_s = 8 m. Lagrangian in q = x:
   m (1 + y'^2) x'' + m y' y'' x'^2 + m g y' + k max(0, x - x_s) = 0.
 Events: v_B = speed at y'(x) = 0 (B), delta = x - x_s at x' = 0 (falling)."""
