@@ -6,7 +6,7 @@
 //! the minimum-norm Gauss–Newton step, so the result is the assembled configuration
 //! closest (to first order) to the one given.
 
-use super::{NewtonOptions, max_norm, min_norm_solve};
+use super::{NewtonOptions, max_norm, min_norm_solve, negligible};
 use crate::error::{Error, Result};
 use crate::model::{Constrained, Vector};
 
@@ -14,9 +14,11 @@ use crate::model::{Constrained, Vector};
 /// and keeping `q_i = q0_i` where `held[i]`.
 ///
 /// Newton / Gauss–Newton: `dq_F = -J_F^+ Phi` with `J_F` the columns of `Phi_q` of the free
-/// coordinates and `J_F^+` its minimum-norm right inverse. Converged when
-/// `max |Phi_i| <= tol (1 + max |q_i|)`; the Jacobian must then have full row rank, or
-/// the configuration is a toggle (dead-centre) position or the constraints are redundant.
+/// coordinates and `J_F^+` its minimum-norm right inverse. Converged by the rule of
+/// [`NewtonOptions::tol`]; the step already computed at the converged point is applied too
+/// (with quadratic convergence it polishes `q` to rounding). The Jacobian must then have
+/// full row rank, or the configuration is a toggle (dead-centre) position or the
+/// constraints are redundant.
 ///
 /// Errors: [`Error::AssemblyFailed`] (with the residual) when the iterations run out or a
 /// Newton step cannot be taken because `J_F` lost rank far from a solution (a loop that
@@ -41,9 +43,10 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
         }
         let residual = max_norm(&phi);
         let step = min_norm_solve(&sys.phi_q(t, &q), &free, &(-phi));
-        if residual <= opts.tol * (1.0 + max_norm(&q)) {
+        let converged = residual <= opts.tol || step.as_ref().is_some_and(|dq| negligible(dq, &q));
+        if converged {
             return step
-                .map(|_| q)
+                .map(|dq| q + dq)
                 .ok_or(Error::SingularConstraintJacobian { t });
         }
         match step {

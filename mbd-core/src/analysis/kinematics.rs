@@ -32,7 +32,12 @@ pub fn kinematics<S: Constrained<N, M>, const N: usize, const M: usize>(
     q_guess: &Vector<N>,
     opts: &NewtonOptions,
 ) -> Result<KinematicState<N>> {
-    const { assert!(N == M, "kinematic analysis needs as many constraints as coordinates") };
+    const {
+        assert!(
+            N == M,
+            "kinematic analysis needs as many constraints as coordinates"
+        )
+    };
     let q = assemble(sys, t, q_guess, &[false; N], opts)?;
     let all = [true; N];
     let jac = sys.phi_q(t, &q);

@@ -24,10 +24,11 @@ use crate::model::{Matrix, Vector};
 /// Stopping rule of the Newton iterations of the analyses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
-    /// Assembly, kinematics and projection converge when `max |Phi_i| <= tol (1 + max |q_i|)`,
-    /// statics when every component of the Newton step is `|dz_i| <= tol (1 + |z_i|)`.
-    /// Scaling by the size of the coordinates lets a model in millimetres converge as well
-    /// as one in metres.
+    /// Assembly, kinematics and projection converge when `max |Phi_i| <= tol` (in the
+    /// model's units), or when the Newton update has shrunk to rounding,
+    /// `|dq_i| <= 8 eps max(1, |q_i|)`, for a model so large that rounding keeps `Phi` above
+    /// `tol`. Statics converges when every component of the Newton step is
+    /// `|dz_i| <= tol (1 + |z_i|)`.
     pub tol: f64,
     /// Iterations allowed before [`Error::AssemblyFailed`](crate::Error::AssemblyFailed).
     pub max_iterations: usize,
@@ -102,7 +103,7 @@ pub(crate) fn min_norm_solve<const N: usize, const M: usize>(
             }
         }
         let norm = q.column(k).norm();
-        if !(norm > RANK_TOL * scale) {
+        if norm.is_nan() || norm <= RANK_TOL * scale {
             return None;
         }
         r[(k, k)] = norm;
@@ -116,6 +117,13 @@ pub(crate) fn min_norm_solve<const N: usize, const M: usize>(
     }
     let x = q * z;
     x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// Whether the update `dq` of `q` is at the level of rounding: `|dq_i| <= 8 eps max(1, |q_i|)`.
+pub(crate) fn negligible<const N: usize>(dq: &Vector<N>, q: &Vector<N>) -> bool {
+    dq.iter()
+        .zip(q.iter())
+        .all(|(d, v)| d.abs() <= 8.0 * f64::EPSILON * v.abs().max(1.0))
 }
 
 /// `max_i |v_i|`.

@@ -9,7 +9,7 @@
 //! Position: `q <- q - M^-1 Phi_q^T (Phi_q M^-1 Phi_q^T)^-1 Phi`, iterated (Gauss–Newton);
 //! velocity: `qd <- qd - M^-1 Phi_q^T (Phi_q M^-1 Phi_q^T)^-1 (Phi_q qd + Phi_t)`.
 
-use super::{NewtonOptions, max_norm};
+use super::{NewtonOptions, max_norm, negligible};
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Constrained, Matrix, Vector};
@@ -55,7 +55,7 @@ fn metric_correction<S: Constrained<N, M>, const N: usize, const M: usize>(
 }
 
 /// Project `q` onto `Phi(q, t) = 0` in the mass-matrix metric, iterating the Gauss–Newton
-/// step until `max |Phi_i| <= tol (1 + max |q_i|)`.
+/// step until `max |Phi_i| <= tol` or the step is at rounding level ([`NewtonOptions::tol`]).
 ///
 /// Errors: [`Error::AssemblyFailed`] when the iterations run out,
 /// [`Error::SingularConstraintJacobian`] when `Phi_q` lost rank,
@@ -74,7 +74,7 @@ pub fn project_positions<S: Constrained<N, M>, const N: usize, const M: usize>(
         if !residual.is_finite() {
             return Err(Error::NonFinite { t });
         }
-        if residual <= opts.tol * (1.0 + max_norm(q)) {
+        if residual <= opts.tol {
             return Ok(());
         }
         if iterations == opts.max_iterations {
@@ -84,7 +84,11 @@ pub fn project_positions<S: Constrained<N, M>, const N: usize, const M: usize>(
                 residual,
             });
         }
-        *q += metric_correction(sys, t, q, &sys.phi_q(t, q), &phi)?;
+        let dq = metric_correction(sys, t, q, &sys.phi_q(t, q), &phi)?;
+        *q += dq;
+        if negligible(&dq, q) {
+            return Ok(());
+        }
         iterations += 1;
     }
 }
