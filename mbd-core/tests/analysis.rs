@@ -464,6 +464,10 @@ fn projected_index_one_four_bar_does_not_drift() {
         worst_p = worst_p.max(p);
         worst_v = worst_v.max(v);
     }
+    eprintln!(
+        "four-bar, DOPRI5 + projection: {} steps, drift {worst_p:.2e} (position), {worst_v:.2e} (velocity)",
+        sol.t.len() - 1
+    );
     assert!(
         worst_p < 1e-10 && worst_v < 1e-10,
         "drift {worst_p:e}, {worst_v:e}"
@@ -478,5 +482,7 @@ fn projected_index_one_four_bar_does_not_drift() {
     let sol = loose.solve(&IndexOne(fb), 0.0, y0, 10.0, &[]).unwrap();
     let (_, y) = sol.last();
     let q = y.fixed_rows::<3>(0).into_owned();
-    assert!(constraint_drift(&fb, 10.0, &q, &Vector::<3>::zeros()).0 > 1e-9);
+    let free_drift = constraint_drift(&fb, 10.0, &q, &Vector::<3>::zeros()).0;
+    eprintln!("four-bar, DOPRI5 without projection: position drift {free_drift:.2e} at t = 10");
+    assert!(free_drift > 1e-9);
 }

@@ -236,7 +236,7 @@ impl GeneralizedAlpha {
                 if lu.is_none() || iteration == 4 {
                     let jac = forward_difference(|z| Ok(r(z)), &z)
                         .map_err(|_| Error::NonFinite { t: t_next })?;
-                    stats.n_rhs += K;
+                    stats.n_rhs += K + 1;
                     stats.n_jac += 1;
                     stats.n_lu += 1;
                     lu = Some(Lu::factor(jac).ok_or(failed.clone())?);
