@@ -559,3 +559,38 @@ fn empty_interval_returns_the_initial_point() {
         .unwrap();
     assert_eq!(sol.last(), (3.0, &y0));
 }
+
+/// RK4 shortens only its last step to land on t1: h = 0.3 on [0, 1] takes steps ending at
+/// 0.3, 0.6, 0.9 and 1.0; the error stays at the O(h^4) level of the full steps.
+#[test]
+fn rk4_last_step_lands_on_t1() {
+    let sol = Rk4::new(0.3)
+        .solve(&oscillator(), 0.0, Vector::<2>::new(1.0, 0.0), 1.0, &[])
+        .unwrap();
+    assert_eq!(sol.t.len(), 5);
+    for (t, want) in sol.t.iter().zip([0.0, 0.3, 0.6, 0.9, 1.0]) {
+        assert!((t - want).abs() < 1e-15);
+    }
+    assert_eq!(sol.last().0, 1.0);
+    // Local error of RK4 per step is about h^5/120 for this problem; 4 steps.
+    assert!((sol.last().1 - oscillator_exact(1.0)).amax() < 4.0 * 0.3f64.powi(5) / 120.0);
+}
+
+/// `h_max` caps every DOPRI5 step, and the run still ends exactly at t1.
+#[test]
+fn dopri5_respects_h_max() {
+    let solver = Dopri5::new(Options {
+        h_max: Some(0.05),
+        ..Options::default()
+    });
+    let sol = solver
+        .solve(&oscillator(), 0.0, Vector::<2>::new(1.0, 0.0), 3.0, &[])
+        .unwrap();
+    assert!(
+        sol.t
+            .windows(2)
+            .all(|w| w[1] - w[0] <= 0.05 * (1.0 + 1e-12))
+    );
+    assert!(sol.stats.n_accepted >= 60);
+    assert_eq!(sol.last().0, 3.0);
+}
