@@ -201,12 +201,14 @@ fn slider_crank_kinematics_match_the_closed_form() {
     let guess = Vector::<3>::new(TH0, 0.0, sc.r + sc.l);
     let states = kinematic_sweep(&sc, &times, &guess, &opts()).unwrap();
     let scale = sc.r + sc.l;
+    let mut worst = [0.0f64; 3];
     for s in &states {
         let truth = slider_crank_truth(sc.r, sc.l, TH0 + W * s.t, W);
         let got_x = [s.q[2], s.qd[2], s.qdd[2]];
         let got_ph = [s.q[1], s.qd[1], s.qdd[1]];
         for k in 0..3 {
             let tol = 1e-12 * scale * W.powi(k as i32);
+            worst[k] = worst[k].max((got_x[k] - truth.x[k]).abs() / (tol / 1e-12));
             assert!(
                 (got_x[k] - truth.x[k]).abs() < tol,
                 "t = {}: x^({k}) {} vs {}",
@@ -223,6 +225,10 @@ fn slider_crank_kinematics_match_the_closed_form() {
         assert!((s.q[0] - (TH0 + W * s.t)).abs() < 1e-12 * scale);
         assert!((s.qd[0] - W).abs() < 1e-12 * scale * W);
     }
+    eprintln!(
+        "slider-crank kinematics: worst piston error / scale (x, xd, xdd) = {:.2e} {:.2e} {:.2e}",
+        worst[0], worst[1], worst[2]
+    );
 }
 
 /// Driven by the piston, the slider-crank locks at top dead centre `x = r + l`
@@ -303,6 +309,7 @@ fn slider_crank_driving_torque_balances_the_energy_rate() {
     let times: Vec<f64> = (0..=40).map(|i| 0.1 * i as f64).collect();
     let guess = Vector::<3>::new(TH0, 0.0, sc.r + sc.l);
     let (r, l, g) = (sc.r, sc.l, sc.grav);
+    let mut worst = 0.0f64;
     for s in kinematic_sweep(&sc, &times, &guess, &opts()).unwrap() {
         let tau = -inverse_dynamics(&sc, s.t, &s.q, &s.qd).unwrap().lambda[2];
         let th = TH0 + W * s.t;
@@ -319,6 +326,7 @@ fn slider_crank_driving_torque_balances_the_energy_rate() {
         ];
         let power: f64 = terms.iter().sum();
         let scale = terms.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        worst = worst.max((tau * W - power).abs() / scale);
         assert!(
             (tau * W - power).abs() < 1e-11 * scale,
             "t = {}: tau w = {} vs dE/dt = {power}",
@@ -326,6 +334,7 @@ fn slider_crank_driving_torque_balances_the_energy_rate() {
             tau * W
         );
     }
+    eprintln!("slider-crank driving torque: worst |tau w - dE/dt| / max term = {worst:.2e}");
 }
 
 // ---------------------------------------------------------------------------------------
