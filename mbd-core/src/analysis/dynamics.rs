@@ -26,7 +26,7 @@ pub struct Reactions<const N: usize, const M: usize> {
 /// `qdd`, `lambda` and `-Phi_q^T lambda` at `(t, q, qd)`, from
 /// `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` (the model's
 /// [`Constrained::acceleration_and_multipliers`]). For a zero-DOF driven mechanism at a
-/// state from [`kinematics`](super::kinematics) this is the classic inverse-dynamics
+/// state from [`kinematics`](super::kinematics::kinematics) this is the classic inverse-dynamics
 /// problem: the multipliers of the drivers are minus the driving efforts.
 pub fn inverse_dynamics<S: Constrained<N, M>, const N: usize, const M: usize>(
     sys: &S,
