@@ -76,7 +76,14 @@ fn a_four_bar_that_cannot_close_fails_to_assemble() {
     let gap = (fb.ground - fb.r1 * th1.cos()).hypot(fb.r1 * th1.sin()) - fb.r2 - fb.r3;
     let guess = Vector::<3>::new(th1, 0.2, 2.0);
     match assemble(&fb, 0.0, &guess, &[true, false, false], &opts()) {
-        Err(Error::AssemblyFailed { residual, .. }) => {
+        Err(Error::AssemblyFailed {
+            residual,
+            iterations,
+            ..
+        }) => {
+            eprintln!(
+                "cannot close: residual {residual:.3e} after {iterations} iterations, gap {gap:.3e}"
+            );
             assert!(residual.is_finite() && residual >= gap / 2f64.sqrt() * (1.0 - 1e-12));
         }
         other => panic!("expected AssemblyFailed, got {other:?}"),

@@ -14,7 +14,8 @@ use crate::model::{Constrained, Vector};
 /// and keeping `q_i = q0_i` where `held[i]`.
 ///
 /// Newton / Gauss–Newton: `dq_F = -J_F^+ Phi` with `J_F` the columns of `Phi_q` of the free
-/// coordinates and `J_F^+` its minimum-norm right inverse. Converged by the rule of
+/// coordinates and `J_F^+` its minimum-norm right inverse, shortened by backtracking while
+/// that reduces `|Phi|` (see `damped`). Converged by the rule of
 /// [`NewtonOptions::tol`]; the step already computed at the converged point is applied too
 /// (with quadratic convergence it polishes `q` to rounding). The Jacobian must then have
 /// full row rank, or the configuration is a toggle (dead-centre) position or the
@@ -50,7 +51,7 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
                 .ok_or(Error::SingularConstraintJacobian { t });
         }
         match step {
-            Some(dq) if iterations < opts.max_iterations => q += dq,
+            Some(dq) if iterations < opts.max_iterations => q = damped(sys, t, &q, &dq, &phi),
             _ => {
                 return Err(Error::AssemblyFailed {
                     t,
@@ -61,6 +62,31 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
         }
         iterations += 1;
     }
+}
+
+/// `q + alpha dq` for the first `alpha` in `1, 1/2, ..., 1/64` that reduces `|Phi|_2`
+/// (Armijo backtracking, Dennis & Schnabel, *Numerical Methods for Unconstrained
+/// Optimization*, 1983, Sect. 6.3): the Gauss–Newton direction is a descent direction of
+/// `|Phi|^2` while `J_F` has full rank, so far from a solution this keeps Newton from
+/// jumping to another assembly branch. When no fraction helps (at a local minimum of
+/// `|Phi|`, or at the level of rounding), the full step is taken.
+fn damped<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    dq: &Vector<N>,
+    phi: &Vector<M>,
+) -> Vector<N> {
+    let norm0 = phi.norm();
+    let mut alpha = 1.0;
+    while alpha >= 1.0 / 64.0 {
+        let trial = q + dq * alpha;
+        if sys.phi(t, &trial).norm() <= (1.0 - 1e-4 * alpha) * norm0 {
+            return trial;
+        }
+        alpha *= 0.5;
+    }
+    q + dq
 }
 
 /// Velocities consistent with the constraints, `Phi_q qd + Phi_t = 0`, keeping
