@@ -10,15 +10,45 @@ pub mod svg;
 pub mod validation;
 
 pub mod case01_vertical_throw;
+pub mod case16_two_input_linkage;
+pub mod case20_pendulum_bearing;
+pub mod case23_block_reversing_torque;
+pub mod case30_damped_vibration;
 
 use validation::Case;
 
 /// Every case, in the manual's order.
 pub fn cases() -> Vec<Case> {
-    vec![Case {
-        id: "01",
-        title: "Vertical throw: height, time and speed at B",
-        generated: &[case01_vertical_throw::VerticalThrow::GENERATED],
-        run: case01_vertical_throw::run,
-    }]
+    vec![
+        Case {
+            id: "01",
+            title: "Vertical throw: height, time and speed at B",
+            generated: &[case01_vertical_throw::VerticalThrow::GENERATED],
+            run: case01_vertical_throw::run,
+        },
+        Case {
+            id: "16",
+            title: "Two-input linkage: angular velocity of BC",
+            generated: &[case16_two_input_linkage::TwoInputLinkage::GENERATED],
+            run: case16_two_input_linkage::run,
+        },
+        Case {
+            id: "20",
+            title: "Pendulum released from rest: bearing force at 60°",
+            generated: &[case20_pendulum_bearing::Pendulum::GENERATED],
+            run: case20_pendulum_bearing::run,
+        },
+        Case {
+            id: "23",
+            title: "Block turned 90° by a reversing torque: time taken",
+            generated: &[case23_block_reversing_torque::Block::GENERATED],
+            run: case23_block_reversing_torque::run,
+        },
+        Case {
+            id: "30",
+            title: "Free damped vibration: position after half a damped cycle",
+            generated: &[case30_damped_vibration::DampedBlock::GENERATED],
+            run: case30_damped_vibration::run,
+        },
+    ]
 }
