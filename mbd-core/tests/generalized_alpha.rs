@@ -86,7 +86,7 @@ fn oscillator_converges_with_order_two() {
 
 /// Index-3 constraint `x^2 + y^2 = l^2`: from `(l, 0)` with velocity `(0, l w)` the exact
 /// motion is `l (cos w t, sin w t)`. Error in `q` and `qd` at `t = 1` (both of order 2,
-/// Arnold & Brüls 2007, Theorem 2), same step sequence; the constraint holds to the Newton
+/// Arnold & Brüls 2007), same step sequence; the constraint holds to the Newton
 /// tolerance at every step.
 #[test]
 fn constrained_particle_converges_with_order_two() {

@@ -1,7 +1,7 @@
 //! Assembly: close the loops of a mechanism, `Phi(q, t) = 0`, moving only the coordinates
 //! that are not held, and make the velocities consistent, `Phi_q qd + Phi_t = 0`.
 //!
-//! Haug (1989), Sect. 3.5 (Newton–Raphson assembly) and Sect. 6.3 (consistent initial
+//! Haug (1989), ch. 3 (Newton–Raphson assembly) and ch. 6 (consistent initial
 //! conditions). When more coordinates are free than there are constraints, the update is
 //! the minimum-norm Gauss–Newton step, so the result is the assembled configuration
 //! closest (to first order) to the one given.
@@ -66,7 +66,7 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
 
 /// `q + alpha dq` for the first `alpha` in `1, 1/2, ..., 1/64` that reduces `|Phi|_2`
 /// (Armijo backtracking, Dennis & Schnabel, *Numerical Methods for Unconstrained
-/// Optimization*, 1983, Sect. 6.3): the Gauss–Newton direction is a descent direction of
+/// Optimization*, 1983, ch. 6): the Gauss–Newton direction is a descent direction of
 /// `|Phi|^2` while `J_F` has full rank, so far from a solution this keeps Newton from
 /// jumping to another assembly branch. When no fraction helps (at a local minimum of
 /// `|Phi|`, or at the level of rounding), the full step is taken.

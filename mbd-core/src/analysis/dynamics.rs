@@ -7,7 +7,7 @@
 //! is `-lambda_k`; for a joint relaxed by a coordinate `u` pinned by `u = 0`, the reaction
 //! the joint applies along `u` is `-lambda`. The power of the constraint forces is
 //! `Q_c . qd = lambda . Phi_t`: only drivers (time-dependent constraints) do work
-//! (Haug 1989, Sect. 6.6).
+//! (Haug 1989, ch. 6).
 
 use crate::error::Result;
 use crate::model::{Constrained, Vector};

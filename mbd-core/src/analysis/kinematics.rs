@@ -1,6 +1,6 @@
 //! Kinematic analysis of a driven mechanism with zero degrees of freedom: as many
 //! constraints (loop closures plus drivers) as coordinates, so the motion follows from the
-//! constraints alone (Haug 1989, Sect. 3.3 and 3.5):
+//! constraints alone (Haug 1989, ch. 3):
 //! positions from `Phi(q, t) = 0` (Newton), velocities from `Phi_q qd = -Phi_t`,
 //! accelerations from `Phi_q qdd = gamma`.
 

@@ -73,7 +73,7 @@ pub const RANK_TOL: f64 = 1e-10;
 /// `J_F^T = Q R` by modified Gram–Schmidt with one re-orthogonalisation (Giraud, Langou &
 /// Rozložník, Comput. Math. Appl. 50, 2005: twice is enough for orthogonality to rounding);
 /// then `J_F = R^T Q^T`, and `x = Q z` with `R^T z = b` is the minimum-norm solution
-/// (Golub & Van Loan, *Matrix Computations*, 4th ed., Sect. 5.6.2). Unlike the normal
+/// (Golub & Van Loan, *Matrix Computations*, 4th ed., Sect. 5.6). Unlike the normal
 /// equations `J J^T` this does not square the condition number, and a small `r_kk` reveals
 /// rank loss directly. For a square `J_F` it is the unique solution.
 pub(crate) fn min_norm_solve<const N: usize, const M: usize>(

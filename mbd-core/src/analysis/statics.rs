@@ -1,6 +1,6 @@
 //! Static equilibrium: the configuration where the generalised forces balance at rest,
 //! `f(q, 0, t) = 0`, or for closed loops `f(q, 0, t) - Phi_q^T lambda = 0`, `Phi(q, t) = 0`
-//! (the equations of motion with `qd = qdd = 0`; Haug 1989, Sect. 6.4).
+//! (the equations of motion with `qd = qdd = 0`; Haug 1989, ch. 6).
 //!
 //! Newton's method with the Jacobian of the residual by forward differences
 //! ([`jacobian::forward_difference`](crate::jacobian::forward_difference)): statics is

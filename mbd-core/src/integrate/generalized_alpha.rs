@@ -4,7 +4,7 @@
 //! Chung & Hulbert, "A time integration algorithm for structural dynamics with improved
 //! numerical dissipation: the generalized-α method", J. Appl. Mech. 60 (1993) 371–375;
 //! for constraints, Arnold & Brüls, "Convergence of the generalized-α scheme for
-//! constrained mechanical systems", Multibody Syst. Dyn. 18 (2007) 185–202, eqs. (9)–(11).
+//! constrained mechanical systems", Multibody Syst. Dyn. 18 (2007) 185–202.
 //! With the acceleration-like variable `a` (not the acceleration itself), one step is
 //!
 //! ```text
@@ -61,7 +61,7 @@ pub struct Coefficients {
 }
 
 impl Coefficients {
-    /// Chung & Hulbert (1993), eqs. (25), (17), (20): the parameters for the spectral
+    /// Chung & Hulbert (1993): the parameters for the spectral
     /// radius `rho` at infinity.
     pub fn from_rho_inf(rho: f64) -> Result<Self> {
         if !(0.0..=1.0).contains(&rho) {
@@ -212,7 +212,7 @@ impl GeneralizedAlpha {
             } else {
                 t0 + (k + 1) as f64 * h
             };
-            // Everything at t_next follows from q1 (Arnold & Brüls 2007, eq. (9)).
+            // Everything at t_next follows from q1.
             let base = q + qd * h + a * (h * h * (0.5 - c.beta));
             let kinematics = |q1: &Vector<N>| {
                 let a1 = (q1 - base) / bh2;
