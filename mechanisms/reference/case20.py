@@ -164,3 +164,12 @@ masses = [(m, IO - m * rb**2)]
 qdd, lam = sys.dynamics(q, qd, 0, masses, gravity(masses, g))
 print("model: theta_ddot =", -qdd[2])
 print("R_O =", mp.sqrt(lam[0] ** 2 + lam[1] ** 2))
+# model 3: the same ODE at 30 digits (mpmath Taylor integrator), event by root finding
+f = mp.odefun(lambda t, y: [y[1], m * g * rb * mp.cos(y[0]) / IO], 0, [mp.mpf(0), mp.mpf(0)])
+te = mp.findroot(lambda t: f(t)[0] - mp.pi / 3, mp.mpf(te))
+th_e, w_e = f(te)
+a_e = m * g * rb * mp.cos(th_e) / IO
+aGx = -rb * (mp.sin(th_e) * a_e + mp.cos(th_e) * w_e**2)
+aGy = -rb * (mp.cos(th_e) * a_e - mp.sin(th_e) * w_e**2)
+print("mp ODE: event t [s] =", te)
+print("R_O =", mp.sqrt((m * aGx) ** 2 + (m * aGy + m * g) ** 2))

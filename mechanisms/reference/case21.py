@@ -140,7 +140,8 @@ masses = [(0, 0), (0, 0), (m, mp.mpf("1.0"))]   # I of BD irrelevant: BD transla
 Q = gravity(masses, g)
 Q[2] = M
 qdd, lam = sys.dynamics(q, qd, 0, masses, Q)
-print("alpha_CD =", qdd[5], " alpha_AB =", qdd[2], " alpha_BD =", qdd[8])
+print("alpha_AB =", qdd[2], " alpha_BD =", qdd[8])
+print("alpha =", qdd[5])
 print("D force on BD (= +lam, BD is the second body of the pin) =", (lam[6], lam[7]))
 print("R_D =", mp.sqrt(lam[6] ** 2 + lam[7] ** 2))
 print("R_B =", mp.sqrt(lam[4] ** 2 + lam[5] ** 2))

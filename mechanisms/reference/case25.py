@@ -171,3 +171,5 @@ for label, gv in (("with gravity", g), ("no gravity", 0)):
     print("model (%s): alpha_AB = %s, a_A = %s, F_A on piston = (%s, %s)" %
           (label, mp.nstr(qdd[5], 15), mp.nstr(qdd[7], 15), mp.nstr(lam[4], 15), mp.nstr(lam[5], 15)))
     print("R_A (%s) =" % label, mp.sqrt(lam[4] ** 2 + lam[5] ** 2))
+    if gv:
+        print("R_A =", mp.sqrt(lam[4] ** 2 + lam[5] ** 2))

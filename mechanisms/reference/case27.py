@@ -42,3 +42,15 @@ te, (th, w) = s.t_events[0][0], s.y_events[0][0]
 print("ODE: event t = %.13g s" % te)
 print("omega_max = %.13g" % w)
 print("theta_at_omega_max [deg] = %.13g" % np.degrees(th))
+# the same model at 30 digits (mpmath Taylor integrator), event by root finding
+def dVm(th):
+    ax_, ay_ = a * mp.cos(th), -a * mp.sin(th)
+    dx, dy = ax_, ay_ - a
+    ln = mp.sqrt(dx * dx + dy * dy)
+    dax, day = -a * mp.sin(th), -a * mp.cos(th)
+    return m * g * (-L / 2 * mp.cos(th)) + k * (ln - l0) * (dx * dax + dy * day) / ln
+f = mp.odefun(lambda t, y: [y[1], -dVm(y[0]) / IO], 0, [mp.mpf(0), mp.mpf(0)])
+te = mp.findroot(lambda t: dVm(f(t)[0]), mp.mpf(te))
+print("mp ODE: event t [s] =", te)
+print("omega_max =", f(te)[1])
+print("theta_at_omega_max [deg] =", mp.degrees(f(te)[0]))

@@ -45,3 +45,18 @@ ev2.terminal, ev2.direction = True, 1
 s = solve_ivp(rhs, [0, 5], [0.0, 4.0], method="DOP853", rtol=1e-13, atol=1e-15, events=ev2)
 print("ODE: t(90 deg) = %.13g s" % s.t_events[0][0])
 print("omega_at_90deg = %.13g" % s.y_events[0][0][1])
+# the same model at 30 digits (mpmath Taylor integrator), events by root finding
+def dVm(th):
+    gx, gy = h * mp.sin(th), h * mp.cos(th)
+    dx, dy = gx + h, gy
+    ln = mp.sqrt(dx * dx + dy * dy)
+    dgx, dgy = h * mp.cos(th), -h * mp.sin(th)
+    return m * g * dgy + k * (ln - h * mp.sqrt(2)) * (dx * dgx + dy * dgy) / ln
+f = mp.odefun(lambda t, y: [y[1], -dVm(y[0]) / IO], 0, [mp.mpf(0), w0])
+t1 = mp.findroot(lambda t: dVm(f(t)[0]), mp.mpf(te))
+print("mp ODE: event t (omega_min) [s] =", t1)
+print("omega_min =", f(t1)[1])
+print("theta_at_omega_min [deg] =", mp.degrees(f(t1)[0]))
+t2 = mp.findroot(lambda t: f(t)[0] - mp.pi / 2, mp.mpf(s.t_events[0][0]))
+print("mp ODE: t(90 deg) [s] =", t2)
+print("omega_at_90deg =", f(t2)[1])

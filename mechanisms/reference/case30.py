@@ -25,3 +25,8 @@ s = solve_ivp(lambda t, y: [y[1], -(18 * y[1] + 108 * y[0]) / 3], [0, 5], [0.3, 
               rtol=1e-13, atol=1e-16, events=ev)
 print("ODE: t1 = %.13g s" % s.t_events[0][0])
 print("x_1 = %.13g" % s.y_events[0][0][0])
+# the same model at 30 digits (mpmath Taylor integrator), event by root finding
+f = mp.odefun(lambda t, y: [y[1], -(c * y[1] + k * y[0]) / m], 0, [x0, mp.mpf(0)])
+te = mp.findroot(lambda t: f(t)[1], mp.mpf(s.t_events[0][0]))
+print("mp ODE: t1 [s] =", te)
+print("x_1 =", f(te)[0])
