@@ -31,3 +31,11 @@ s2 = solve_ivp(lambda t, y: [y[1], -30 / IOf], [ts, 400], ys, method="DOP853", r
 print("ODE: switch t = %.15g" % ts)
 print("t_90deg = %.15g" % s2.t_events[0][0])
 print("ODE: theta at stop [deg] = %.15g" % np.degrees(s2.y_events[0][0][0]))
+# the same two-phase model at 30 digits (mpmath.odefun), switch and stop by root finding
+f1 = mp.odefun(lambda t, y: [y[1], T / IO], 0, [mp.mpf(0), mp.mpf(0)])
+ts = mp.findroot(lambda t: f1(t)[0] - mp.pi / 4, mp.mpf(40))
+f2 = mp.odefun(lambda t, y: [y[1], -T / IO], ts, list(f1(ts)))
+tstop = mp.findroot(lambda t: f2(t)[1], mp.mpf(78))
+print("mp ODE: switch t [s] =", ts)
+print("t_90deg =", tstop)
+print("mp ODE: theta at stop [deg] =", mp.degrees(f2(tstop)[0]))
