@@ -1,0 +1,11 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[coords(x)]
+#[particle(bob, mass = m, at = [x, 0.0] + l)]
+pub struct Slider {
+    pub m: f64,
+    pub l: f64,
+}
+
+fn main() {}
