@@ -12,6 +12,7 @@ pub mod validation;
 pub mod case01_vertical_throw;
 pub mod case16_two_input_linkage;
 pub mod case20_pendulum_bearing;
+pub mod case21_parallelogram_linkage;
 pub mod case23_block_reversing_torque;
 pub mod case30_damped_vibration;
 
@@ -37,6 +38,12 @@ pub fn cases() -> Vec<Case> {
             title: "Pendulum released from rest: bearing force at 60°",
             generated: &[case20_pendulum_bearing::Pendulum::GENERATED],
             run: case20_pendulum_bearing::run,
+        },
+        Case {
+            id: "21",
+            title: "Parallelogram linkage driven by a couple: pin force at D and angular acceleration",
+            generated: &[case21_parallelogram_linkage::Parallelogram::GENERATED],
+            run: case21_parallelogram_linkage::run,
         },
         Case {
             id: "23",
