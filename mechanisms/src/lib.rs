@@ -11,6 +11,7 @@ pub mod validation;
 
 pub mod case01_vertical_throw;
 pub mod case16_two_input_linkage;
+pub mod case17_slotted_rocker;
 pub mod case20_pendulum_bearing;
 pub mod case21_parallelogram_linkage;
 pub mod case23_block_reversing_torque;
@@ -32,6 +33,12 @@ pub fn cases() -> Vec<Case> {
             title: "Two-input linkage: angular velocity of BC",
             generated: &[case16_two_input_linkage::TwoInputLinkage::GENERATED],
             run: case16_two_input_linkage::run,
+        },
+        Case {
+            id: "17",
+            title: "Crank and slotted rocker: ω_BC and v_B",
+            generated: &[case17_slotted_rocker::SlottedRocker::GENERATED],
+            run: case17_slotted_rocker::run,
         },
         Case {
             id: "20",
