@@ -14,6 +14,7 @@ pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case20_pendulum_bearing;
 pub mod case21_parallelogram_linkage;
+pub mod case22_driven_platform;
 pub mod case23_block_reversing_torque;
 pub mod case30_damped_vibration;
 
@@ -51,6 +52,12 @@ pub fn cases() -> Vec<Case> {
             title: "Parallelogram linkage driven by a couple: pin force at D and angular acceleration",
             generated: &[case21_parallelogram_linkage::Parallelogram::GENERATED],
             run: case21_parallelogram_linkage::run,
+        },
+        Case {
+            id: "22",
+            title: "Platform on a driven parallelogram: pin force at D at t = 0 and 1 s",
+            generated: &[case22_driven_platform::DrivenPlatform::GENERATED],
+            run: case22_driven_platform::run,
         },
         Case {
             id: "23",
