@@ -12,6 +12,7 @@ pub mod validation;
 pub mod case01_vertical_throw;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
+pub mod case18_rod_through_collar;
 pub mod case20_pendulum_bearing;
 pub mod case21_parallelogram_linkage;
 pub mod case22_driven_platform;
@@ -40,6 +41,12 @@ pub fn cases() -> Vec<Case> {
             title: "Crank and slotted rocker: ω_BC and v_B",
             generated: &[case17_slotted_rocker::SlottedRocker::GENERATED],
             run: case17_slotted_rocker::run,
+        },
+        Case {
+            id: "18",
+            title: "Rod sliding through a pivoted collar: angular acceleration of BD",
+            generated: &[case18_rod_through_collar::RodThroughCollar::GENERATED],
+            run: case18_rod_through_collar::run,
         },
         Case {
             id: "20",
