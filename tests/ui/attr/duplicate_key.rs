@@ -1,0 +1,10 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[coords(x)]
+#[particle(bob, mass = m, at = [x, 0.0], mass = 2.0)]
+pub struct Slider {
+    pub m: f64,
+}
+
+fn main() {}
