@@ -17,6 +17,7 @@ pub mod case20_pendulum_bearing;
 pub mod case21_parallelogram_linkage;
 pub mod case22_driven_platform;
 pub mod case23_block_reversing_torque;
+pub mod case24_crank_bar_roller;
 pub mod case30_damped_vibration;
 
 use validation::Case;
@@ -71,6 +72,12 @@ pub fn cases() -> Vec<Case> {
             title: "Block turned 90° by a reversing torque: time taken",
             generated: &[case23_block_reversing_torque::Block::GENERATED],
             run: case23_block_reversing_torque::run,
+        },
+        Case {
+            id: "24",
+            title: "Crank-driven bar with a roller on the floor: normal force at B",
+            generated: &[case24_crank_bar_roller::CrankBar::GENERATED],
+            run: case24_crank_bar_roller::run,
         },
         Case {
             id: "30",
