@@ -13,6 +13,7 @@ pub mod case01_vertical_throw;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
+pub mod case19_slider_crank_max_speed;
 pub mod case20_pendulum_bearing;
 pub mod case21_parallelogram_linkage;
 pub mod case22_driven_platform;
@@ -48,6 +49,12 @@ pub fn cases() -> Vec<Case> {
             title: "Rod sliding through a pivoted collar: angular acceleration of BD",
             generated: &[case18_rod_through_collar::RodThroughCollar::GENERATED],
             run: case18_rod_through_collar::run,
+        },
+        Case {
+            id: "19",
+            title: "Slider-crank: maximum piston speed and its crank angle",
+            generated: &[case19_slider_crank_max_speed::SliderCrank::GENERATED],
+            run: case19_slider_crank_max_speed::run,
         },
         Case {
             id: "20",
