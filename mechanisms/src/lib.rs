@@ -19,6 +19,7 @@ pub mod case21_parallelogram_linkage;
 pub mod case22_driven_platform;
 pub mod case23_block_reversing_torque;
 pub mod case24_crank_bar_roller;
+pub mod case25_engine_wrist_pin;
 pub mod case30_damped_vibration;
 
 use validation::Case;
@@ -85,6 +86,12 @@ pub fn cases() -> Vec<Case> {
             title: "Crank-driven bar with a roller on the floor: normal force at B",
             generated: &[case24_crank_bar_roller::CrankBar::GENERATED],
             run: case24_crank_bar_roller::run,
+        },
+        Case {
+            id: "25",
+            title: "Engine with the crank at 90°: force in the wrist pin",
+            generated: &[case25_engine_wrist_pin::Engine::GENERATED],
+            run: case25_engine_wrist_pin::run,
         },
         Case {
             id: "30",
