@@ -10,6 +10,7 @@ pub mod svg;
 pub mod validation;
 
 pub mod case01_vertical_throw;
+pub mod case02_polar_motion;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -32,6 +33,12 @@ pub fn cases() -> Vec<Case> {
             title: "Vertical throw: height, time and speed at B",
             generated: &[case01_vertical_throw::VerticalThrow::GENERATED],
             run: case01_vertical_throw::run,
+        },
+        Case {
+            id: "02",
+            title: "Polar coordinates: speed and acceleration of B",
+            generated: &[case02_polar_motion::PolarMotion::GENERATED],
+            run: case02_polar_motion::run,
         },
         Case {
             id: "16",
