@@ -185,22 +185,22 @@ mod tests {
         // mechanisms/reference/case25.py.
         assert_relative_eq!(
             references()[0],
-            1530.359_112_939_069_6,
+            1_530.359_112_939_069_6,
             max_relative = 1e-14
         );
         let [alpha, a_a, f_x, f_y, _] = closed_form(MODEL.g, MODEL.g);
         assert_relative_eq!(alpha, -42_480.181_886_733, max_relative = 1e-13);
-        assert_relative_eq!(a_a, 1805.407_730_186_15, max_relative = 1e-13);
+        assert_relative_eq!(a_a, 1_805.407_730_186_15, max_relative = 1e-13);
         assert_relative_eq!(f_x, -355.570_884_956_078, max_relative = 1e-13);
-        assert_relative_eq!(f_y, 1488.478_538_752_64, max_relative = 1e-13);
+        assert_relative_eq!(f_y, 1_488.478_538_752_64, max_relative = 1e-13);
         assert_relative_eq!(
             closed_form(0.0, 0.0)[4],
-            1521.554_295_708_25,
+            1_521.554_295_708_25,
             max_relative = 1e-13
         );
         assert_relative_eq!(
             closed_form(MODEL.g, 0.0)[4],
-            1530.181_337_465_89,
+            1_530.181_337_465_89,
             max_relative = 1e-13
         );
     }
