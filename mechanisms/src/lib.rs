@@ -11,6 +11,7 @@ pub mod validation;
 
 pub mod case01_vertical_throw;
 pub mod case02_polar_motion;
+pub mod case03_slotted_arm;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -39,6 +40,12 @@ pub fn cases() -> Vec<Case> {
             title: "Polar coordinates: speed and acceleration of B",
             generated: &[case02_polar_motion::PolarMotion::GENERATED],
             run: case02_polar_motion::run,
+        },
+        Case {
+            id: "03",
+            title: "Pin in a slotted arm driven by a crank: r', r'', θ', θ''",
+            generated: &[case03_slotted_arm::SlottedArm::GENERATED],
+            run: case03_slotted_arm::run,
         },
         Case {
             id: "16",
