@@ -22,6 +22,7 @@ pub mod case22_driven_platform;
 pub mod case23_block_reversing_torque;
 pub mod case24_crank_bar_roller;
 pub mod case25_engine_wrist_pin;
+pub mod case26_crank_bar_released;
 pub mod case30_damped_vibration;
 
 use validation::Case;
@@ -106,6 +107,12 @@ pub fn cases() -> Vec<Case> {
             title: "Engine with the crank at 90°: force in the wrist pin",
             generated: &[case25_engine_wrist_pin::Engine::GENERATED],
             run: case25_engine_wrist_pin::run,
+        },
+        Case {
+            id: "26",
+            title: "Crank and bar released from rest: speed of B as OA passes the vertical",
+            generated: &[case26_crank_bar_released::CrankAndBar::GENERATED],
+            run: case26_crank_bar_released::run,
         },
         Case {
             id: "30",
