@@ -23,6 +23,7 @@ pub mod case23_block_reversing_torque;
 pub mod case24_crank_bar_roller;
 pub mod case25_engine_wrist_pin;
 pub mod case26_crank_bar_released;
+pub mod case27_bar_spring_released;
 pub mod case30_damped_vibration;
 
 use validation::Case;
@@ -113,6 +114,12 @@ pub fn cases() -> Vec<Case> {
             title: "Crank and bar released from rest: speed of B as OA passes the vertical",
             generated: &[case26_crank_bar_released::CrankAndBar::GENERATED],
             run: case26_crank_bar_released::run,
+        },
+        Case {
+            id: "27",
+            title: "Bar with a spring released from rest: maximum angular speed",
+            generated: &[case27_bar_spring_released::BarWithSpring::GENERATED],
+            run: case27_bar_spring_released::run,
         },
         Case {
             id: "30",
