@@ -12,6 +12,7 @@ pub mod validation;
 pub mod case01_vertical_throw;
 pub mod case02_polar_motion;
 pub mod case03_slotted_arm;
+pub mod case04_pendulum_acceleration;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -48,6 +49,12 @@ pub fn cases() -> Vec<Case> {
             title: "Pin in a slotted arm driven by a crank: r', r'', θ', θ''",
             generated: &[case03_slotted_arm::SlottedArm::GENERATED],
             run: case03_slotted_arm::run,
+        },
+        Case {
+            id: "04",
+            title: "Pendulum on the small-oscillation law: extreme accelerations",
+            generated: &[case04_pendulum_acceleration::Pendulum::GENERATED],
+            run: case04_pendulum_acceleration::run,
         },
         Case {
             id: "16",
