@@ -25,6 +25,7 @@ pub mod case24_crank_bar_roller;
 pub mod case25_engine_wrist_pin;
 pub mod case26_crank_bar_released;
 pub mod case27_bar_spring_released;
+pub mod case28_falling_bar_spring;
 pub mod case30_damped_vibration;
 
 use validation::Case;
@@ -127,6 +128,12 @@ pub fn cases() -> Vec<Case> {
             title: "Bar with a spring released from rest: maximum angular speed",
             generated: &[case27_bar_spring_released::BarWithSpring::GENERATED],
             run: case27_bar_spring_released::run,
+        },
+        Case {
+            id: "28",
+            title: "Falling bar with a spring: minimum angular speed and ω at 90°",
+            generated: &[case28_falling_bar_spring::FallingBar::GENERATED],
+            run: case28_falling_bar_spring::run,
         },
         Case {
             id: "30",
