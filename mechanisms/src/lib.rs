@@ -26,6 +26,7 @@ pub mod case25_engine_wrist_pin;
 pub mod case26_crank_bar_released;
 pub mod case27_bar_spring_released;
 pub mod case28_falling_bar_spring;
+pub mod case29_disk_on_rotating_frame;
 pub mod case30_damped_vibration;
 
 use validation::Case;
@@ -134,6 +135,12 @@ pub fn cases() -> Vec<Case> {
             title: "Falling bar with a spring: minimum angular speed and ω at 90°",
             generated: &[case28_falling_bar_spring::FallingBar::GENERATED],
             run: case28_falling_bar_spring::run,
+        },
+        Case {
+            id: "29",
+            title: "Disk spinning on a rotating frame: angular acceleration and acceleration of A",
+            generated: &[case29_disk_on_rotating_frame::SpinningDisk::GENERATED],
+            run: case29_disk_on_rotating_frame::run,
         },
         Case {
             id: "30",
