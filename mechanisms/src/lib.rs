@@ -13,6 +13,7 @@ pub mod case01_vertical_throw;
 pub mod case02_polar_motion;
 pub mod case03_slotted_arm;
 pub mod case04_pendulum_acceleration;
+pub mod case05_crate_on_incline;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -57,6 +58,12 @@ pub fn cases() -> Vec<Case> {
             title: "Pendulum on the small-oscillation law: extreme accelerations",
             generated: &[case04_pendulum_acceleration::Pendulum::GENERATED],
             run: case04_pendulum_acceleration::run,
+        },
+        Case {
+            id: "05",
+            title: "Crate sliding down an incline with friction: stop time and distance",
+            generated: &[case05_crate_on_incline::CrateOnIncline::GENERATED],
+            run: case05_crate_on_incline::run,
         },
         Case {
             id: "16",
