@@ -26,7 +26,8 @@
 //! `O_t = 10.3672902901…`, so **`R_O = 155.585900795916045870736465765 N`**
 //! (30 digits: `mechanisms/reference/case20.py`, by the closed form, by a 30-digit
 //! integration of `I_O θ'' = m g r̄ cos θ` to the event, and by an independent redundant-
-//! coordinate multibody model's pin multiplier). The event time is `t = 0.2778384295 s`.
+//! coordinate multibody model's pin multiplier). The event time is
+//! `t = 0.277838429466622186129406659466 s`.
 //!
 //! **Discrepancies in the manual.** Its α = 14.091 and ω = 6.99 are right (rounded), but it
 //! squares the rounded ω (`6.99^2 = 48.86` for `48.8119`), which puts `O_n = 155.33` 0.09 N
@@ -160,8 +161,9 @@ mod tests {
         let [alpha, omega, ..] = closed_form(MODEL.theta_1);
         assert_relative_eq!(o.alpha, alpha, max_relative = 1e-9);
         assert_relative_eq!(o.omega, omega, max_relative = 1e-9);
-        // 30-digit integration in mechanisms/reference/case20.py: t = 0.2778384295 s.
-        assert_relative_eq!(hit.t, 0.277_838_429_5, max_relative = 1e-9);
+        // mechanisms/reference/case20.py, 30-digit integration:
+        // t = 0.277838429466622186129406659466 s.
+        assert_relative_eq!(hit.t, 0.277_838_429_466_622_2, max_relative = 1e-9);
         // No friction, no drive: the energy at release is the energy at 60°.
         let e0 = MechanismModel::energy(&model, 0.0, &Vector::<1>::zeros(), &Vector::zeros());
         let e1 = MechanismModel::energy(
