@@ -14,6 +14,7 @@ pub mod case02_polar_motion;
 pub mod case03_slotted_arm;
 pub mod case04_pendulum_acceleration;
 pub mod case05_crate_on_incline;
+pub mod case06_sliders_and_link;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -64,6 +65,12 @@ pub fn cases() -> Vec<Case> {
             title: "Crate sliding down an incline with friction: stop time and distance",
             generated: &[case05_crate_on_incline::CrateOnIncline::GENERATED],
             run: case05_crate_on_incline::run,
+        },
+        Case {
+            id: "06",
+            title: "Two sliders joined by a light bar: accelerations and bar force",
+            generated: &[case06_sliders_and_link::SlidersAndLink::GENERATED],
+            run: case06_sliders_and_link::run,
         },
         Case {
             id: "16",
