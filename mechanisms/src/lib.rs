@@ -15,6 +15,7 @@ pub mod case03_slotted_arm;
 pub mod case04_pendulum_acceleration;
 pub mod case05_crate_on_incline;
 pub mod case06_sliders_and_link;
+pub mod case07_collar_spring;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -71,6 +72,12 @@ pub fn cases() -> Vec<Case> {
             title: "Two sliders joined by a light bar: accelerations and bar force",
             generated: &[case06_sliders_and_link::SlidersAndLink::GENERATED],
             run: case06_sliders_and_link::run,
+        },
+        Case {
+            id: "07",
+            title: "Collar pulled up a smooth rod by a spring: speed at B",
+            generated: &[case07_collar_spring::CollarOnRod::GENERATED],
+            run: case07_collar_spring::run,
         },
         Case {
             id: "16",
