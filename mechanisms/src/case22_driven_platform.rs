@@ -56,8 +56,8 @@ use mbd::prelude::*;
 #[point(pin_f, at = [-spacing + l * sin(theta), l * cos(theta)])]
 #[point(pin_d, at = [pin_f[0] + spacing * cos(phi), pin_f[1] + spacing * sin(phi)])]
 #[rigid(platform, mass = m, inertia = i_platform,
-        at = [pin_f[0] + g_x * cos(phi) - g_y * sin(phi),
-              pin_f[1] + g_x * sin(phi) + g_y * cos(phi)],
+        at = [pin_f[0] + fg_along * cos(phi) - fg_normal * sin(phi),
+              pin_f[1] + fg_along * sin(phi) + fg_normal * cos(phi)],
         angle = phi)]
 #[constraint(hypot(pin_d[0], pin_d[1]) == l + s)]
 #[init(phi = 0.0)]
@@ -74,8 +74,8 @@ pub struct DrivenPlatform {
     /// Spacing of the fixed pivots CE, equal to FD (a parallelogram).
     pub spacing: f64,
     /// G from F, along FD and normal to it.
-    pub g_x: f64,
-    pub g_y: f64,
+    pub fg_along: f64,
+    pub fg_normal: f64,
     /// The drive `θ = amplitude (1 − cos(rate t))`.
     pub amplitude: f64,
     pub rate: f64,
@@ -88,21 +88,22 @@ pub const MODEL: DrivenPlatform = DrivenPlatform {
     g: 9.81,
     l: 1.2,
     spacing: 0.6,
-    g_x: 0.6,
-    g_y: 0.48,
+    fg_along: 0.6,
+    fg_normal: 0.48,
     amplitude: std::f64::consts::FRAC_PI_6,
     rate: std::f64::consts::FRAC_PI_2,
 };
 
-/// Exact references `[F_D(0), F_D(1 s)]` from moments about F on the translating platform
-/// (see the module docs), for the drive at any instant `t`.
+/// The pin force `F_D` at time `t`, by moments about F on the translating platform (see
+/// the module docs).
 pub fn force_at(t: f64) -> f64 {
     let DrivenPlatform {
         m,
         g,
         l,
-        g_x,
-        g_y,
+        spacing,
+        fg_along,
+        fg_normal,
         amplitude,
         rate,
         ..
@@ -112,12 +113,12 @@ pub fn force_at(t: f64) -> f64 {
     let theta_dd = amplitude * rate * rate * (rate * t).cos();
     let (a_t, a_n) = (l * theta_dd, l * theta_d * theta_d);
     // The platform translates with F: a_G = a_t (cos θ, −sin θ) − a_n (sin θ, cos θ).
-    // Moments about F of the link force F_D (along CD, arm g_x cos θ), gravity (arm g_x)
-    // and the inertia force: F_D g_x cos θ = m g g_x + m (a_G × r_FG).
+    // Moments about F of the link force F_D (along CD, at D: arm `spacing cos θ`), gravity
+    // (arm `fg_along`) and the inertia force: F_D spacing cos θ = m g fg_along + m r_FG × a_G.
     let (s, c) = theta.sin_cos();
     let a_g = [a_t * c - a_n * s, -a_t * s - a_n * c];
-    let inertia_moment = m * (g_x * a_g[1] - g_y * a_g[0]);
-    (m * g * g_x + inertia_moment) / (g_x * c)
+    let inertia_moment = m * (fg_along * a_g[1] - fg_normal * a_g[0]);
+    (m * g * fg_along + inertia_moment) / (spacing * c)
 }
 
 /// Exact references `[F_D(0), F_D(1 s)]`.
