@@ -16,6 +16,7 @@ pub mod case04_pendulum_acceleration;
 pub mod case05_crate_on_incline;
 pub mod case06_sliders_and_link;
 pub mod case07_collar_spring;
+pub mod case08_slider_bumper;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -78,6 +79,12 @@ pub fn cases() -> Vec<Case> {
             title: "Collar pulled up a smooth rod by a spring: speed at B",
             generated: &[case07_collar_spring::CollarOnRod::GENERATED],
             run: case07_collar_spring::run,
+        },
+        Case {
+            id: "08",
+            title: "Slider down a guide into a bumper: speed at B and largest deflection",
+            generated: &[case08_slider_bumper::SliderOnGuide::GENERATED, case08_slider_bumper::SliderOnBumper::GENERATED],
+            run: case08_slider_bumper::run,
         },
         Case {
             id: "16",
