@@ -17,6 +17,7 @@ pub mod case05_crate_on_incline;
 pub mod case06_sliders_and_link;
 pub mod case07_collar_spring;
 pub mod case08_slider_bumper;
+pub mod case09_rotating_tube;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -83,8 +84,17 @@ pub fn cases() -> Vec<Case> {
         Case {
             id: "08",
             title: "Slider down a guide into a bumper: speed at B and largest deflection",
-            generated: &[case08_slider_bumper::SliderOnGuide::GENERATED, case08_slider_bumper::SliderOnBumper::GENERATED],
+            generated: &[
+                case08_slider_bumper::SliderOnGuide::GENERATED,
+                case08_slider_bumper::SliderOnBumper::GENERATED,
+            ],
             run: case08_slider_bumper::run,
+        },
+        Case {
+            id: "09",
+            title: "Particle sliding out of a rotating tube: exit time and angle",
+            generated: &[case09_rotating_tube::TubeAndParticle::GENERATED],
+            run: case09_rotating_tube::run,
         },
         Case {
             id: "16",
