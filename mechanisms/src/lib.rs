@@ -18,6 +18,7 @@ pub mod case06_sliders_and_link;
 pub mod case07_collar_spring;
 pub mod case08_slider_bumper;
 pub mod case09_rotating_tube;
+pub mod case10_pendulum_on_cart;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -95,6 +96,12 @@ pub fn cases() -> Vec<Case> {
             title: "Particle sliding out of a rotating tube: exit time and angle",
             generated: &[case09_rotating_tube::TubeAndParticle::GENERATED],
             run: case09_rotating_tube::run,
+        },
+        Case {
+            id: "10",
+            title: "Pendulum on a free cart falling from upright: θ' and v_x at the bottom",
+            generated: &[case10_pendulum_on_cart::PendulumOnCart::GENERATED],
+            run: case10_pendulum_on_cart::run,
         },
         Case {
             id: "16",
