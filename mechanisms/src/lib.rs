@@ -19,6 +19,7 @@ pub mod case07_collar_spring;
 pub mod case08_slider_bumper;
 pub mod case09_rotating_tube;
 pub mod case10_pendulum_on_cart;
+pub mod case11_engine_rod_velocity;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -102,6 +103,12 @@ pub fn cases() -> Vec<Case> {
             title: "Pendulum on a free cart falling from upright: θ' and v_x at the bottom",
             generated: &[case10_pendulum_on_cart::PendulumOnCart::GENERATED],
             run: case10_pendulum_on_cart::run,
+        },
+        Case {
+            id: "11",
+            title: "Reciprocating engine: speed of the rod's mass centre and ω_AB",
+            generated: &[case11_engine_rod_velocity::Engine::GENERATED],
+            run: case11_engine_rod_velocity::run,
         },
         Case {
             id: "16",
