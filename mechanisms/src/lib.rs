@@ -20,6 +20,7 @@ pub mod case08_slider_bumper;
 pub mod case09_rotating_tube;
 pub mod case10_pendulum_on_cart;
 pub mod case11_engine_rod_velocity;
+pub mod case12_crank_slotted_link;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -109,6 +110,12 @@ pub fn cases() -> Vec<Case> {
             title: "Reciprocating engine: speed of the rod's mass centre and ω_AB",
             generated: &[case11_engine_rod_velocity::Engine::GENERATED],
             run: case11_engine_rod_velocity::run,
+        },
+        Case {
+            id: "12",
+            title: "Crank pin in a slotted link: the link's angular velocity",
+            generated: &[case12_crank_slotted_link::SlottedLink::GENERATED],
+            run: case12_crank_slotted_link::run,
         },
         Case {
             id: "16",
