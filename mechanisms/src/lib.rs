@@ -21,6 +21,7 @@ pub mod case09_rotating_tube;
 pub mod case10_pendulum_on_cart;
 pub mod case11_engine_rod_velocity;
 pub mod case12_crank_slotted_link;
+pub mod case13_slider_crank_rod;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -116,6 +117,12 @@ pub fn cases() -> Vec<Case> {
             title: "Crank pin in a slotted link: the link's angular velocity",
             generated: &[case12_crank_slotted_link::SlottedLink::GENERATED],
             run: case12_crank_slotted_link::run,
+        },
+        Case {
+            id: "13",
+            title: "Slider-crank: the rod's angular velocity and acceleration",
+            generated: &[case13_slider_crank_rod::SliderCrank::GENERATED],
+            run: case13_slider_crank_rod::run,
         },
         Case {
             id: "16",
