@@ -22,6 +22,7 @@ pub mod case10_pendulum_on_cart;
 pub mod case11_engine_rod_velocity;
 pub mod case12_crank_slotted_link;
 pub mod case13_slider_crank_rod;
+pub mod case14_inclined_slider;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -123,6 +124,12 @@ pub fn cases() -> Vec<Case> {
             title: "Slider-crank: the rod's angular velocity and acceleration",
             generated: &[case13_slider_crank_rod::SliderCrank::GENERATED],
             run: case13_slider_crank_rod::run,
+        },
+        Case {
+            id: "14",
+            title: "Crank, link and inclined slider: speeds of A and of the link's midpoint",
+            generated: &[case14_inclined_slider::InclinedSlider::GENERATED],
+            run: case14_inclined_slider::run,
         },
         Case {
             id: "16",
