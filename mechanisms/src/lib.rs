@@ -23,6 +23,7 @@ pub mod case11_engine_rod_velocity;
 pub mod case12_crank_slotted_link;
 pub mod case13_slider_crank_rod;
 pub mod case14_inclined_slider;
+pub mod case15_four_bar;
 pub mod case16_two_input_linkage;
 pub mod case17_slotted_rocker;
 pub mod case18_rod_through_collar;
@@ -130,6 +131,12 @@ pub fn cases() -> Vec<Case> {
             title: "Crank, link and inclined slider: speeds of A and of the link's midpoint",
             generated: &[case14_inclined_slider::InclinedSlider::GENERATED],
             run: case14_inclined_slider::run,
+        },
+        Case {
+            id: "15",
+            title: "Four-bar linkage: angular velocities of coupler and rocker",
+            generated: &[case15_four_bar::FourBar::GENERATED],
+            run: case15_four_bar::run,
         },
         Case {
             id: "16",
