@@ -49,6 +49,7 @@ impl<'a> Block<'a> {
                 Some(Role::Qd(i)) => quote!(qd[#i]),
                 Some(Role::Qdd(i)) => quote!(qdd[#i]),
                 Some(Role::Lambda(k)) => quote!(lambda[#k]),
+                Some(Role::FrictionDirection(k)) => quote!(direction[#k]),
                 None => {
                     // A driven/relaxed symbol left after reduction would be a bug in the
                     // mechanics stage; fail the build loudly rather than compute garbage.
@@ -204,6 +205,11 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     };
 
     let coord_names: Vec<String> = eq.free.iter().map(|c| c.to_string()).collect();
+    // Friction directions: the sign of the sliding velocities (sliding view: given).
+    let friction_coords: Vec<usize> = eq.frictions.iter().map(|f| f.coord).collect();
+    let nf = friction_coords.len();
+    let direction =
+        (nf > 0).then(|| quote!(let direction: [f64; #nf] = [#(qd[#friction_coords].signum()),*];));
     let split = quote! {
         let q = y.fixed_rows::<#n>(0).into_owned();
         let qd = y.fixed_rows::<#n>(#n).into_owned();
@@ -251,12 +257,14 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 mass
             }
             fn forces(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
+                #direction
                 #fo_stmts
                 #fo_fill
                 f
             }
             fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
+                #direction
                 #acceleration
             }
             fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
@@ -296,6 +304,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 fn gamma(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#m> { #g_s #g_f gamma }
                 fn acceleration_and_multipliers(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                     -> ::mbd::__private::Result<(::mbd::__private::Vector<#n>, ::mbd::__private::Vector<#m>)> {
+                    #direction
                     #f_s #f_m #f_f #f_pq #f_g
                     ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma)
                 }
@@ -338,6 +347,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             fn jacobian(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<::mbd::__private::Matrix<#d, #d>> {
                 #split
                 #solve_qdd_lambda
+                #direction
                 #s #mass #pq #rq #rqd #cq #cqd
                 let (a_q, a_qd) = ::mbd::__private::solve::acceleration_jacobian::<#n, #m_or_0, #a_or_n>(
                     t, &mass, &phi_q, &r_q, &r_qd, &c_q, &c_qd)?;
@@ -485,9 +495,57 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 }
             }
         });
+        // The sliding view: friction directions fixed, so the right-hand side stays smooth
+        // through the stop and the stop is found as an event (never `sign(0)` in a step).
+        let sliding = format_ident!("{}Sliding", ident);
+        let mut roots: Vec<Expr> = eq.mass.iter().flatten().chain(&eq.forces).copied().collect();
+        roots.extend(eq.phi_q.iter().flatten().chain(&eq.gamma));
+        let b = Block::new(eq, &roots);
+        let (s, mass, f) = (b.stmts(), b.matrix("mass", n, n, &eq.mass), b.vector("f", n, &eq.forces));
+        let solve = if constrained {
+            let (pq, gm) = (b.matrix("phi_q", m, n, &eq.phi_q), b.vector("gamma", m, &eq.gamma));
+            quote!(#pq #gm ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map(|(qdd, _)| qdd))
+        } else {
+            quote!(::mbd::__private::solve::solve_mass::<#n>(t, &mass, &f))
+        };
+        let project = constrained.then(|| {
+            quote! {
+                fn project(&self, t: f64, y: &mut ::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<()> {
+                    ::mbd::__private::analysis::projection::project_state::<#ident, #n, #m, #d>(self.model, t, y)
+                }
+            }
+        });
+        let doc = format!(
+            "[`{ident}`] sliding in fixed directions (`+1`/`-1` per friction, in declaration order): integrate this \
+             view from a sliding state to a stop event, then test [`{ident}`]'s `*_sticks`."
+        );
         quote! {
             #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
-            impl #ident { #(#fns)* }
+            impl #ident {
+                #(#fns)*
+                /// The accelerations with the friction directions given instead of `sign(qd)`.
+                pub fn acceleration_sliding(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>,
+                    direction: &[f64; #nf]) -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
+                    #s #mass #f #solve
+                }
+                /// The sliding view of this model (see its type).
+                pub fn sliding(&self, direction: [f64; #nf]) -> #sliding<'_> {
+                    #sliding { model: self, direction }
+                }
+            }
+            #[doc = #doc]
+            #[derive(Debug, Clone, Copy)]
+            pub struct #sliding<'a> {
+                pub model: &'a #ident,
+                pub direction: [f64; #nf],
+            }
+            #[automatically_derived]
+            impl ::mbd::__private::OdeSystem<#d> for #sliding<'_> {
+                fn rhs(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<::mbd::__private::Vector<#d>> {
+                    ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| self.model.acceleration_sliding(t, q, qd, &self.direction))
+                }
+                #project
+            }
         }
     });
 

@@ -26,6 +26,9 @@ pub enum Role {
     Qdd(usize),
     /// Multiplier of constraint `k`.
     Lambda(usize),
+    /// Sliding direction (+1 or -1) of friction `k`: `sign(qd_s)` in the model itself,
+    /// a fixed mode in its sliding view, so that no step integrates through `sign(0)`.
+    FrictionDirection(usize),
 }
 
 #[derive(Clone, Debug)]
@@ -42,6 +45,8 @@ pub struct Coord {
     pub z: Expr,
     pub zd: Expr,
     pub zdd: Expr,
+    /// Third derivative: only reachable through `der(..)` of an acceleration in outputs.
+    pub zddd: Expr,
 }
 
 /// One body's kinematics in full coordinates.
@@ -126,7 +131,7 @@ impl Kin<'_> {
     fn tder(&self, g: &mut Graph, e: Expr) -> Expr {
         let mut terms = Vec::new();
         for c in self.coords {
-            for (x, dx) in [(c.z, c.zd), (c.zd, c.zdd)] {
+            for (x, dx) in [(c.z, c.zd), (c.zd, c.zdd), (c.zdd, c.zddd)] {
                 let s = g.as_sym(x).expect("coordinate symbol");
                 let d = g.diff(e, s);
                 if !g.is_zero(d) {
@@ -286,6 +291,29 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         );
     }
 
+    for p in &ast.params {
+        let Some(d) = &p.default else { continue };
+        let mut scratch = Errors::default();
+        let no_names = HashMap::new();
+        let v = Lowerer {
+            g: &mut g,
+            names: &no_names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut scratch,
+        }
+        .scalar(d, Context::Constant);
+        if v.and_then(|v| g.as_const(v)).is_none() {
+            errors.over(
+                d,
+                format!(
+                    "the default of `{}` must be a number or a constant expression of numbers",
+                    p.name
+                ),
+            );
+        }
+    }
+
     // Coordinates: free, driven, relaxed.
     let mut coords: Vec<Coord> = Vec::new();
     let new_coord = |g: &mut Graph, name: &Ident, kind: CoordKind| {
@@ -296,6 +324,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             z: g.symbol(&base),
             zd: g.symbol(&format!("{base}'")),
             zdd: g.symbol(&format!("{base}''")),
+            zddd: g.symbol(&format!("{base}'''")),
         }
     };
     for (i, id) in ast.coords.iter().enumerate() {
@@ -394,6 +423,10 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                 match &b.inertia {
                     Some(e) => {
                         if let Some(i) = lw.scalar(e, Context::Constant) {
+                            if lw.g.as_const(i).is_some_and(|v| v <= 0.0) {
+                                lw.errors
+                                    .over(e, format!("body `{}` has no positive inertia", b.name));
+                            }
                             let z = lw.g.zero();
                             inertia = Some([[i, z, z], [z, z, z], [z, z, z]]);
                         }
@@ -475,6 +508,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     // Constraints (full coordinates).
     let mut phi_full = Vec::new();
     let mut phi_spans = Vec::new();
+    let mut phi_tokens = Vec::new();
     for c in &ast.constraints {
         let mut lw = Lowerer {
             g: &mut g,
@@ -489,6 +523,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         ) {
             phi_full.push(g.sub(l, r));
             phi_spans.push(c.span);
+            phi_tokens.push(&c.tokens);
         }
     }
 
@@ -794,16 +829,17 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let ts = g.as_sym(t).expect("symbol");
     let mut reduce: HashMap<Sym, Expr> = HashMap::new();
     for c in &coords {
-        let (z, zd, zdd) = match &c.kind {
+        let (z, zd, zdd, zddd) = match &c.kind {
             CoordKind::Free => continue,
             CoordKind::Driven(law) => {
                 let d1 = g.diff(*law, ts);
                 let d2 = g.diff(d1, ts);
-                (*law, d1, d2)
+                let d3 = g.diff(d2, ts);
+                (*law, d1, d2, d3)
             }
-            CoordKind::Relaxed => (zero, zero, zero),
+            CoordKind::Relaxed => (zero, zero, zero, zero),
         };
-        for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd)] {
+        for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd), (c.zddd, zddd)] {
             reduce.insert(g.as_sym(s).expect("symbol"), v);
         }
     }
@@ -814,13 +850,12 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         .map(|(i, _)| i)
         .collect();
     let n = free_idx.len();
-    let red = |g: &mut Graph, e: Expr| g.substitute(e, &reduce);
-    let mut mass = vec![vec![zero; n]; n];
-    let mut forces = vec![zero; n];
-    for (a, &i) in free_idx.iter().enumerate() {
-        for (b, &j) in free_idx.iter().enumerate() {
-            mass[a][b] = red(&mut g, m_full[i][j]);
-        }
+    // Reduce everything in one pass over the shared graph (one rebuild, not one per entry).
+    let mut full_rows = Vec::with_capacity(n * n + n + 1 + phi_full.len());
+    for &i in &free_idx {
+        full_rows.extend(free_idx.iter().map(|&j| m_full[i][j]));
+    }
+    for &i in &free_idx {
         // Move the driven coordinates' known accelerations to the right side.
         let mut fi = f_full[i];
         for (j, c) in coords.iter().enumerate() {
@@ -829,13 +864,22 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                 fi = g.sub(fi, mz);
             }
         }
-        forces[a] = red(&mut g, fi);
+        full_rows.push(fi);
     }
-    let energy = red(&mut g, energy_full);
+    full_rows.push(energy_full);
+    full_rows.extend(&phi_full);
+    let reduced = g.substitute_all(&full_rows, &reduce);
+    let mass: Vec<Vec<Expr>> = reduced[..n * n]
+        .chunks(n.max(1))
+        .take(n)
+        .map(<[Expr]>::to_vec)
+        .collect();
+    let mut forces: Vec<Expr> = reduced[n * n..n * n + n].to_vec();
+    let energy = reduced[n * n + n];
+    let phi: Vec<Expr> = reduced[n * n + n + 1..].to_vec();
 
     // Constraints in free coordinates.
     let qsyms: Vec<Sym> = free_idx.iter().map(|&i| zsyms[i]).collect();
-    let phi: Vec<Expr> = phi_full.iter().map(|e| red(&mut g, *e)).collect();
     let phi_q: Vec<Vec<Expr>> = phi
         .iter()
         .map(|p| qsyms.iter().map(|s| g.diff(*p, *s)).collect())
@@ -870,8 +914,13 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
 
     // Checks that need the equations.
     if m_con > n {
-        for span in &phi_spans[n..] {
-            errors.at(*span, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
+        for tokens in &phi_tokens[n..] {
+            errors.over(tokens, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
+        }
+    }
+    for (k, p) in phi.iter().enumerate() {
+        if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
+            errors.over(phi_tokens[k], "this constraint involves no coordinate: it relates only parameters and `t`, so it cannot hold the mechanism");
         }
     }
     for (a, &i) in free_idx.iter().enumerate() {
@@ -986,10 +1035,28 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     for e in &mut events {
         e.expr = finish(&mut g, e.expr);
     }
+    // A third derivative of a free coordinate would need d(qdd)/dt of the solved dynamics:
+    // refused rather than silently zero.
+    let jerks: Vec<Sym> = free_idx
+        .iter()
+        .map(|&i| g.as_sym(coords[i].zddd).expect("symbol"))
+        .collect();
+    let named = outputs
+        .iter()
+        .map(|o| (&o.name, o.expr))
+        .chain(events.iter().map(|e| (&e.name, e.expr)));
+    for (name, e) in named {
+        if jerks.iter().any(|j| g.depends_on(e, *j)) {
+            errors.at(
+                name.span(),
+                format!("`{name}` needs the third time derivative of a free coordinate (`der` of an acceleration), which is not available"),
+            );
+        }
+    }
     // Coulomb friction while sliding: Q_s = -mu |N| sign(qd_s). The normal force must not
     // depend on the accelerations it helps determine (checked), so the solve stays linear.
     let frictionless = (!frictions.is_empty()).then(|| forces.clone());
-    for f in &mut frictions {
+    for (k, f) in frictions.iter_mut().enumerate() {
         f.normal = finish(&mut g, f.normal);
         if uses_roles(&g, &roles, f.normal, |r| {
             matches!(r, Role::Qdd(_) | Role::Lambda(_))
@@ -1001,7 +1068,8 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             continue;
         }
         let abs_n = g.call(Func::Abs, f.normal);
-        let sign = g.call(Func::Signum, qd[f.coord]);
+        let sign = g.symbol(&format!("friction_direction:{k}"));
+        roles.insert(g.as_sym(sign).expect("symbol"), Role::FrictionDirection(k));
         let mn = g.mul(f.mu, abs_n);
         let q = g.mul(mn, sign);
         forces[f.coord] = g.sub(forces[f.coord], q);
@@ -1066,7 +1134,45 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             }
         }
     }
-    check_default_configuration(ast, &mut g, &phi, &phi_spans, &init_q, &roles, &mut errors);
+    // Folding constants can produce inf or NaN (`1.0 / 0.0`, `ln(-1.0)`, a derivative of
+    // `sqrt` at a point where its argument vanishes): refuse them here, not at run time.
+    {
+        let mut roots: Vec<Expr> = mass
+            .iter()
+            .flatten()
+            .chain(&forces)
+            .chain(&phi)
+            .chain(&phi_t)
+            .chain(&gamma)
+            .copied()
+            .collect();
+        roots.extend(phi_q.iter().flatten());
+        roots.extend(
+            outputs
+                .iter()
+                .map(|o| o.expr)
+                .chain(events.iter().map(|e| e.expr)),
+        );
+        roots.extend(init_q.iter().chain(&init_qd));
+        roots.push(energy);
+        if let Some(j) = &jacobian {
+            roots.extend(
+                j.r_q
+                    .iter()
+                    .chain(&j.r_qd)
+                    .chain(&j.c_q)
+                    .chain(&j.c_qd)
+                    .flatten(),
+            );
+        }
+        if roots.iter().any(|e| g.has_nonfinite_constant(*e)) {
+            errors.at(
+                ast.ident.span(),
+                "the model's equations contain a non-finite constant (a division by zero, the log or square root of a negative number, or the derivative of `sqrt` where its argument is zero)",
+            );
+        }
+    }
+    check_default_configuration(ast, &mut g, &phi, &phi_tokens, &init_q, &roles, &mut errors);
     errors.finish()?;
 
     let one = g.one();
@@ -1130,7 +1236,7 @@ fn check_default_configuration(
     ast: &Mechanism,
     g: &mut Graph,
     phi: &[Expr],
-    spans: &[Span],
+    spans: &[&proc_macro2::TokenStream],
     init_q: &[Expr],
     roles: &HashMap<Sym, Role>,
     errors: &mut Errors,
@@ -1178,7 +1284,7 @@ fn check_default_configuration(
             }
         });
         if r.is_finite() && r.abs() > 1e-9 {
-            errors.at(
+            errors.over(
                 spans[k],
                 format!("the default configuration (parameter defaults and `init` positions at t = 0) violates this constraint: residual {r:.3e}"),
             );

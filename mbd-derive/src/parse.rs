@@ -118,6 +118,7 @@ pub struct Init {
 }
 
 pub struct Constraint {
+    pub tokens: proc_macro2::TokenStream,
     pub lhs: Expr,
     pub rhs: Expr,
     pub span: Span,
@@ -160,6 +161,10 @@ impl Errors {
     }
     pub fn at(&mut self, span: Span, msg: impl std::fmt::Display) {
         self.push(syn::Error::new(span, msg));
+    }
+    /// An error over the whole of `tokens` (first to last token, also on stable).
+    pub fn over(&mut self, tokens: impl quote::ToTokens, msg: impl std::fmt::Display) {
+        self.push(syn::Error::new_spanned(tokens, msg));
     }
     pub fn finish(self) -> syn::Result<()> {
         self.0.map_or(Ok(()), Err)
@@ -217,9 +222,14 @@ impl Item {
         let mut it = args.into_iter();
         let name = match it.next() {
             Some(Arg::Flag(name)) => name,
-            _ => {
+            first => {
+                let span = match &first {
+                    Some(Arg::Keyed(k, _)) => k.span(),
+                    Some(Arg::Other(e)) => e.span(),
+                    _ => attr.path().span(),
+                };
                 errors.at(
-                    attr.span(),
+                    span,
                     format!(
                         "`{}` needs a name first, e.g. `{}(name, ...)`",
                         attr_name(attr),
@@ -374,6 +384,11 @@ impl Mechanism {
                     }
                 }
                 "gravity" => {
+                    // The span of `(..)`: one group, so it covers all arguments on stable.
+                    let args_span = match &attr.meta {
+                        syn::Meta::List(l) => l.delimiter.span().join(),
+                        _ => attr.path().span(),
+                    };
                     let list =
                         attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated);
                     match list {
@@ -385,10 +400,9 @@ impl Mechanism {
                                 } else {
                                     Dim::Planar
                                 };
-                                m.dim_span = attr.span();
+                                m.dim_span = args_span;
                             }
-                            m.gravity =
-                                Some(syn::parse_quote_spanned!(attr.span()=> [#(#items),*]));
+                            m.gravity = Some(syn::parse_quote_spanned!(args_span=> [#(#items),*]));
                         }
                         Err(e) => errors.push(e),
                     }
@@ -400,12 +414,13 @@ impl Mechanism {
                 "constraint" => match attr.parse_args::<Expr>() {
                     Ok(Expr::Binary(b)) if matches!(b.op, syn::BinOp::Eq(_)) => {
                         m.constraints.push(Constraint {
+                            tokens: quote::ToTokens::to_token_stream(&b),
                             span: b.span(),
                             lhs: *b.left,
                             rhs: *b.right,
                         })
                     }
-                    Ok(e) => errors.at(e.span(), "a constraint is an equation: `lhs == rhs`"),
+                    Ok(e) => errors.over(&e, "a constraint is an equation: `lhs == rhs`"),
                     Err(e) => errors.push(e),
                 },
                 "particle" | "rigid" | "rigid3" => {
@@ -547,8 +562,7 @@ impl Mechanism {
                                 normal,
                                 span: attr.span(),
                             }),
-                            _ => errors
-                                .at(attr.span(), "`friction` needs `along`, `mu` and `normal`"),
+                            _ => errors.over(attr, "`friction` needs `along`, `mu` and `normal`"),
                         }
                     }
                     Err(e) => errors.push(e),
@@ -557,7 +571,7 @@ impl Mechanism {
                     Ok(list) => {
                         let mut it = list.into_iter();
                         let Some(Arg::Keyed(name, expr)) = it.next() else {
-                            errors.at(attr.span(), "an event starts with `name = <expression>`");
+                            errors.over(attr, "an event starts with `name = <expression>`");
                             continue;
                         };
                         let mut ev = Event {
@@ -596,6 +610,28 @@ impl Mechanism {
                     }
                 }
                 _ => {}
+            }
+        }
+        let mut seen = std::collections::HashSet::new();
+        for name in m.outputs.iter().map(|o| &o.name) {
+            if !seen.insert(name.to_string()) {
+                errors.at(name.span(), format!("duplicate output `{name}`"));
+            }
+        }
+        let mut seen = std::collections::HashSet::new();
+        for name in m.events.iter().map(|e| &e.name) {
+            if !seen.insert(name.to_string()) {
+                errors.at(name.span(), format!("duplicate event `{name}`"));
+            }
+        }
+        let mut seen = std::collections::HashSet::new();
+        for i in &m.inits {
+            if !seen.insert((i.coord.to_string(), i.velocity)) {
+                let what = if i.velocity { "velocity" } else { "position" };
+                errors.at(
+                    i.coord.span(),
+                    format!("initial {what} of `{}` given twice", i.coord),
+                );
             }
         }
         errors.finish()?;

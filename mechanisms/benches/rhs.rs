@@ -6,9 +6,10 @@
 //! the double pendulum, and M, f, Phi_q, gamma with the same augmented LU for the
 //! slider-crank, so the ratio measures the generated code, not a different algorithm.
 
-use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group, criterion_main};
 use mbd::nalgebra::{Matrix2, SVector, Vector2};
 use mbd::prelude::*;
+use std::hint::black_box;
 
 #[derive(Debug, Mechanism)]
 #[gravity(0.0, -g)]

@@ -17,10 +17,12 @@
 //! `reaction(n)`; gravity `(0, −g)`. `s(0) = 0`, `s'(0) = v_0`. The stop is the downward
 //! zero crossing of `s'` (terminal); there the static bound `μ N > m g sin θ`
 //! (`0.4 cos 15° > sin 15°`) holds the crate. The table's `x_stop` is the distance along the
-//! slope (RecurDyn's "displacement on the X axis" of a slope-aligned frame). The run uses
-//! Radau5 at rtol = atol = 1e-10, not the shared 1e-12: at 1e-12 the steps that would cross
-//! the stop see the friction reversed in their stages and Newton fails with h at 1e-14
-//! before the event can fire (a core issue, logged in `/work/notes/derive-bugs.md`).
+//! slope (RecurDyn's "displacement on the X axis" of a slope-aligned frame). The run
+//! integrates the generated *sliding view* (`model.sliding([1.0])`: friction fixed against
+//! downhill motion) with the shared settings, so the right-hand side stays smooth through the
+//! stop and the stop is located as an event on the dense output; integrating `sign(s')`
+//! itself would put the friction's reversal inside the steps that cross the stop (true stick,
+//! MATH.md section 3). At the stop the generated `s_sticks` test decides that it stays.
 //!
 //! **Reference (exact).** `t_stop = v_0/|a|`, `x_stop = v_0^2/(2 |a|)` with
 //! `a = g (sin θ − μ cos θ) = −1.25127810990258 m/s^2`: **`t_stop = 5.59427991635291 s`,
@@ -35,22 +37,20 @@
 
 use crate::sim;
 use crate::validation::{Outcome, Plot, Row};
-use mbd::integrate::{Integrator, Radau5, Solution};
+use mbd::integrate::Solution;
 use mbd::prelude::*;
 
 /// How the case is measured.
-const METHOD: &str = "Radau IIA 5, rtol = atol = 1e-10 (the stop event; see the module docs)";
+const METHOD: &str = sim::METHOD;
 
-/// Integrate to the stop (or to 20 s). Radau5 at the shared 1e-12 cannot step up to the
-/// friction's reversal at the stop (Newton fails with h at 1e-14: `/work/notes/derive-bugs.md`),
-/// so this case runs at 1e-10, where the event time is still exact to ~1e-12 relative.
+/// Slide down the slope (friction against downhill motion) to the stop, or to 20 s.
 fn slide(model: &CrateOnIncline) -> mbd::Result<Solution<2>> {
-    let opts = Options {
-        rtol: 1e-10,
-        atol: 1e-10,
-        ..Options::default()
-    };
-    Radau5::new(opts).solve(model, 0.0, model.initial_state(), 20.0, &model.events())
+    sim::integrate(
+        &model.sliding([1.0]),
+        model.initial_state(),
+        20.0,
+        &model.events(),
+    )
 }
 
 /// A crate launched at `v0` down an incline at `slope`; s runs down the slope, n normal to
