@@ -70,6 +70,50 @@ impl<T: ComplexField<RealField = f64> + Copy, const N: usize> Lu<T, N> {
     }
 }
 
+/// Solve `A x = b` for a symmetric positive definite `A` by `L D L^T` (no square roots,
+/// one pass, everything on the stack): the mass-matrix solve of every generated model.
+/// `None` when a pivot is not positive (not positive definite) or not finite.
+pub fn solve_spd<const N: usize>(
+    a: &SMatrix<f64, N, N>,
+    b: &SVector<f64, N>,
+) -> Option<SVector<f64, N>> {
+    let mut l = *a;
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for j in 0..N {
+        let mut d = l[(j, j)];
+        for k in 0..j {
+            d -= l[(j, k)] * l[(j, k)] * l[(k, k)];
+        }
+        // Not `d > tol` negated: a NaN pivot must fail too.
+        if d.is_nan() || d <= scale * f64::EPSILON * N as f64 || !d.is_finite() {
+            return None;
+        }
+        l[(j, j)] = d;
+        for i in j + 1..N {
+            let mut v = l[(i, j)];
+            for k in 0..j {
+                v -= l[(i, k)] * l[(j, k)] * l[(k, k)];
+            }
+            l[(i, j)] = v / d;
+        }
+    }
+    let mut x = *b;
+    for i in 0..N {
+        for k in 0..i {
+            x[i] -= l[(i, k)] * x[k];
+        }
+    }
+    for i in 0..N {
+        x[i] /= l[(i, i)];
+    }
+    for i in (0..N).rev() {
+        for k in i + 1..N {
+            x[i] -= l[(k, i)] * x[k];
+        }
+    }
+    Some(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,6 +127,15 @@ mod tests {
         let x = Vector3::new(1.0, -2.0, 0.5);
         let lu = Lu::factor(a).unwrap();
         assert_relative_eq!(lu.solve(&(a * x)), x, epsilon = 1e-14);
+    }
+
+    #[test]
+    fn ldlt_solves_a_positive_definite_system_and_refuses_an_indefinite_one() {
+        let a = Matrix3::new(4.0, 1.0, 0.5, 1.0, 3.0, -0.2, 0.5, -0.2, 2.0);
+        let x = Vector3::new(1.0, -2.0, 0.5);
+        assert_relative_eq!(solve_spd(&a, &(a * x)).unwrap(), x, epsilon = 1e-14);
+        let indefinite = Matrix3::new(1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0);
+        assert!(solve_spd(&indefinite, &x).is_none());
     }
 
     #[test]

@@ -4,11 +4,11 @@ use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, Vector};
 
-/// `qdd` from `M qdd = f`: Cholesky (M is symmetric positive definite for a well-posed
+/// `qdd` from `M qdd = f`: `L D L^T` (M is symmetric positive definite for a well-posed
 /// model), with LU as the fallback for a mass matrix that is merely non-singular.
 pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) -> Result<Vector<N>> {
-    let x = match mass.cholesky() {
-        Some(chol) => chol.solve(f),
+    let x = match crate::linalg::solve_spd(mass, f) {
+        Some(x) => x,
         None => Lu::factor(*mass)
             .ok_or(Error::SingularMassMatrix { t })?
             .solve(f),
