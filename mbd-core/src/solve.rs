@@ -44,7 +44,8 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     ))
 }
 
-fn finite<const N: usize>(t: f64, x: Vector<N>) -> Result<Vector<N>> {
+/// `x`, or [`Error::NonFinite`] if any entry is NaN or infinite: no NaN reaches the user.
+pub fn finite<const N: usize>(t: f64, x: Vector<N>) -> Result<Vector<N>> {
     if x.iter().all(|v| v.is_finite()) {
         Ok(x)
     } else {

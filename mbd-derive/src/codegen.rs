@@ -239,6 +239,16 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
 
     let acceleration = if constrained {
         quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
+    } else if let Some(qdd) = &eq.recursive_qdd {
+        parts.names.push("articulated_body");
+        let b = Block::new(eq, qdd);
+        parts.statements += b.stmts.len();
+        let (s, fill) = (b.stmts(), b.vector("qdd", n, qdd));
+        quote! {
+            #s
+            #fill
+            ::mbd::__private::solve::finite(t, qdd)
+        }
     } else {
         quote! {
             #mf_stmts

@@ -2,13 +2,36 @@
 
 use crate::{codegen, model, parse};
 use proc_macro2::TokenStream;
+use std::time::Instant;
 use syn::DeriveInput;
 
+/// With `MBD_EXPAND_DUMP=<dir>` set at build time, every derive writes its generated code to
+/// `<dir>/<Struct>.rs` and its expansion time in seconds to `<dir>/<Struct>.time`: how the
+/// `scaling` report measures the macro apart from the rest of the build.
+const DUMP_VAR: &str = "MBD_EXPAND_DUMP";
+
 pub fn derive(input: &DeriveInput) -> TokenStream {
-    match try_expand(input) {
+    let start = Instant::now();
+    let out = match try_expand(input) {
         Ok(ts) => ts,
         Err(err) => err.to_compile_error(),
+    };
+    if let Some(dir) = std::env::var_os(DUMP_VAR) {
+        dump(
+            std::path::Path::new(&dir),
+            &input.ident.to_string(),
+            &out,
+            start.elapsed().as_secs_f64(),
+        );
     }
+    out
+}
+
+/// Best effort: a diagnostic aid must never break the build it measures.
+fn dump(dir: &std::path::Path, name: &str, code: &TokenStream, seconds: f64) {
+    let _ = std::fs::create_dir_all(dir);
+    let _ = std::fs::write(dir.join(format!("{name}.rs")), code.to_string());
+    let _ = std::fs::write(dir.join(format!("{name}.time")), format!("{seconds}\n"));
 }
 
 fn try_expand(input: &DeriveInput) -> syn::Result<TokenStream> {

@@ -13,6 +13,7 @@ mod lower;
 mod model;
 mod parse;
 mod sym;
+mod tree;
 
 use proc_macro::TokenStream;
 use syn::{DeriveInput, parse_macro_input};
@@ -30,6 +31,8 @@ use syn::{DeriveInput, parse_macro_input};
         particle,
         rigid,
         rigid3,
+        body,
+        chain,
         point,
         spring,
         damper,

@@ -10,6 +10,7 @@
 use crate::lower::{self, Binding, Context, Lowerer, Value};
 use crate::parse::{self, BodyKind, Dim, End, Errors, Load, Mechanism};
 use crate::sym::{Expr, Func, Graph, Sym};
+use crate::tree;
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;
@@ -103,6 +104,9 @@ pub struct Equations {
     pub frictions: Vec<FrictionEq>,
     /// The forces without friction, for the stick test (present when there is friction).
     pub frictionless: Option<Vec<Expr>>,
+    /// `qdd` of a joint tree by the articulated-body recursion, when that evaluates the
+    /// accelerations instead of the mass matrix.
+    pub recursive_qdd: Option<Vec<Expr>>,
     /// Initial positions and velocities of the free coordinates (parameters allowed).
     pub init_q: Vec<Expr>,
     pub init_qd: Vec<Expr>,
@@ -259,6 +263,10 @@ impl lower::Model for Kin<'_> {
 
 /// Names bound in user expressions.
 type Names = HashMap<String, Binding>;
+
+/// From how many tree bodies the articulated-body recursion replaces the mass-matrix solve
+/// (measured with `cargo bench -p mechanisms --bench rhs`: see docs/ARCHITECTURE.md).
+const RECURSIVE_FROM_BODIES: usize = 4;
 
 pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let mut errors = Errors::default();
@@ -487,6 +495,122 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             declare(&mut names, &mut errors, &b.name, Binding::Body(idx));
         }
     }
+    // Joint-tree bodies: each frame is its parent's, moved by the joint.
+    let mut nodes: Vec<tree::Node> = Vec::new();
+    let mut node_of: HashMap<String, usize> = HashMap::new();
+    if !ast.tree.is_empty() && dim == Dim::Spatial {
+        errors.at(
+            ast.tree[0].name.span(),
+            "joint trees (`body`, `chain`) are planar",
+        );
+    }
+    for tb in ast.tree.iter().filter(|_| dim == Dim::Planar) {
+        let parent = match &tb.parent {
+            None => None,
+            Some(p) => match node_of.get(&p.to_string()) {
+                Some(&i) => Some(i),
+                None => {
+                    errors.at(p.span(), format!("unknown parent `{p}`: a tree body's parent is `ground` or a `body` declared before it"));
+                    continue;
+                }
+            },
+        };
+        let mut lw = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        };
+        let vec2 = |lw: &mut Lowerer<'_>, e: &Option<syn::Expr>| match e {
+            Some(e) => lw.vector(e, Context::Constant, 2).map(|v| [v[0], v[1]]),
+            None => Some([lw.g.zero(), lw.g.zero()]),
+        };
+        let (at, com) = (vec2(&mut lw, &tb.at), vec2(&mut lw, &tb.com));
+        let offset = match &tb.angle {
+            Some(e) => lw.scalar(e, Context::Constant),
+            None => Some(lw.g.zero()),
+        };
+        let mass = tb
+            .mass
+            .as_ref()
+            .and_then(|m| lw.scalar(m, Context::Constant));
+        if let (Some(m), Some(e)) = (mass, &tb.mass)
+            && lw.g.as_const(m).is_some_and(|v| v <= 0.0)
+        {
+            lw.errors
+                .over(e, format!("body `{}` has no positive mass", tb.name));
+        }
+        let inertia = match &tb.inertia {
+            Some(e) => lw.scalar(e, Context::Constant),
+            None => Some(lw.g.zero()),
+        };
+        let coord = tb
+            .joint
+            .coord()
+            .map(|c| coords.iter().position(|k| k.name == *c));
+        let axis = match &tb.joint {
+            parse::Joint::Prismatic { axis, .. } => lw
+                .vector(axis, Context::Constant, 2)
+                .map(|v| Some([v[0], v[1]])),
+            _ => Some(None),
+        };
+        let (Some(at), Some(com), Some(offset), Some(mass), Some(inertia), Some(axis)) =
+            (at, com, offset, mass, inertia, axis)
+        else {
+            continue;
+        };
+        let (p_origin, p_angle) = match parent {
+            Some(p) => (nodes[p].origin, nodes[p].angle),
+            None => ([g.zero(), g.zero()], g.zero()),
+        };
+        let mut local = at;
+        let mut angle = g.add(p_angle, offset);
+        let joint = match (&tb.joint, coord.flatten(), axis) {
+            (parse::Joint::Revolute(_), Some(j), _) => {
+                angle = g.add(angle, coords[j].z);
+                tree::JointKin::Revolute { coord: j }
+            }
+            (parse::Joint::Prismatic { .. }, Some(j), Some(axis)) => {
+                for (l, a) in local.iter_mut().zip(axis) {
+                    let d = g.mul(a, coords[j].z);
+                    *l = g.add(*l, d);
+                }
+                let axis = tree::rotate(&mut g, p_angle, axis);
+                tree::JointKin::Prismatic { coord: j, axis }
+            }
+            _ => tree::JointKin::Fixed,
+        };
+        let moved = tree::rotate(&mut g, p_angle, local);
+        let origin = [g.add(p_origin[0], moved[0]), g.add(p_origin[1], moved[1])];
+        let arm = tree::rotate(&mut g, angle, com);
+        let com = [g.add(origin[0], arm[0]), g.add(origin[1], arm[1])];
+        let z = g.zero();
+        let rigid = !g.is_zero(inertia);
+        bodies.push(BodyKin {
+            mass,
+            inertia: rigid.then_some([[inertia, z, z], [z, z, z], [z, z, z]]),
+            r: com.to_vec(),
+            angle: rigid.then_some(angle),
+            rot: None,
+        });
+        declare(
+            &mut names,
+            &mut errors,
+            &tb.name,
+            Binding::Body(bodies.len() - 1),
+        );
+        node_of.insert(tb.name.to_string(), nodes.len());
+        nodes.push(tree::Node {
+            parent,
+            joint,
+            origin,
+            angle,
+            com,
+            mass,
+            inertia,
+        });
+    }
     // Springs and dampers are named too; their names must not clash with anything else.
     let mut element_names = std::collections::HashSet::new();
     for id in ast
@@ -533,7 +657,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let mut potential = zero;
     // Gravity enters the forces directly; its potential only the energy.
     let mut gravity_energy = zero;
-    let kin = Kin {
+    let mut kin = Kin {
         coords: &coords,
         bodies: &bodies,
         t,
@@ -567,14 +691,6 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         .vector(e, Context::Constant, dim.len()),
         None => None,
     };
-    if let Some(grav) = &gravity {
-        for b in &bodies {
-            let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
-            add_force_at(&mut g, &mut q_full, &b.r, &w);
-            let h = g.dot(&w, &b.r);
-            gravity_energy = g.sub(gravity_energy, h);
-        }
-    }
     let end_position = |g: &mut Graph, errors: &mut Errors, end: &End| -> Option<Vec<Expr>> {
         match end {
             End::Named(id) => match names.get(&id.to_string()) {
@@ -676,7 +792,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                     g: &mut g,
                     names: &names,
                     struct_name: &struct_name,
-                    model: None,
+                    model: Some(&mut kin),
                     errors: &mut errors,
                 };
                 let at = lw.vector(at, Context::Kinematics, dim.len());
@@ -695,7 +811,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                     g: &mut g,
                     names: &names,
                     struct_name: &struct_name,
-                    model: None,
+                    model: Some(&mut kin),
                     errors: &mut errors,
                 };
                 match (b.angle, b.rot) {
@@ -735,7 +851,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                     g: &mut g,
                     names: &names,
                     struct_name: &struct_name,
-                    model: None,
+                    model: Some(&mut kin),
                     errors: &mut errors,
                 })
                 .scalar(value, Context::Force)
@@ -743,6 +859,17 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                     q_full[j] = g.add(q_full[j], v);
                 }
             }
+        }
+    }
+
+    // Applied forces other than gravity: the joint efforts of the recursive evaluation.
+    let q_applied = q_full.clone();
+    if let Some(grav) = &gravity {
+        for b in &bodies {
+            let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
+            add_force_at(&mut g, &mut q_full, &b.r, &w);
+            let h = g.dot(&w, &b.r);
+            gravity_energy = g.sub(gravity_energy, h);
         }
     }
 
@@ -825,6 +952,41 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let potential_all = g.add(potential, gravity_energy);
     let energy_full = g.add(kinetic, potential_all);
 
+    // The articulated-body recursion, for a pure joint tree when it pays or is asked for.
+    let eligible = !nodes.is_empty()
+        && ast.bodies.is_empty()
+        && phi_full.is_empty()
+        && ast.frictions.is_empty();
+    let recursive = match ast.evaluation {
+        parse::Evaluation::MassMatrix => false,
+        parse::Evaluation::Recursive if !eligible => {
+            errors.at(ast.evaluation_span, "`recursive` evaluation needs a planar joint tree (`body`, `chain`) without constraints, friction or free-standing `particle`/`rigid` bodies");
+            false
+        }
+        parse::Evaluation::Recursive => true,
+        parse::Evaluation::Auto => eligible && nodes.len() >= RECURSIVE_FROM_BODIES,
+    };
+    let qdd_recursive: Vec<Option<Expr>> = if recursive {
+        let velocity: Vec<Expr> = coords.iter().map(|c| c.zd).collect();
+        let prescribed: Vec<Option<Expr>> = coords
+            .iter()
+            .map(|c| (!matches!(c.kind, CoordKind::Free)).then_some(c.zdd))
+            .collect();
+        let gravity = match &gravity {
+            Some(v) => [v[0], v[1]],
+            None => [zero, zero],
+        };
+        let inputs = tree::Inputs {
+            velocity: &velocity,
+            prescribed: &prescribed,
+            tau: &q_applied,
+            gravity,
+        };
+        tree::articulated_body(&mut g, &nodes, &inputs)
+    } else {
+        Vec::new()
+    };
+
     // Reduction: driven -> s(t), relaxed -> 0.
     let ts = g.as_sym(t).expect("symbol");
     let mut reduce: HashMap<Sym, Expr> = HashMap::new();
@@ -868,7 +1030,13 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     }
     full_rows.push(energy_full);
     full_rows.extend(&phi_full);
-    let reduced = g.substitute_all(&full_rows, &reduce);
+    let n_rows = full_rows.len();
+    if recursive {
+        // Every free coordinate is a joint's (a pure tree): the recursion gives each one.
+        full_rows.extend(free_idx.iter().map(|&i| qdd_recursive[i].unwrap_or(zero)));
+    }
+    let mut reduced = g.substitute_all(&full_rows, &reduce);
+    let recursive_qdd = recursive.then(|| reduced.split_off(n_rows));
     let mass: Vec<Vec<Expr>> = reduced[..n * n]
         .chunks(n.max(1))
         .take(n)
@@ -1194,6 +1362,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         events,
         frictions,
         frictionless,
+        recursive_qdd,
         init_q,
         init_qd,
     })

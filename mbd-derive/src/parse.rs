@@ -6,6 +6,7 @@
 //! the user's own tokens.
 
 use proc_macro2::Span;
+use quote::format_ident;
 use syn::punctuated::Punctuated;
 use syn::spanned::Spanned;
 use syn::{Attribute, Data, DeriveInput, Expr, Fields, Ident, Token};
@@ -124,6 +125,51 @@ pub struct Constraint {
     pub span: Span,
 }
 
+/// What moves a tree body relative to its parent; each joint brings its own coordinate.
+pub enum Joint {
+    /// Rotation about the joint origin: the body's angle is the parent's plus `coord`.
+    Revolute(Ident),
+    /// Translation along `axis` (in the parent's frame) by `coord`.
+    Prismatic { coord: Ident, axis: Expr },
+    /// Welded to the parent.
+    Fixed,
+}
+
+impl Joint {
+    pub fn coord(&self) -> Option<&Ident> {
+        match self {
+            Joint::Revolute(c) | Joint::Prismatic { coord: c, .. } => Some(c),
+            Joint::Fixed => None,
+        }
+    }
+}
+
+/// A planar body of the joint tree: its frame is its parent's frame moved by its joint.
+/// `at` (the joint origin, in the parent's frame), `angle` (a fixed offset) and `com`
+/// (the mass centre, in the body's frame) default to zero.
+pub struct TreeBody {
+    pub name: Ident,
+    /// `None`: the ground.
+    pub parent: Option<Ident>,
+    pub joint: Joint,
+    pub at: Option<Expr>,
+    pub angle: Option<Expr>,
+    pub com: Option<Expr>,
+    pub mass: Option<Expr>,
+    pub inertia: Option<Expr>,
+}
+
+/// How the accelerations of a joint tree are evaluated.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Evaluation {
+    /// The macro chooses (recursive for larger trees).
+    Auto,
+    /// The articulated-body recursion, O(n) in the bodies.
+    Recursive,
+    /// The mass matrix and a dense L D L^T solve.
+    MassMatrix,
+}
+
 pub struct Mechanism {
     pub ident: Ident,
     pub params: Vec<Param>,
@@ -135,6 +181,7 @@ pub struct Mechanism {
     pub relaxed: Vec<Ident>,
     pub constraints: Vec<Constraint>,
     pub bodies: Vec<Body>,
+    pub tree: Vec<TreeBody>,
     pub points: Vec<Point>,
     pub springs: Vec<Spring>,
     pub dampers: Vec<Damper>,
@@ -146,6 +193,8 @@ pub struct Mechanism {
     pub inits: Vec<Init>,
     /// Generate exact Jacobians `d qdd / dq`, `d qdd / dqd` for implicit methods.
     pub jacobian: bool,
+    pub evaluation: Evaluation,
+    pub evaluation_span: Span,
 }
 
 /// Collects errors so a model reports all its mistakes at once (serde's `Ctxt`).
@@ -347,6 +396,7 @@ impl Mechanism {
             relaxed: Vec::new(),
             constraints: Vec::new(),
             bodies: Vec::new(),
+            tree: Vec::new(),
             points: Vec::new(),
             springs: Vec::new(),
             dampers: Vec::new(),
@@ -357,6 +407,8 @@ impl Mechanism {
             events: Vec::new(),
             inits: Vec::new(),
             jacobian: false,
+            evaluation: Evaluation::Auto,
+            evaluation_span: Span::call_site(),
         };
         let mut dim_given = false;
         for attr in &input.attrs {
@@ -374,9 +426,13 @@ impl Mechanism {
                                 dim_given = true;
                             }
                             Arg::Flag(f) if f == "jacobian" => m.jacobian = true,
+                            Arg::Flag(f) if f == "recursive" || f == "mass_matrix" => {
+                                m.evaluation = if f == "recursive" { Evaluation::Recursive } else { Evaluation::MassMatrix };
+                                m.evaluation_span = f.span();
+                            }
                             Arg::Flag(f) => errors.at(
                                 f.span(),
-                                format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`"),
+                                format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `recursive`, `mass_matrix`"),
                             ),
                             Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
                             Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),
@@ -447,6 +503,33 @@ impl Mechanism {
                             kind,
                             name: item.name,
                         });
+                    }
+                }
+                "body" => {
+                    let keys = &["parent", "joint", "at", "angle", "com", "mass", "inertia"];
+                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &[]) {
+                        let joint = item
+                            .require("joint", &mut errors, "body")
+                            .and_then(|j| joint(j, &mut errors));
+                        let parent = item.take("parent").and_then(|p| parent(p, &mut errors));
+                        if let Some(joint) = joint {
+                            m.tree.push(TreeBody {
+                                parent,
+                                joint,
+                                at: item.take("at"),
+                                angle: item.take("angle"),
+                                com: item.take("com"),
+                                mass: item.require("mass", &mut errors, "body"),
+                                inertia: item.take("inertia"),
+                                name: item.name,
+                            });
+                        }
+                    }
+                }
+                "chain" => {
+                    let keys = &["n", "joint", "length", "mass", "inertia", "parent", "at"];
+                    if let Some(item) = Item::read(attr, &mut errors, keys, &[]) {
+                        chain(item, &mut m.tree, &mut errors);
                     }
                 }
                 "point" => {
@@ -612,6 +695,19 @@ impl Mechanism {
                 _ => {}
             }
         }
+        // Each joint brings its coordinate: free, unless a `drive` gives its law.
+        let mut moved = std::collections::HashSet::new();
+        for b in &m.tree {
+            let Some(c) = b.joint.coord() else { continue };
+            if !moved.insert(c.to_string()) {
+                errors.at(
+                    c.span(),
+                    format!("coordinate `{c}` is already moved by another joint"),
+                );
+            } else if !m.coords.contains(c) && !m.drives.iter().any(|d| d.name == *c) {
+                m.coords.push(c.clone());
+            }
+        }
         let mut seen = std::collections::HashSet::new();
         for name in m.outputs.iter().map(|o| &o.name) {
             if !seen.insert(name.to_string()) {
@@ -636,6 +732,114 @@ impl Mechanism {
         }
         errors.finish()?;
         Ok(m)
+    }
+}
+
+/// `revolute(q)`, `prismatic(s, [ax, ay])` or `fixed`.
+fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
+    const EXPECTED: &str =
+        "expected a joint: `revolute(coordinate)`, `prismatic(coordinate, [ax, ay])` or `fixed`";
+    match &e {
+        Expr::Path(p) if p.path.is_ident("fixed") => Some(Joint::Fixed),
+        Expr::Call(c) => {
+            let kind = match &*c.func {
+                Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+                _ => None,
+            };
+            let args: Vec<&Expr> = c.args.iter().collect();
+            let coord = match args.first().map(|a| classify((*a).clone())) {
+                Some(Arg::Flag(id)) => Some(id),
+                _ => None,
+            };
+            match (kind.as_deref(), coord, args.len()) {
+                (Some("revolute"), Some(q), 1) => Some(Joint::Revolute(q)),
+                (Some("prismatic"), Some(s), 2) => Some(Joint::Prismatic {
+                    coord: s,
+                    axis: args[1].clone(),
+                }),
+                _ => {
+                    errors.over(&e, EXPECTED);
+                    None
+                }
+            }
+        }
+        _ => {
+            errors.over(&e, EXPECTED);
+            None
+        }
+    }
+}
+
+/// A parent body's name, or `ground`.
+fn parent(e: Expr, errors: &mut Errors) -> Option<Ident> {
+    match classify(e) {
+        Arg::Flag(id) if id == "ground" => None,
+        Arg::Flag(id) => Some(id),
+        Arg::Keyed(k, _) => {
+            errors.at(k.span(), "`parent` names a body or `ground`");
+            None
+        }
+        Arg::Other(e) => {
+            errors.over(&e, "`parent` names a body or `ground`");
+            None
+        }
+    }
+}
+
+/// `chain(link, n = 3, joint = revolute, length = l, mass = m, inertia = i)`: `n` identical
+/// links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default),
+/// each turned by its relative angle `link_q1 ..` (zero: straight down, along the parent's
+/// `-y`), mass centre at mid-length.
+fn chain(mut item: Item, tree: &mut Vec<TreeBody>, errors: &mut Errors) {
+    let name = item.name.clone();
+    let n = match item.require("n", errors, "chain") {
+        Some(Expr::Lit(syn::ExprLit {
+            lit: syn::Lit::Int(i),
+            ..
+        })) => match i.base10_parse::<usize>() {
+            Ok(n) if n >= 1 => Some(n),
+            _ => {
+                errors.at(i.span(), "a chain has `n >= 1` links");
+                None
+            }
+        },
+        Some(other) => {
+            errors.over(&other, "`n` is the number of links, an integer literal");
+            None
+        }
+        None => None,
+    };
+    match item.require("joint", errors, "chain") {
+        Some(Expr::Path(p)) if p.path.is_ident("revolute") => {}
+        Some(other) => errors.over(&other, "a chain's links are joined by `revolute` joints"),
+        None => {}
+    }
+    let length = item.require("length", errors, "chain");
+    let mass = item.require("mass", errors, "chain");
+    let inertia = item.take("inertia");
+    let mut parent_name = item.take("parent").and_then(|p| parent(p, errors));
+    let at = item.take("at");
+    let (Some(n), Some(length)) = (n, length) else {
+        return;
+    };
+    let span = name.span();
+    for k in 1..=n {
+        let body = format_ident!("{}_{}", name, k, span = span);
+        let coord = format_ident!("{}_q{}", name, k, span = span);
+        tree.push(TreeBody {
+            name: body.clone(),
+            parent: parent_name.replace(body),
+            joint: Joint::Revolute(coord),
+            at: if k == 1 {
+                at.clone()
+            } else {
+                Some(syn::parse_quote_spanned!(span=> [0.0, -(#length)]))
+            },
+            angle: None,
+            com: Some(syn::parse_quote_spanned!(span=> [0.0, -(#length) / 2.0])),
+            mass: mass.clone(),
+            inertia: inertia.clone(),
+        });
     }
 }
 

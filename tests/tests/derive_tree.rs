@@ -1,0 +1,279 @@
+//! Joint trees (`body`, `chain`): frames composed by the macro, accelerations by the
+//! articulated-body recursion, each checked against an independent derivation:
+//! the same mechanism written out body by body in explicit expressions (kinematics),
+//! the mass-matrix form of Kane's equations (dynamics), and closed forms.
+
+use approx::assert_relative_eq;
+use mbd::integrate::{Dopri5, Integrator, Options};
+use mbd::prelude::*;
+use mbd::{Matrix, Vector};
+
+/// Deterministic pseudo-random numbers in `[-1, 1)` (a linear congruential generator).
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+    fn vector<const N: usize>(&mut self, scale: f64) -> Vector<N> {
+        Vector::<N>::from_fn(|_, _| scale * self.next())
+    }
+}
+
+/// Five uniform links; `chain` chooses the recursion (five bodies).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[chain(link, n = 5, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0)]
+pub struct Chain5 {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// The same chain, forced onto the mass-matrix solve.
+#[derive(Debug, Mechanism)]
+#[mechanism(mass_matrix)]
+#[gravity(0.0, -g)]
+#[chain(link, n = 5, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0)]
+pub struct Chain5Dense {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// The same chain written out: relative angles `q1..q5`, absolute `t_k = q1 + .. + qk`,
+/// link `k` along `(sin t_k, -cos t_k)` from the end of link `k - 1`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(q1, q2, q3, q4, q5)]
+#[point(j2, at = [l * sin(q1), -l * cos(q1)])]
+#[point(j3, at = j2 + [l * sin(q1 + q2), -l * cos(q1 + q2)])]
+#[point(j4, at = j3 + [l * sin(q1 + q2 + q3), -l * cos(q1 + q2 + q3)])]
+#[point(j5, at = j4 + [l * sin(q1 + q2 + q3 + q4), -l * cos(q1 + q2 + q3 + q4)])]
+#[rigid(l1, mass = m, inertia = m * l * l / 12.0, angle = q1,
+        at = [l / 2.0 * sin(q1), -l / 2.0 * cos(q1)])]
+#[rigid(l2, mass = m, inertia = m * l * l / 12.0, angle = q1 + q2,
+        at = j2 + [l / 2.0 * sin(q1 + q2), -l / 2.0 * cos(q1 + q2)])]
+#[rigid(l3, mass = m, inertia = m * l * l / 12.0, angle = q1 + q2 + q3,
+        at = j3 + [l / 2.0 * sin(q1 + q2 + q3), -l / 2.0 * cos(q1 + q2 + q3)])]
+#[rigid(l4, mass = m, inertia = m * l * l / 12.0, angle = q1 + q2 + q3 + q4,
+        at = j4 + [l / 2.0 * sin(q1 + q2 + q3 + q4), -l / 2.0 * cos(q1 + q2 + q3 + q4)])]
+#[rigid(l5, mass = m, inertia = m * l * l / 12.0, angle = q1 + q2 + q3 + q4 + q5,
+        at = j5 + [l / 2.0 * sin(q1 + q2 + q3 + q4 + q5), -l / 2.0 * cos(q1 + q2 + q3 + q4 + q5)])]
+pub struct Chain5Explicit {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+#[test]
+fn chain_recursion_equals_mass_matrix_and_explicit_model() {
+    let (m, l, g) = (1.3, 0.45, 9.81);
+    let rec = Chain5 { m, l, g };
+    let dense = Chain5Dense { m, l, g };
+    let explicit = Chain5Explicit { m, l, g };
+    assert!(Chain5::GENERATED.parts.contains(&"articulated_body"));
+    assert!(!Chain5Dense::GENERATED.parts.contains(&"articulated_body"));
+    assert_eq!(
+        <Chain5 as MechanismModel<5>>::COORDINATES,
+        ["link_q1", "link_q2", "link_q3", "link_q4", "link_q5"]
+    );
+    let mut rng = Lcg(7);
+    for _ in 0..20 {
+        let q: Vector<5> = rng.vector(3.0);
+        let qd: Vector<5> = rng.vector(4.0);
+        let a_rec = MechanismModel::acceleration(&rec, 0.0, &q, &qd).unwrap();
+        let a_dense = MechanismModel::acceleration(&dense, 0.0, &q, &qd).unwrap();
+        let a_exp = MechanismModel::acceleration(&explicit, 0.0, &q, &qd).unwrap();
+        let scale = a_exp.norm();
+        assert!(
+            (a_rec - a_exp).norm() <= 1e-12 * scale,
+            "{a_rec} vs {a_exp}"
+        );
+        assert!((a_dense - a_exp).norm() <= 1e-12 * scale);
+        // The frames: the mass matrices of the composed and the written-out chain agree.
+        let (mr, me): (Matrix<5, 5>, Matrix<5, 5>) =
+            (rec.mass_matrix(0.0, &q), explicit.mass_matrix(0.0, &q));
+        assert!((mr - me).norm() <= 1e-13 * me.norm());
+    }
+}
+
+/// A compound pendulum as a one-body tree, forced onto the recursion. By hand, about the
+/// pivot: `(I + m d^2) theta'' = -m g d sin(theta)` with `d = l / 2`.
+#[derive(Debug, Mechanism)]
+#[mechanism(recursive)]
+#[gravity(0.0, -g)]
+#[body(bar, joint = revolute(theta), com = [0.0, -l / 2.0], mass = m, inertia = m * l * l / 12.0)]
+pub struct CompoundPendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+#[test]
+fn one_body_recursion_matches_the_compound_pendulum() {
+    let p = CompoundPendulum {
+        m: 2.0,
+        l: 0.8,
+        g: 9.81,
+    };
+    for theta in [-2.0, -0.3, 0.0, 0.7, 2.9] {
+        let qdd =
+            MechanismModel::acceleration(&p, 0.0, &Vector::<1>::new(theta), &Vector::<1>::new(1.7))
+                .unwrap();
+        let d = 0.4;
+        let exact = -2.0 * 9.81 * d * f64::sin(theta) / (2.0 * 0.64 / 12.0 + 2.0 * d * d);
+        assert_relative_eq!(qdd[0], exact, max_relative = 1e-14, epsilon = 1e-15);
+    }
+}
+
+/// A branched tree with every joint kind, a driven joint and applied forces:
+/// a cart on a prismatic joint; an arm pinned to it; a slider running along the arm; a
+/// weight welded to the arm's end at 0.3 rad; a wheel pinned to the cart; a flap on the
+/// weight driven by `d(t)`; a spring, a damper, a viscous torque and a generalised force.
+#[derive(Debug, Mechanism)]
+#[mechanism(recursive)]
+#[gravity(0.0, -g)]
+#[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = m1, inertia = 0.3)]
+#[body(arm, parent = cart, joint = revolute(a), at = [0.1, 0.05], com = [0.0, -0.4],
+       mass = m2, inertia = 0.05)]
+#[body(slider, parent = arm, joint = prismatic(s, [0.0, -1.0]), at = [0.0, -0.2],
+       com = [0.02, 0.0], mass = 0.7, inertia = 0.01)]
+#[body(weight, parent = arm, joint = fixed, at = [0.0, -0.8], angle = 0.3, com = [0.05, 0.0],
+       mass = 0.4, inertia = 0.002)]
+#[body(wheel, parent = cart, joint = revolute(w), at = [-0.2, 0.0], com = [0.03, 0.0],
+       mass = 0.5, inertia = 0.02)]
+#[body(flap, parent = weight, joint = revolute(d), com = [0.0, -0.1], mass = 0.2, inertia = 0.001)]
+#[drive(d = 0.5 * sin(2.0 * t))]
+#[spring(k1, from = [0.0, 0.0], to = slider, k = 50.0, length = 0.3)]
+#[damper(c1, from = [0.0, 1.0], to = wheel, c = 2.0)]
+#[torque(tq, on = arm, value = -0.7 * der(a) + 0.4 * cos(w))]
+#[generalized_force(gf, along = x, value = -3.0 * x)]
+pub struct Tree {
+    pub m1: f64,
+    pub m2: f64,
+    pub g: f64,
+}
+
+/// The same tree on the mass-matrix solve.
+#[derive(Debug, Mechanism)]
+#[mechanism(mass_matrix)]
+#[gravity(0.0, -g)]
+#[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = m1, inertia = 0.3)]
+#[body(arm, parent = cart, joint = revolute(a), at = [0.1, 0.05], com = [0.0, -0.4],
+       mass = m2, inertia = 0.05)]
+#[body(slider, parent = arm, joint = prismatic(s, [0.0, -1.0]), at = [0.0, -0.2],
+       com = [0.02, 0.0], mass = 0.7, inertia = 0.01)]
+#[body(weight, parent = arm, joint = fixed, at = [0.0, -0.8], angle = 0.3, com = [0.05, 0.0],
+       mass = 0.4, inertia = 0.002)]
+#[body(wheel, parent = cart, joint = revolute(w), at = [-0.2, 0.0], com = [0.03, 0.0],
+       mass = 0.5, inertia = 0.02)]
+#[body(flap, parent = weight, joint = revolute(d), com = [0.0, -0.1], mass = 0.2, inertia = 0.001)]
+#[drive(d = 0.5 * sin(2.0 * t))]
+#[spring(k1, from = [0.0, 0.0], to = slider, k = 50.0, length = 0.3)]
+#[damper(c1, from = [0.0, 1.0], to = wheel, c = 2.0)]
+#[torque(tq, on = arm, value = -0.7 * der(a) + 0.4 * cos(w))]
+#[generalized_force(gf, along = x, value = -3.0 * x)]
+pub struct TreeDense {
+    pub m1: f64,
+    pub m2: f64,
+    pub g: f64,
+}
+
+/// The same tree written out by hand, frame by frame (`R(a) v` expanded):
+/// cart origin `(x, 0)`; arm origin `(x + 0.1, 0.05)`, angle `a`; slider origin
+/// `arm + R(a) (0, -0.2 - s)`, angle `a`; weight origin `arm + R(a) (0, -0.8)`, angle
+/// `a + 0.3`; wheel origin `(x - 0.2, 0)`, angle `w`; flap origin = weight origin, angle
+/// `a + 0.3 + d`; each mass centre = origin + R(angle) com.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x, a, s, w)]
+#[drive(d = 0.5 * sin(2.0 * t))]
+#[point(wo, at = [x + 0.1 + 0.8 * sin(a), 0.05 - 0.8 * cos(a)])]
+#[rigid(cart, mass = m1, inertia = 0.3, at = [x, 0.0], angle = 0.0)]
+#[rigid(arm, mass = m2, inertia = 0.05, angle = a,
+        at = [x + 0.1 + 0.4 * sin(a), 0.05 - 0.4 * cos(a)])]
+#[rigid(slider, mass = 0.7, inertia = 0.01, angle = a,
+        at = [x + 0.1 + (0.2 + s) * sin(a) + 0.02 * cos(a), 0.05 - (0.2 + s) * cos(a) + 0.02 * sin(a)])]
+#[rigid(weight, mass = 0.4, inertia = 0.002, angle = a + 0.3,
+        at = wo + [0.05 * cos(a + 0.3), 0.05 * sin(a + 0.3)])]
+#[rigid(wheel, mass = 0.5, inertia = 0.02, angle = w,
+        at = [x - 0.2 + 0.03 * cos(w), 0.03 * sin(w)])]
+#[rigid(flap, mass = 0.2, inertia = 0.001, angle = a + 0.3 + d,
+        at = wo + [0.1 * sin(a + 0.3 + d), -0.1 * cos(a + 0.3 + d)])]
+#[spring(k1, from = [0.0, 0.0], to = slider, k = 50.0, length = 0.3)]
+#[damper(c1, from = [0.0, 1.0], to = wheel, c = 2.0)]
+#[torque(tq, on = arm, value = -0.7 * der(a) + 0.4 * cos(w))]
+#[generalized_force(gf, along = x, value = -3.0 * x)]
+pub struct TreeExplicit {
+    pub m1: f64,
+    pub m2: f64,
+    pub g: f64,
+}
+
+#[test]
+fn branched_tree_with_every_joint_kind() {
+    let (m1, m2, g) = (2.5, 1.1, 9.81);
+    let rec = Tree { m1, m2, g };
+    let dense = TreeDense { m1, m2, g };
+    let explicit = TreeExplicit { m1, m2, g };
+    assert!(Tree::GENERATED.parts.contains(&"articulated_body"));
+    // The joints brought their coordinates, in declaration order; `d` is driven.
+    assert_eq!(
+        <Tree as MechanismModel<4>>::COORDINATES,
+        ["x", "a", "s", "w"]
+    );
+    let mut rng = Lcg(11);
+    for _ in 0..20 {
+        let t = 2.0 * rng.next();
+        let q: Vector<4> = rng.vector(1.5);
+        let qd: Vector<4> = rng.vector(3.0);
+        let a_rec = MechanismModel::acceleration(&rec, t, &q, &qd).unwrap();
+        let a_dense = MechanismModel::acceleration(&dense, t, &q, &qd).unwrap();
+        let a_exp = MechanismModel::acceleration(&explicit, t, &q, &qd).unwrap();
+        let scale = a_exp.norm();
+        assert!(
+            (a_rec - a_exp).norm() <= 1e-12 * scale,
+            "{a_rec} vs {a_exp}"
+        );
+        assert!((a_dense - a_exp).norm() <= 1e-12 * scale);
+        let e = explicit.energy(t, &q, &qd);
+        assert_relative_eq!(rec.energy(t, &q, &qd), e, max_relative = 1e-13);
+    }
+}
+
+/// A conservative chain keeps its energy: Kane's energy function, integrated with the
+/// recursion's accelerations.
+#[test]
+fn recursive_chain_conserves_energy() {
+    let chain = Chain5 {
+        m: 0.8,
+        l: 0.3,
+        g: 9.81,
+    };
+    let mut y0 = Vector::<10>::zeros();
+    y0[0] = 1.2;
+    y0[2] = -0.5;
+    y0[6] = 2.0;
+    let opts = Options {
+        rtol: 1e-11,
+        atol: 1e-11,
+        dense: false,
+        ..Options::default()
+    };
+    let sol = Dopri5::new(opts).solve(&chain, 0.0, y0, 3.0, &[]).unwrap();
+    let energy = |y: &Vector<10>| {
+        let (q, qd) = (
+            y.fixed_rows::<5>(0).into_owned(),
+            y.fixed_rows::<5>(5).into_owned(),
+        );
+        chain.energy(0.0, &q, &qd)
+    };
+    let (e0, e1) = (energy(&y0), energy(sol.y.last().unwrap()));
+    // The potential's scale, m g l n^2 / 2, sets the relative measure (e0 may be near 0).
+    let scale = 0.8 * 9.81 * 0.3 * 12.5;
+    assert!((e1 - e0).abs() <= 1e-9 * scale, "energy {e0} -> {e1}");
+}
