@@ -77,6 +77,7 @@ pub use nalgebra;
 /// What a mechanism file needs in scope.
 pub mod prelude {
     pub use crate::Mechanism;
+    pub use mbd_core::ensemble::{self, Member};
     pub use mbd_core::{
         Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Vector,
     };
