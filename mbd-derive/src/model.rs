@@ -266,7 +266,7 @@ type Names = HashMap<String, Binding>;
 
 /// From how many tree bodies the articulated-body recursion replaces the mass-matrix solve
 /// (measured with `cargo bench -p mechanisms --bench rhs`: see docs/ARCHITECTURE.md).
-const RECURSIVE_FROM_BODIES: usize = 4;
+const RECURSIVE_FROM_BODIES: usize = 2;
 
 pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     let mut errors = Errors::default();

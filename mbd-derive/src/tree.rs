@@ -152,6 +152,7 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
         c.push(ci);
     }
     // Pass 2, tips to root: articulated inertias and bias forces.
+    // Per free joint: `U = I^A S`, `1 / D` and `u = tau - S . p^A`.
     let mut u_vec: Vec<Option<(V3, Expr, Expr)>> = (0..n).map(|_| None).collect();
     for i in (0..n).rev() {
         let node = &nodes[i];
@@ -163,17 +164,21 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
                     let d = g.dot(&si, &u);
                     let sp = g.dot(&si, &p_a);
                     let u_force = g.sub(inp.tau[j], sp);
-                    u_vec[i] = Some((u, d, u_force));
+                    // One division per joint; the articulated inertia stays symmetric.
+                    let one = g.one();
+                    let inv_d = g.div(one, d);
+                    u_vec[i] = Some((u, inv_d, u_force));
+                    let u_scaled = scale3(g, u, inv_d);
                     let mut i_pass = i_a;
                     for r in 0..3 {
-                        for k in 0..3 {
-                            let uu = g.mul(u[r], u[k]);
-                            let uud = g.div(uu, d);
-                            i_pass[r][k] = g.sub(i_a[r][k], uud);
+                        for k in r..3 {
+                            let uu = g.mul(u_scaled[r], u[k]);
+                            i_pass[r][k] = g.sub(i_a[r][k], uu);
+                            i_pass[k][r] = i_pass[r][k];
                         }
                     }
                     let ic = mat_vec(g, &i_pass, c[i]);
-                    let ud = g.div(u_force, d);
+                    let ud = g.mul(u_force, inv_d);
                     let uu = scale3(g, u, ud);
                     let p = add3(g, p_a, ic);
                     (i_pass, add3(g, p, uu))
@@ -189,8 +194,9 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
         };
         if let Some(p) = node.parent {
             for r in 0..3 {
-                for k in 0..3 {
+                for k in r..3 {
                     ia[p][r][k] = g.add(ia[p][r][k], i_pass[r][k]);
+                    ia[p][k][r] = ia[p][r][k];
                 }
             }
             pa[p] = add3(g, pa[p], p_pass);
@@ -209,10 +215,10 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
         let ai = match (s[i], node.joint.coord()) {
             (Some(si), Some(j)) => {
                 let acc = match (&u_vec[i], inp.prescribed[j]) {
-                    (Some((u, d, u_force)), None) => {
+                    (Some((u, inv_d, u_force)), None) => {
                         let ua = g.dot(u, &a_prime);
                         let num = g.sub(*u_force, ua);
-                        let acc = g.div(num, *d);
+                        let acc = g.mul(num, *inv_d);
                         qdd[j] = Some(acc);
                         acc
                     }

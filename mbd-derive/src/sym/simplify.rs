@@ -14,13 +14,16 @@
 //! - `x / c = (1/c) x` only when `c` is a power of two (then `1/c` is exact), and
 //!   `(c x) / y = c (x / y)`;
 //! - `powf(x, n)` with an integer constant `n` becomes `powi(x, n)`;
+//! - one product associated two ways cancels: `(x y) z - x (y z) = 0`;
+//! - Pythagoras: `k (A sin u)^2 + k (A cos u)^2 = k A^2` and `k sin(u)^2 + k cos(u)^2 = k`
+//!   (when the two terms meet in one `add`);
 //! - commutative operands (`Add`, `Mul`, `Min`, `Max`) are put in a canonical order
 //!   (constant first, then by id), so `a + b` and `b + a` are one node.
 //!
 //! Not done, on purpose: `sqrt(x^2) = x` and `sqrt(x)^2 = x` (wrong for `x < 0`), `x / x = 1`
 //! (wrong for `x = 0`). Not done for now: flattening sums and products into a canonical
 //! n-ary form, so like terms are collected only when they meet in one `add`
-//! (`(a + b) + a` stays as it is).
+//! (`(a + b) + a` stays as it is) and products are compared as factor lists only there.
 //!
 //! IEEE caveats: the rewrites are identities of real arithmetic on finite values.
 //! `0 * x = 0` and `x - x = 0` differ from IEEE when `x` is infinite or NaN, `0 / x = 0`
@@ -139,8 +142,81 @@ impl Graph {
             let k = self.constant(ka + kb);
             return self.mul(k, ta);
         }
+        if ka == -kb && self.same_product(ta, tb) {
+            return self.zero();
+        }
+        if ka == kb
+            && let Some(s) = self.pythagoras(ta, tb)
+        {
+            let k = self.constant(ka);
+            return self.mul(k, s);
+        }
         let (a, b) = self.ordered(a, b);
         self.intern(Node::Add(a, b))
+    }
+
+    /// Whether `a` and `b` are one product associated differently, `(x y) z` and `x (y z)`:
+    /// the same factors with the same coefficient. Kane's velocity-product terms cancel
+    /// this way (`l cos(u) (u' (u' l sin u)) - l sin(u) (u' (u' l cos u))`).
+    fn same_product(&self, a: Expr, b: Expr) -> bool {
+        /// Products longer than this are left alone (the check stays cheap).
+        const MAX_FACTORS: usize = 24;
+        let factors = |e: Expr| -> Option<(f64, Vec<Expr>)> {
+            let (mut k, mut out, mut stack) = (1.0, Vec::new(), vec![(e, 1)]);
+            while let Some((x, n)) = stack.pop() {
+                match self.node(x) {
+                    Node::Mul(p, q) => stack.extend([(p, n), (q, n)]),
+                    Node::Neg(p) => {
+                        k = -k;
+                        stack.push((p, n));
+                    }
+                    Node::Powi(p, m) if m > 0 => stack.push((p, n * m)),
+                    Node::Const(c) => k *= c.value().powi(n),
+                    _ => out.extend(std::iter::repeat_n(x, n as usize)),
+                }
+                if out.len() > MAX_FACTORS {
+                    return None;
+                }
+            }
+            out.sort_unstable();
+            Some((k, out))
+        };
+        a != b && matches!((factors(a), factors(b)), (Some(x), Some(y)) if x == y)
+    }
+
+    /// `(A sin u)^2 + (A cos u)^2 = A^2` and `sin(u)^2 + cos(u)^2 = 1`: the sum every
+    /// rotating point puts into a mass matrix (`m |dr/dq|^2`).
+    fn pythagoras(&mut self, a: Expr, b: Expr) -> Option<Expr> {
+        // `e` as `(A, u, is_sin)` if it is `(A trig(u))^2` or `trig(u)^2`.
+        let square = |g: &Self, e: Expr| -> Option<(Option<Expr>, Expr, bool)> {
+            let Node::Powi(base, 2) = g.node(e) else {
+                return None;
+            };
+            let trig = |x: Expr| match g.node(x) {
+                Node::Call(Func::Sin, u) => Some((u, true)),
+                Node::Call(Func::Cos, u) => Some((u, false)),
+                _ => None,
+            };
+            if let Some((u, s)) = trig(base) {
+                return Some((None, u, s));
+            }
+            let Node::Mul(x, y) = g.node(base) else {
+                return None;
+            };
+            match (trig(x), trig(y)) {
+                (Some((u, s)), _) => Some((Some(y), u, s)),
+                (None, Some((u, s))) => Some((Some(x), u, s)),
+                (None, None) => None,
+            }
+        };
+        let ((fa, ua, sa), (fb, ub, sb)) = (square(self, a)?, square(self, b)?);
+        if fa != fb || ua != ub || sa == sb {
+            return None;
+        }
+        Some(match fa {
+            Some(f) => self.powi(f, 2),
+            None => self.one(),
+        })
     }
 
     pub fn sub(&mut self, a: Expr, b: Expr) -> Expr {

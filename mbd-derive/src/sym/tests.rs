@@ -687,3 +687,62 @@ fn very_deep_expressions_do_not_recurse() {
     assert!((g.eval(swapped, &|_| x0) - v).abs() <= 1e-12 * v.abs());
     assert_eq!(super::schedule(&g, &[e]).len(), 2 * DEPTH);
 }
+
+/// Pythagoras as a mass matrix meets it: `m (l cos u)^2 + m (l sin u)^2 = m l^2`, in
+/// either order and bare (`sin^2 + cos^2 = 1`); unlike arguments or factors stay apart.
+#[test]
+fn pythagoras_collapses_rotating_point_sums() {
+    let mut g = Graph::new();
+    let (u, v, l, m) = (g.symbol("u"), g.symbol("v"), g.symbol("l"), g.symbol("m"));
+    let (s, c) = (g.call(Func::Sin, u), g.call(Func::Cos, u));
+    let (ls, lc) = (g.mul(l, s), g.mul(l, c));
+    let (ls2, lc2) = (g.powi(ls, 2), g.powi(lc, 2));
+    let l2 = g.powi(l, 2);
+    assert_eq!(g.add(lc2, ls2), l2);
+    assert_eq!(g.add(ls2, lc2), l2);
+    let three = g.constant(3.0);
+    let (a, b) = (g.mul(three, ls2), g.mul(three, lc2));
+    let three_l2 = g.mul(three, l2);
+    assert_eq!(g.add(a, b), three_l2);
+    let (s2, c2) = (g.powi(s, 2), g.powi(c, 2));
+    assert_eq!(g.add(s2, c2), g.one());
+    // Different angles, different factors, unequal coefficients: no rewrite.
+    let cv = g.call(Func::Cos, v);
+    let cv2 = g.powi(cv, 2);
+    let mixed = g.add(s2, cv2);
+    assert!(g.as_const(mixed).is_none());
+    let mc = g.mul(m, c);
+    let mc2b = g.powi(mc, 2);
+    let uneven = g.add(ls2, mc2b);
+    assert!(!matches!(g.node(uneven), super::Node::Powi(_, 2)));
+    let two = g.constant(2.0);
+    let two_s2 = g.mul(two, s2);
+    let uneq = g.add(two_s2, c2);
+    assert!(g.as_const(uneq).is_none());
+}
+
+/// One product associated two ways cancels in a difference; different products do not.
+#[test]
+fn reassociated_products_cancel() {
+    let mut g = Graph::new();
+    let (u, w, l) = (g.symbol("u"), g.symbol("w"), g.symbol("l"));
+    let (s, c) = (g.call(Func::Sin, u), g.call(Func::Cos, u));
+    let (ls, lc) = (g.mul(l, s), g.mul(l, c));
+    // l cos(u) (w (w l sin u)) - l sin(u) (w (w l cos u))
+    let (wls, wlc) = (g.mul(w, ls), g.mul(w, lc));
+    let (wwls, wwlc) = (g.mul(w, wls), g.mul(w, wlc));
+    let (a, b) = (g.mul(lc, wwls), g.mul(ls, wwlc));
+    assert_eq!(g.sub(a, b), g.zero());
+    // w^2 l as a power and as a product.
+    let w2 = g.powi(w, 2);
+    let (p, ww) = (g.mul(w2, l), g.mul(w, w));
+    let wwl = g.mul(ww, l);
+    let wl = g.mul(w, l);
+    let wwl2 = g.mul(w, wl);
+    assert_eq!(g.sub(p, wwl2), g.zero());
+    assert_eq!(g.sub(wwl, wwl2), g.zero());
+    // Not the same product: kept.
+    let other = g.mul(w, ls);
+    let d = g.sub(other, wl);
+    assert!(g.as_const(d).is_none());
+}
