@@ -1,0 +1,543 @@
+//! How the derive scales with the number of bodies: planar chains of N = 2, 4, 8, 16, 32
+//! (64 with `--max 64`) uniform links, each compiled as its own throw-away crate.
+//!
+//! `cargo run --release -p mechanisms --bin scaling [-- --json --max 32 --form explicit|chain]`
+//!
+//! Per N the report gives
+//! - `expand_s`: the derive's own expansion time, written by the macro itself when the build
+//!   runs with `MBD_EXPAND_DUMP=<dir>` (`<dir>/<Struct>.time`);
+//! - `build_s`: the wall time of `cargo build --release` of the throw-away crate, expansion
+//!   included, with every dependency already built by a warm-up build into the same shared
+//!   target directory (so only the chain crate compiles);
+//! - `generated_lines`: the macro's output (`<dir>/<Struct>.rs`, one token string) parsed with
+//!   `syn::parse_file` and formatted with `prettyplease`, counted in lines;
+//! - `rhs_ns`: the generated `OdeSystem::rhs`, timed by the throw-away binary itself (median
+//!   of 201 batches, each long enough to be timed, at a fixed pseudo-random state);
+//! - `handwritten_rhs_ns`: the hand-written articulated-body algorithm
+//!   ([`mechanisms::chain_by_hand`]) for the same chain at the same state, timed in this
+//!   process right after, with the same timing code (one macro defines it here and writes
+//!   its source into the throw-away crate);
+//! - `max_rel_diff`: `|rhs_generated - rhs_by_hand|_inf / |rhs_by_hand|_inf` at that state;
+//! - `generated_parts`, and `recursive`: whether the derive chose its recursive
+//!   (`articulated_body`) evaluation.
+//!
+//! Forms: `explicit` writes every link as a `#[rigid]` with its position and angle written
+//! out; `chain` writes the joint-tree `#[chain(..)]`. Without `--form` the report probes
+//! `chain` at N = 2 and falls back to `explicit` (saying so on stderr) when that fails.
+//! A failed build or run is a row with an `error`, not a panic. `--max` defaults to 32: the
+//! explicit form's build grows too fast to wait for N = 64 on a two-core machine.
+
+use clap::{Parser, ValueEnum};
+use mbd::{OdeSystem, Vector};
+use mechanisms::chain_by_hand::{ChainByHand, chain_source, explicit_source};
+use serde::Serialize;
+use std::fs;
+use std::io::Read;
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Defines the timing function here and keeps its source text for the throw-away crates, so
+/// the generated and the hand-written right-hand sides are timed by the same code.
+macro_rules! shared_timer {
+    ($($code:tt)*) => {
+        $($code)*
+        const TIMER_SRC: &str = stringify!($($code)*);
+    };
+}
+
+shared_timer! {
+    // Median over 201 batches of ns per call; a batch is long enough (>= 200 us) to time.
+    fn median_ns<F: FnMut()>(mut f: F) -> f64 {
+        let mut batch: u64 = 1;
+        loop {
+            let start = std::time::Instant::now();
+            for _ in 0..batch {
+                f();
+            }
+            if start.elapsed().as_secs_f64() >= 2e-4 || batch >= 1 << 24 {
+                break;
+            }
+            batch *= 2;
+        }
+        let mut samples: Vec<f64> = Vec::with_capacity(201);
+        for _ in 0..201 {
+            let start = std::time::Instant::now();
+            for _ in 0..batch {
+                f();
+            }
+            samples.push(start.elapsed().as_secs_f64() * 1e9 / batch as f64);
+        }
+        samples.sort_by(f64::total_cmp);
+        samples[samples.len() / 2]
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum Form {
+    /// Every link a `#[rigid]` with its position and angle written out.
+    Explicit,
+    /// The joint-tree `#[chain(..)]` attribute.
+    Chain,
+}
+
+#[derive(Debug, Parser)]
+#[command(about = "Compile cost and run-time cost of generated N-link chains")]
+struct Args {
+    /// Print the rows as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Largest N (of 2, 4, 8, 16, 32, 64). 32 by default: N = 64 in the explicit form takes
+    /// too long to build here.
+    #[arg(long, default_value_t = 32)]
+    max: usize,
+    /// Model form; default: `chain` if it builds at N = 2, else `explicit`.
+    #[arg(long, value_enum)]
+    form: Option<Form>,
+    /// Where the throw-away crates are written (default: <workspace>/target/scaling).
+    #[arg(long)]
+    work_dir: Option<PathBuf>,
+    /// CARGO_TARGET_DIR shared by the throw-away crates (default: <work-dir>/target).
+    #[arg(long)]
+    target_dir: Option<PathBuf>,
+    /// Give up one build after this many seconds (the row reports it).
+    #[arg(long, default_value_t = 1200)]
+    timeout: u64,
+}
+
+/// One row of the report.
+#[derive(Debug, Clone, Default, Serialize)]
+struct Row {
+    n_bodies: usize,
+    form: Option<Form>,
+    expand_s: Option<f64>,
+    build_s: Option<f64>,
+    generated_lines: Option<usize>,
+    rhs_ns: Option<f64>,
+    handwritten_rhs_ns: Option<f64>,
+    /// `rhs_ns / handwritten_rhs_ns`.
+    ratio: Option<f64>,
+    statements: Option<usize>,
+    generated_parts: Vec<String>,
+    recursive: Option<bool>,
+    max_rel_diff: Option<f64>,
+    error: Option<String>,
+}
+
+const M: f64 = 1.3;
+const L: f64 = 0.7;
+const G: f64 = 9.81;
+
+fn main() {
+    let args = Args::parse();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("mechanisms/ sits in the workspace")
+        .to_path_buf();
+    let work = args
+        .work_dir
+        .clone()
+        .unwrap_or_else(|| root.join("target").join("scaling"));
+    let target = args
+        .target_dir
+        .clone()
+        .unwrap_or_else(|| work.join("target"));
+    let timeout = Duration::from_secs(args.timeout);
+    let ns: Vec<usize> = [2, 4, 8, 16, 32, 64]
+        .into_iter()
+        .filter(|&n| n <= args.max)
+        .collect();
+    if args.max < 64 {
+        eprintln!("scaling: N up to {} (pass --max 64 for N = 64)", args.max);
+    }
+    let ctx = Ctx {
+        root,
+        work,
+        target,
+        timeout,
+    };
+
+    // The form, and the warm-up build that compiles every dependency once.
+    let form = match args.form {
+        Some(f) => f,
+        None => {
+            eprintln!("scaling: probing the `chain` form at N = 2 (also the warm-up build)");
+            match ctx.build(2, Form::Chain, false) {
+                Ok(_) => Form::Chain,
+                Err(e) => {
+                    eprintln!(
+                        "scaling: note: the `chain` form does not build yet, using `explicit`:\n{}",
+                        indent(&e)
+                    );
+                    Form::Explicit
+                }
+            }
+        }
+    };
+    eprintln!("scaling: warm-up build ({form:?} form, N = 2)");
+    if let Err(e) = ctx.build(2, form, false) {
+        eprintln!("scaling: warm-up build failed:\n{}", indent(&e));
+    }
+
+    let mut rows = Vec::new();
+    for &n in &ns {
+        let row = ctx.row(n, form);
+        if let Some(e) = &row.error {
+            eprintln!("[N={n}] error:\n{}", indent(e));
+        }
+        rows.push(row);
+    }
+
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).expect("rows serialise")
+        );
+    } else {
+        print_table(form, &rows);
+    }
+}
+
+struct Ctx {
+    root: PathBuf,
+    work: PathBuf,
+    target: PathBuf,
+    timeout: Duration,
+}
+
+impl Ctx {
+    fn crate_dir(&self, n: usize) -> PathBuf {
+        self.work.join(format!("chain{n}"))
+    }
+
+    fn dump_dir(&self, n: usize) -> PathBuf {
+        self.crate_dir(n).join("expand")
+    }
+
+    /// Write the throw-away crate for `n` links and build it; returns the build's wall time
+    /// or the compiler's error.
+    fn build(&self, n: usize, form: Form, dump: bool) -> Result<f64, String> {
+        let dir = self.crate_dir(n);
+        write_crate(&self.root, &dir, n, form).map_err(|e| format!("writing the crate: {e}"))?;
+        let dump_dir = self.dump_dir(n);
+        let _ = fs::remove_dir_all(&dump_dir);
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+        let mut cmd = Command::new(cargo);
+        cmd.args(["build", "--release", "--color", "never"])
+            .current_dir(&dir)
+            .env("CARGO_TARGET_DIR", &self.target)
+            .env_remove("MBD_EXPAND_DUMP");
+        if dump {
+            cmd.env("MBD_EXPAND_DUMP", &dump_dir);
+        }
+        let log = dir.join("build.log");
+        let start = Instant::now();
+        let status = run_with_timeout(&mut cmd, &log, self.timeout)?;
+        let seconds = start.elapsed().as_secs_f64();
+        if status {
+            Ok(seconds)
+        } else {
+            let text = fs::read_to_string(&log).unwrap_or_default();
+            Err(compiler_errors(&text))
+        }
+    }
+
+    fn row(&self, n: usize, form: Form) -> Row {
+        let mut row = Row {
+            n_bodies: n,
+            form: Some(form),
+            ..Row::default()
+        };
+        eprintln!("[N={n}] building ({form:?} form)");
+        match self.build(n, form, true) {
+            Ok(s) => row.build_s = Some(s),
+            Err(e) => {
+                row.error = Some(format!("build failed: {e}"));
+                return row;
+            }
+        }
+        let name = struct_name(n);
+        let dump = self.dump_dir(n);
+        row.expand_s = fs::read_to_string(dump.join(format!("{name}.time")))
+            .ok()
+            .and_then(|s| s.trim().parse().ok());
+        match fs::read_to_string(dump.join(format!("{name}.rs"))) {
+            Ok(code) => match syn::parse_file(&code) {
+                Ok(file) => {
+                    row.generated_lines = Some(prettyplease::unparse(&file).lines().count())
+                }
+                Err(e) => eprintln!("[N={n}] the generated code does not parse as a file: {e}"),
+            },
+            Err(_) => eprintln!("[N={n}] no dump of the generated code (MBD_EXPAND_DUMP)"),
+        }
+        eprintln!(
+            "[N={n}] built in {:.2} s (expansion {}), {} generated lines; timing",
+            row.build_s.unwrap_or(f64::NAN),
+            row.expand_s.map_or("?".into(), |s| format!("{s:.3} s")),
+            row.generated_lines.map_or("?".into(), |l| l.to_string()),
+        );
+
+        // The generated model, timed by its own binary.
+        let exe = self.target.join("release").join(package_name(n));
+        let out = dir_output(&exe, &self.crate_dir(n), self.timeout);
+        let out = match out {
+            Ok(o) => o,
+            Err(e) => {
+                row.error = Some(format!("running the chain binary: {e}"));
+                return row;
+            }
+        };
+        let mut generated_rhs = Vec::new();
+        for line in out.lines() {
+            let (key, value) = line.split_once(' ').unwrap_or((line, ""));
+            match key {
+                "rhs_ns" => row.rhs_ns = value.parse().ok(),
+                "statements" => row.statements = value.parse().ok(),
+                "part" => row.generated_parts.push(value.to_string()),
+                "rhs" => generated_rhs.extend(value.parse::<f64>().ok()),
+                "error" => row.error = Some(format!("generated rhs: {value}")),
+                _ => {}
+            }
+        }
+        row.recursive = Some(row.generated_parts.iter().any(|p| p == "articulated_body"));
+
+        // The hand-written algorithm, same state, same timer, same run.
+        match handwritten(n, &state(n)) {
+            Some(Ok((ns, by_hand))) => {
+                row.handwritten_rhs_ns = Some(ns);
+                if generated_rhs.len() == by_hand.len() {
+                    let scale = by_hand.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                    let diff = generated_rhs
+                        .iter()
+                        .zip(&by_hand)
+                        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+                    row.max_rel_diff = Some(diff / scale);
+                }
+            }
+            Some(Err(e)) => row.error = Some(format!("hand-written rhs: {e}")),
+            None => row.error = Some(format!("no hand-written chain instantiated for N = {n}")),
+        }
+        if let (Some(a), Some(b)) = (row.rhs_ns, row.handwritten_rhs_ns) {
+            row.ratio = Some(a / b);
+        }
+        eprintln!(
+            "[N={n}] rhs {} ns generated, {} ns by hand",
+            row.rhs_ns.map_or("?".into(), |v| format!("{v:.1}")),
+            row.handwritten_rhs_ns
+                .map_or("?".into(), |v| format!("{v:.1}")),
+        );
+        row
+    }
+}
+
+fn struct_name(n: usize) -> String {
+    format!("Chain{n}")
+}
+
+fn package_name(n: usize) -> String {
+    format!("mbd-scaling-chain{n}")
+}
+
+/// The fixed pseudo-random state `[q; qd]` (entries in [-1, 1)), the same for every form.
+fn state(n: usize) -> Vec<f64> {
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15 ^ n as u64;
+    (0..2 * n)
+        .map(|_| {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((x >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        })
+        .collect()
+}
+
+/// The hand-written chain's rhs time and value at `y`, for the N this binary instantiates.
+fn handwritten(n: usize, y: &[f64]) -> Option<Result<(f64, Vec<f64>), mbd::Error>> {
+    macro_rules! arms {
+        ($($n:literal => $d:literal),*) => {
+            match n {
+                $($n => {
+                    let chain = ChainByHand::<$n>::new(M, L, G);
+                    let y = Vector::<$d>::from_column_slice(y);
+                    Some(chain.rhs(0.0, &y).map(|value| {
+                        let ns = median_ns(|| {
+                            let _ = std::hint::black_box(
+                                chain.rhs(0.0, std::hint::black_box(&y)),
+                            );
+                        });
+                        (ns, value.as_slice().to_vec())
+                    }))
+                })*
+                _ => None,
+            }
+        };
+    }
+    arms!(2 => 4, 4 => 8, 8 => 16, 16 => 32, 32 => 64, 64 => 128)
+}
+
+fn write_crate(root: &Path, dir: &Path, n: usize, form: Form) -> std::io::Result<()> {
+    fs::create_dir_all(dir.join("src"))?;
+    let manifest = format!(
+        "[package]\nname = \"{}\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
+         [dependencies]\nmbd = {{ path = {:?} }}\n\n\
+         # Not a member of the mbd workspace above it.\n[workspace]\n",
+        package_name(n),
+        root.display().to_string(),
+    );
+    fs::write(dir.join("Cargo.toml"), manifest)?;
+    // The workspace's lock file, so the throw-away crates use the same dependency versions.
+    if let Ok(lock) = fs::read(root.join("Cargo.lock")) {
+        fs::write(dir.join("Cargo.lock"), lock)?;
+    }
+    let name = struct_name(n);
+    let model = match form {
+        Form::Explicit => explicit_source(&name, n),
+        Form::Chain => chain_source(&name, n),
+    };
+    let y: Vec<String> = state(n).iter().map(|v| format!("{v:?}")).collect();
+    let main = format!(
+        "//! Throw-away crate written by the mbd `scaling` report: a {n}-link chain.\n\
+         #![allow(dead_code)]\n\
+         use mbd::prelude::*;\n\n\
+         {model}\n\
+         {TIMER_SRC}\n\n\
+         fn main() {{\n\
+         \x20   let model = {name} {{ m: {M:?}, l: {L:?}, g: {G:?} }};\n\
+         \x20   let y = mbd::Vector::<{d}>::from_column_slice(&[{y}]);\n\
+         \x20   for part in {name}::GENERATED.parts {{ println!(\"part {{part}}\"); }}\n\
+         \x20   println!(\"statements {{}}\", {name}::GENERATED.statements);\n\
+         \x20   match model.rhs(0.0, &y) {{\n\
+         \x20       Err(e) => println!(\"error {{e}}\"),\n\
+         \x20       Ok(v) => {{\n\
+         \x20           for x in v.iter() {{ println!(\"rhs {{x:?}}\"); }}\n\
+         \x20           let ns = median_ns(|| {{\n\
+         \x20               let _ = std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));\n\
+         \x20           }});\n\
+         \x20           println!(\"rhs_ns {{ns:?}}\");\n\
+         \x20       }}\n\
+         \x20   }}\n\
+         }}\n",
+        d = 2 * n,
+        y = y.join(", "),
+    );
+    fs::write(dir.join("src").join("main.rs"), main)
+}
+
+/// Run `cmd` in its own process group with stdout and stderr to `log`; kill the group after
+/// `timeout`. `Ok(success)`, or an error when it could not start or timed out.
+fn run_with_timeout(cmd: &mut Command, log: &Path, timeout: Duration) -> Result<bool, String> {
+    let file = fs::File::create(log).map_err(|e| e.to_string())?;
+    let err = file.try_clone().map_err(|e| e.to_string())?;
+    let mut child = cmd
+        .stdout(Stdio::from(file))
+        .stderr(Stdio::from(err))
+        .stdin(Stdio::null())
+        .process_group(0)
+        .spawn()
+        .map_err(|e| format!("cannot start {cmd:?}: {e}"))?;
+    let start = Instant::now();
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) => return Ok(status.success()),
+            Ok(None) if start.elapsed() > timeout => {
+                // The whole group: cargo and the rustc it started.
+                let _ = Command::new("kill")
+                    .args(["-KILL", "--", &format!("-{}", child.id())])
+                    .status();
+                let _ = child.wait();
+                return Err(format!("timed out after {} s", timeout.as_secs()));
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => return Err(e.to_string()),
+        }
+    }
+}
+
+/// Run the chain binary and return its stdout.
+fn dir_output(exe: &Path, dir: &Path, timeout: Duration) -> Result<String, String> {
+    let log = dir.join("run.log");
+    let mut cmd = Command::new(exe);
+    if !run_with_timeout(&mut cmd, &log, timeout)? {
+        let text = fs::read_to_string(&log).unwrap_or_default();
+        return Err(format!("{} failed:\n{text}", exe.display()));
+    }
+    let mut text = String::new();
+    fs::File::open(&log)
+        .and_then(|mut f| f.read_to_string(&mut text))
+        .map_err(|e| e.to_string())?;
+    Ok(text)
+}
+
+/// The compiler's errors from a cargo log: from each `error` line to the next blank line,
+/// at most 40 lines; the log's tail when there is none.
+fn compiler_errors(log: &str) -> String {
+    let mut out = Vec::new();
+    let mut inside = false;
+    for line in log.lines() {
+        if line.starts_with("error") {
+            inside = true;
+        }
+        if inside {
+            if line.trim().is_empty() {
+                inside = false;
+                out.push("");
+            } else {
+                out.push(line);
+            }
+        }
+    }
+    if out.is_empty() {
+        out = log.lines().rev().take(20).collect();
+        out.reverse();
+    }
+    out.truncate(40);
+    out.join("\n")
+}
+
+fn indent(s: &str) -> String {
+    s.lines()
+        .map(|l| format!("    {l}"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn print_table(form: Form, rows: &[Row]) {
+    let f = |v: Option<f64>, p: usize| v.map_or("-".to_string(), |v| format!("{v:.p$}"));
+    println!("scaling of generated planar N-link chains ({form:?} form)");
+    println!(
+        "{:>4} {:>10} {:>9} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10}  parts",
+        "N",
+        "expand_s",
+        "build_s",
+        "lines",
+        "rhs_ns",
+        "by_hand_ns",
+        "ratio",
+        "rel_diff",
+        "recursive"
+    );
+    for r in rows {
+        println!(
+            "{:>4} {:>10} {:>9} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10}  {}",
+            r.n_bodies,
+            f(r.expand_s, 3),
+            f(r.build_s, 2),
+            r.generated_lines.map_or("-".into(), |l| l.to_string()),
+            f(r.rhs_ns, 1),
+            f(r.handwritten_rhs_ns, 1),
+            f(r.ratio, 2),
+            r.max_rel_diff.map_or("-".into(), |v| format!("{v:.1e}")),
+            r.recursive.map_or("-".into(), |b| b.to_string()),
+            r.generated_parts.join(","),
+        );
+        if let Some(e) = &r.error {
+            println!("      error: {}", e.lines().next().unwrap_or_default());
+        }
+    }
+    println!(
+        "build_s is the wall time of `cargo build --release` of the chain crate alone (dependencies \
+         prebuilt), expansion included; ratio = rhs_ns / by_hand_ns"
+    );
+}
