@@ -43,6 +43,8 @@
 //! | `#[rigid(name, mass = m, inertia = i, at = [x, y], angle = phi)]` | a planar rigid body (inertia about its mass centre) |
 //! | `#[rigid3(name, mass = m, inertia = diag(a, b, c), at = [x, y, z], rotation = rot_z(psi) * rot_y(phi))]` | a spatial rigid body; angular velocity and acceleration are derived |
 //! | `#[body(name, parent = p, joint = revolute(q), at = [x, y], angle = a0, com = [cx, cy], mass = m, inertia = i)]` | a body of a planar joint tree: its frame is its parent's (`ground` by default) moved by the joint at `at` (parent frame); `joint` is `revolute(q)`, `prismatic(s, [ax, ay])` (axis in the parent frame) or `fixed`; the joint brings its coordinate (free, or driven if a `drive` names it); `com` is in the body frame |
+//! | `#[body(.., reaction)]` | frees the joint origin by two relaxed coordinates `name_rx`, `name_ry`, so that `reaction(name_rx)`, `reaction(name_ry)` are the joint's force on the body (ground frame) |
+//! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a revolute joint closing a loop of the tree: two constraint equations (points in the bodies' frames) |
 //! | `#[chain(link, n = 16, joint = revolute, length = l, mass = m, inertia = i)]` | `n` identical links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default), relative angles `link_q1 ..` (zero: straight down), mass centres at mid-length |
 //! | `#[point(name, at = [x, y])]` | a named point, fixed or moving |
 //! | `#[spring(name, from = a, to = b, k = k, length = l0)]` | a linear spring between points, bodies or positions |

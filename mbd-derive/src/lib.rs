@@ -33,6 +33,7 @@ use syn::{DeriveInput, parse_macro_input};
         rigid3,
         body,
         chain,
+        close,
         point,
         spring,
         damper,

@@ -582,7 +582,15 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             _ => tree::JointKin::Fixed,
         };
         let moved = tree::rotate(&mut g, p_angle, local);
-        let origin = [g.add(p_origin[0], moved[0]), g.add(p_origin[1], moved[1])];
+        let mut origin = [g.add(p_origin[0], moved[0]), g.add(p_origin[1], moved[1])];
+        if let Some((rx, ry)) = &tb.reaction {
+            // The freed joint: zero in the motion, its multipliers are the joint force.
+            for (o, r) in origin.iter_mut().zip([rx, ry]) {
+                if let Some(c) = coords.iter().find(|c| c.name == *r) {
+                    *o = g.add(*o, c.z);
+                }
+            }
+        }
         let arm = tree::rotate(&mut g, angle, com);
         let com = [g.add(origin[0], arm[0]), g.add(origin[1], arm[1])];
         let z = g.zero();
@@ -648,6 +656,47 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             phi_full.push(g.sub(l, r));
             phi_spans.push(c.span);
             phi_tokens.push(&c.tokens);
+        }
+    }
+    // Loop-closing joints: two coincident points, two equations.
+    let point = |g: &mut Graph,
+                 errors: &mut Errors,
+                 body: &Option<Ident>,
+                 at: &Option<syn::Expr>| {
+        let (origin, angle) = match body {
+            None => ([g.zero(), g.zero()], g.zero()),
+            Some(b) => match node_of.get(&b.to_string()) {
+                Some(&i) => (nodes[i].origin, nodes[i].angle),
+                None => {
+                    errors.at(b.span(), format!("unknown tree body `{b}`: a closure joins `body`/`chain` bodies or `ground`"));
+                    return None;
+                }
+            },
+        };
+        let local = match at {
+            Some(e) => Lowerer {
+                g,
+                names: &names,
+                struct_name: &struct_name,
+                model: None,
+                errors,
+            }
+            .vector(e, Context::Constant, 2)
+            .map(|v| [v[0], v[1]])?,
+            None => [g.zero(), g.zero()],
+        };
+        let arm = tree::rotate(g, angle, local);
+        Some([g.add(origin[0], arm[0]), g.add(origin[1], arm[1])])
+    };
+    for cl in &ast.closures {
+        let pa = point(&mut g, &mut errors, &cl.a, &cl.at_a);
+        let pb = point(&mut g, &mut errors, &cl.b, &cl.at_b);
+        if let (Some(pa), Some(pb)) = (pa, pb) {
+            for k in 0..2 {
+                phi_full.push(g.sub(pa[k], pb[k]));
+                phi_spans.push(cl.name.span());
+                phi_tokens.push(&cl.tokens);
+            }
         }
     }
 

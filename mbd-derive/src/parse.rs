@@ -155,8 +155,22 @@ pub struct TreeBody {
     pub at: Option<Expr>,
     pub angle: Option<Expr>,
     pub com: Option<Expr>,
+    /// Relaxed coordinates `(name_rx, name_ry)` that free the joint origin, so that
+    /// `reaction(name_rx)`, `reaction(name_ry)` are the joint's force on the body.
+    pub reaction: Option<(Ident, Ident)>,
     pub mass: Option<Expr>,
     pub inertia: Option<Expr>,
+}
+
+/// A revolute joint that closes a loop of the tree: point `at_a` of body `a` (its frame)
+/// stays on point `at_b` of body `b` (`None`: the ground). Two constraint equations.
+pub struct Closure {
+    pub name: Ident,
+    pub a: Option<Ident>,
+    pub at_a: Option<Expr>,
+    pub b: Option<Ident>,
+    pub at_b: Option<Expr>,
+    pub tokens: proc_macro2::TokenStream,
 }
 
 /// How the accelerations of a joint tree are evaluated.
@@ -182,6 +196,7 @@ pub struct Mechanism {
     pub constraints: Vec<Constraint>,
     pub bodies: Vec<Body>,
     pub tree: Vec<TreeBody>,
+    pub closures: Vec<Closure>,
     pub points: Vec<Point>,
     pub springs: Vec<Spring>,
     pub dampers: Vec<Damper>,
@@ -397,6 +412,7 @@ impl Mechanism {
             constraints: Vec::new(),
             bodies: Vec::new(),
             tree: Vec::new(),
+            closures: Vec::new(),
             points: Vec::new(),
             springs: Vec::new(),
             dampers: Vec::new(),
@@ -507,7 +523,14 @@ impl Mechanism {
                 }
                 "body" => {
                     let keys = &["parent", "joint", "at", "angle", "com", "mass", "inertia"];
-                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &[]) {
+                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &["reaction"]) {
+                        let reaction = (!item.flags.is_empty()).then(|| {
+                            let n = &item.name;
+                            let rx = format_ident!("{}_rx", n, span = n.span());
+                            let ry = format_ident!("{}_ry", n, span = n.span());
+                            m.relaxed.extend([rx.clone(), ry.clone()]);
+                            (rx, ry)
+                        });
                         let joint = item
                             .require("joint", &mut errors, "body")
                             .and_then(|j| joint(j, &mut errors));
@@ -519,8 +542,26 @@ impl Mechanism {
                                 at: item.take("at"),
                                 angle: item.take("angle"),
                                 com: item.take("com"),
+                                reaction,
                                 mass: item.require("mass", &mut errors, "body"),
                                 inertia: item.take("inertia"),
+                                name: item.name,
+                            });
+                        }
+                    }
+                }
+                "close" => {
+                    let keys = &["a", "at_a", "b", "at_b"];
+                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &[]) {
+                        let a = item.require("a", &mut errors, "closure");
+                        let b = item.require("b", &mut errors, "closure");
+                        if let (Some(a), Some(b)) = (a, b) {
+                            m.closures.push(Closure {
+                                a: parent(a, &mut errors),
+                                at_a: item.take("at_a"),
+                                b: parent(b, &mut errors),
+                                at_b: item.take("at_b"),
+                                tokens: quote::ToTokens::to_token_stream(attr),
                                 name: item.name,
                             });
                         }
@@ -837,6 +878,7 @@ fn chain(mut item: Item, tree: &mut Vec<TreeBody>, errors: &mut Errors) {
             },
             angle: None,
             com: Some(syn::parse_quote_spanned!(span=> [0.0, -(#length) / 2.0])),
+            reaction: None,
             mass: mass.clone(),
             inertia: inertia.clone(),
         });

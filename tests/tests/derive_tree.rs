@@ -277,3 +277,152 @@ fn recursive_chain_conserves_energy() {
     let scale = 0.8 * 9.81 * 0.3 * 12.5;
     assert!((e1 - e0).abs() <= 1e-9 * scale, "energy {e0} -> {e1}");
 }
+
+/// A four-bar as a tree (crank, coupler on the crank, rocker on the ground) closed by a
+/// revolute joint between the coupler's end and the rocker's end.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(crank, joint = revolute(a), com = [l1 / 2.0, 0.0], mass = 1.0, inertia = l1 * l1 / 12.0)]
+#[body(coupler, parent = crank, joint = revolute(b), at = [l1, 0.0], com = [l2 / 2.0, 0.0],
+       mass = 2.0, inertia = 2.0 * l2 * l2 / 12.0)]
+#[body(rocker, joint = revolute(c), at = [d, 0.0], com = [l3 / 2.0, 0.0], mass = 1.5,
+       inertia = 1.5 * l3 * l3 / 12.0)]
+#[close(pin, a = coupler, at_a = [l2, 0.0], b = rocker, at_b = [l3, 0.0])]
+pub struct FourBar {
+    pub l1: f64,
+    pub l2: f64,
+    pub l3: f64,
+    pub d: f64,
+    pub g: f64,
+}
+
+/// The same four-bar written out: crank angle `a`, the coupler's absolute angle `a + b`,
+/// the rocker's `c`; the loop `l1 e(a) + l2 e(a + b) = d x + l3 e(c)`, `e(u) = (cos u, sin u)`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(a, b, c)]
+#[rigid(crank, mass = 1.0, inertia = l1 * l1 / 12.0, angle = a,
+        at = [l1 / 2.0 * cos(a), l1 / 2.0 * sin(a)])]
+#[rigid(coupler, mass = 2.0, inertia = 2.0 * l2 * l2 / 12.0, angle = a + b,
+        at = [l1 * cos(a) + l2 / 2.0 * cos(a + b), l1 * sin(a) + l2 / 2.0 * sin(a + b)])]
+#[rigid(rocker, mass = 1.5, inertia = 1.5 * l3 * l3 / 12.0, angle = c,
+        at = [d + l3 / 2.0 * cos(c), l3 / 2.0 * sin(c)])]
+#[constraint(l1 * cos(a) + l2 * cos(a + b) == d + l3 * cos(c))]
+#[constraint(l1 * sin(a) + l2 * sin(a + b) == l3 * sin(c))]
+pub struct FourBarExplicit {
+    pub l1: f64,
+    pub l2: f64,
+    pub l3: f64,
+    pub d: f64,
+    pub g: f64,
+}
+
+#[test]
+fn closing_joint_gives_the_loop_constraints() {
+    let (l1, l2, l3, d, g) = (0.3, 0.9, 0.7, 0.8, 9.81);
+    let tree = FourBar { l1, l2, l3, d, g };
+    let explicit = FourBarExplicit { l1, l2, l3, d, g };
+    assert!(FourBar::GENERATED.parts.contains(&"phi"));
+    assert!(!FourBar::GENERATED.parts.contains(&"articulated_body"));
+    let mut rng = Lcg(5);
+    for _ in 0..20 {
+        let q: Vector<3> = rng.vector(3.0);
+        let qd: Vector<3> = rng.vector(2.0);
+        assert!((tree.phi(0.0, &q) - explicit.phi(0.0, &q)).norm() <= 1e-14);
+        let (a1, l1m) = tree.acceleration_and_multipliers(0.0, &q, &qd).unwrap();
+        let (a2, l2m) = explicit.acceleration_and_multipliers(0.0, &q, &qd).unwrap();
+        assert!(
+            (a1 - a2).norm() <= 1e-11 * a2.norm().max(1.0),
+            "{a1} vs {a2}"
+        );
+        assert!((l1m - l2m).norm() <= 1e-11 * l2m.norm().max(1.0));
+    }
+}
+
+/// The pivot force of a compound pendulum, asked for with `reaction`: by Newton on the
+/// bar, `R = m a_G - m g_vec`, with `a_G = d alpha t - d w^2 r`, `r = (sin u, -cos u)`,
+/// `t = (cos u, sin u)`, `alpha = -m g d sin(u) / (I + m d^2)`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(bar, joint = revolute(u), com = [0.0, -d], mass = m, inertia = i, reaction)]
+#[output(rx = reaction(bar_rx), ry = reaction(bar_ry))]
+pub struct PivotForce {
+    pub m: f64,
+    pub d: f64,
+    pub i: f64,
+    pub g: f64,
+}
+
+#[test]
+fn tree_joint_reaction_is_the_pivot_force() {
+    let (m, d, i, g) = (2.0, 0.4, 0.1, 9.81);
+    let p = PivotForce { m, d, i, g };
+    // One free coordinate; the relaxed joint adds none to the state.
+    assert_eq!(<PivotForce as MechanismModel<1>>::COORDINATES, ["u"]);
+    for (u, w) in [(0.0, 0.0), (0.6, 1.3), (-2.2, -0.4)] {
+        let out = p.outputs(0.0, &Vector::<2>::new(u, w)).unwrap();
+        let alpha = -m * g * d * f64::sin(u) / (i + m * d * d);
+        let (r, t) = ((u.sin(), -u.cos()), (u.cos(), u.sin()));
+        let a_g = (
+            d * alpha * t.0 - d * w * w * r.0,
+            d * alpha * t.1 - d * w * w * r.1,
+        );
+        assert_relative_eq!(out.rx, m * a_g.0, max_relative = 1e-12, epsilon = 1e-12);
+        assert_relative_eq!(
+            out.ry,
+            m * a_g.1 + m * g,
+            max_relative = 1e-12,
+            epsilon = 1e-12
+        );
+    }
+}
+
+/// A double pendulum asking for its middle joint's force: the recursion (which never sees
+/// the freed joint) and the mass-matrix form agree on the motion, and the reaction is the
+/// lower bar's `m a_G - m g_vec`, from the accelerations of its own mass centre.
+#[derive(Debug, Mechanism)]
+#[mechanism(recursive)]
+#[gravity(0.0, -g)]
+#[body(upper, joint = revolute(a), com = [0.0, -0.25], mass = 1.0, inertia = 0.02)]
+#[body(lower, parent = upper, joint = revolute(b), at = [0.0, -0.5], com = [0.0, -0.3],
+       mass = 0.8, inertia = 0.015, reaction)]
+#[output(rx = reaction(lower_rx), ry = reaction(lower_ry), ax = acceleration(lower)[0],
+         ay = acceleration(lower)[1])]
+pub struct MiddleJoint {
+    pub g: f64,
+}
+
+#[derive(Debug, Mechanism)]
+#[mechanism(mass_matrix)]
+#[gravity(0.0, -g)]
+#[body(upper, joint = revolute(a), com = [0.0, -0.25], mass = 1.0, inertia = 0.02)]
+#[body(lower, parent = upper, joint = revolute(b), at = [0.0, -0.5], com = [0.0, -0.3],
+       mass = 0.8, inertia = 0.015)]
+pub struct MiddleJointDense {
+    pub g: f64,
+}
+
+#[test]
+fn reaction_in_a_recursive_tree() {
+    let (rec, dense) = (MiddleJoint { g: 9.81 }, MiddleJointDense { g: 9.81 });
+    assert!(MiddleJoint::GENERATED.parts.contains(&"articulated_body"));
+    let mut rng = Lcg(3);
+    for _ in 0..10 {
+        let y: Vector<4> = rng.vector(2.0);
+        let (q, qd) = (
+            y.fixed_rows::<2>(0).into_owned(),
+            y.fixed_rows::<2>(2).into_owned(),
+        );
+        let a1 = MechanismModel::acceleration(&rec, 0.0, &q, &qd).unwrap();
+        let a2 = MechanismModel::acceleration(&dense, 0.0, &q, &qd).unwrap();
+        assert!((a1 - a2).norm() <= 1e-12 * a2.norm());
+        let o = rec.outputs(0.0, &y).unwrap();
+        assert_relative_eq!(o.rx, 0.8 * o.ax, max_relative = 1e-11, epsilon = 1e-11);
+        assert_relative_eq!(
+            o.ry,
+            0.8 * o.ay + 0.8 * 9.81,
+            max_relative = 1e-11,
+            epsilon = 1e-11
+        );
+    }
+}
