@@ -6,9 +6,11 @@
 //! discrepancy found in the manual; its tests run with `cargo test -p mechanisms caseNN`.
 
 pub mod chain_by_hand;
+pub mod handwritten;
 pub mod sim;
 pub mod svg;
 pub mod validation;
+pub mod workprecision;
 
 pub mod case01_vertical_throw;
 pub mod case02_polar_motion;

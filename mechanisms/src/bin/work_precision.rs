@@ -1,0 +1,570 @@
+//! Work-precision report: error against run time for every model that integrates in time
+//! and every integrator; the generated/hand-written ratio of three models; mbd against a
+//! peer crate (`ode_solvers`) on the same generated right-hand side.
+//!
+//! `cargo run --release -p mechanisms --bin work-precision [-- --json] [--out DIR]
+//! [--repeats N] [--only NAME]`
+
+use clap::Parser;
+use mechanisms::svg;
+use mechanisms::workprecision::{
+    self, Failure, Method, Problem, Run, Timing, excluded_cases, pilot_span, sweep, time_to_reach,
+    zero_overhead,
+};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Parser, Debug)]
+#[command(about = "Error against run time for every model and integrator of mbd")]
+struct Args {
+    /// Print one JSON array of rows instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// Write rows.csv, summary.md and one SVG work-precision plot per mechanism here.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Timed repeats per run (the run time is their median; 0 times the first run only).
+    #[arg(long, default_value_t = 7)]
+    repeats: usize,
+    /// Sweep only the mechanisms whose name contains this.
+    #[arg(long)]
+    only: Option<String>,
+}
+
+/// One row of the report (the `--json` and CSV schema). A run that could not be made has
+/// no error, time or counters, and says why in `note`.
+#[derive(Serialize, Debug, Clone)]
+struct Row {
+    mechanism: String,
+    method: String,
+    setting: String,
+    error: Option<f64>,
+    runtime_s: Option<f64>,
+    steps: Option<usize>,
+    rhs_evals: Option<usize>,
+    jac_evals: Option<usize>,
+    note: Option<String>,
+}
+
+/// All runs of one mechanism and method.
+struct Curve {
+    mechanism: &'static str,
+    method: Method,
+    runs: Vec<Run>,
+}
+
+impl Curve {
+    fn points(&self) -> Vec<(f64, f64)> {
+        self.runs.iter().filter_map(Run::point).collect()
+    }
+
+    fn time_to(&self, target: f64) -> Option<f64> {
+        time_to_reach(&self.points(), target)
+    }
+
+    /// Why the method produced no point at all, if it did not.
+    fn skipped(&self) -> Option<String> {
+        if !self.points().is_empty() {
+            return None;
+        }
+        self.runs.iter().find_map(|r| match &r.outcome {
+            Err(Failure::Unsupported(why)) => Some(format!("skipped: {why}")),
+            _ => None,
+        })
+    }
+}
+
+fn rows(curve: &Curve) -> Vec<Row> {
+    curve
+        .runs
+        .iter()
+        .map(|r| {
+            let base = Row {
+                mechanism: curve.mechanism.to_string(),
+                method: curve.method.name().to_string(),
+                setting: r.setting.label(),
+                error: None,
+                runtime_s: None,
+                steps: None,
+                rhs_evals: None,
+                jac_evals: None,
+                note: None,
+            };
+            match &r.outcome {
+                Ok((m, t)) => Row {
+                    error: Some(m.error()),
+                    runtime_s: Some(*t),
+                    steps: Some(m.stats.n_steps),
+                    rhs_evals: Some(m.stats.n_rhs),
+                    jac_evals: Some(m.stats.n_jac),
+                    ..base
+                },
+                Err(f) => Row {
+                    note: Some(f.to_string()),
+                    ..base
+                },
+            }
+        })
+        .collect()
+}
+
+/// Sweep a group of problems that share settings (one case, or a generated model and its
+/// hand-written twin) with the methods they have in common, then the rest alone.
+fn sweep_group(group: &[&Problem], timing: Timing, progress: &mut Progress) -> Vec<Curve> {
+    let mut curves = Vec::new();
+    let span = match pilot_span(group[0]) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{}: the pilot run failed ({e}); not swept", group[0].name);
+            return curves;
+        }
+    };
+    let mut methods: Vec<Method> = group
+        .iter()
+        .flat_map(|p| p.methods.iter().copied())
+        .collect();
+    methods.sort_unstable();
+    methods.dedup();
+    for method in methods {
+        let members: Vec<&Problem> = group
+            .iter()
+            .copied()
+            .filter(|p| p.methods.contains(&method))
+            .collect();
+        let start = Instant::now();
+        let runs = sweep(&members, method, span, timing);
+        for (p, runs) in members.iter().zip(runs) {
+            curves.push(Curve {
+                mechanism: p.name,
+                method,
+                runs,
+            });
+        }
+        let names: Vec<&str> = members.iter().map(|p| p.name).collect();
+        progress.tick(&names.join(" + "), method, start.elapsed().as_secs_f64());
+    }
+    curves
+}
+
+struct Progress {
+    done: usize,
+    total: usize,
+    start: Instant,
+}
+
+impl Progress {
+    fn tick(&mut self, what: &str, method: Method, secs: f64) {
+        self.done += 1;
+        eprintln!(
+            "[{}/{}] {what}: {method} ({secs:.1} s; {:.0} s in all)",
+            self.done,
+            self.total,
+            self.start.elapsed().as_secs_f64()
+        );
+    }
+}
+
+fn fmt_time(t: Option<f64>) -> String {
+    t.map_or_else(|| "-".to_string(), |t| format!("{t:.3e}"))
+}
+
+fn fmt_ratio(r: Option<f64>) -> String {
+    r.map_or_else(|| "-".to_string(), |r| format!("{r:.3}"))
+}
+
+/// The fastest method of a mechanism to reach `target`, and its time.
+fn fastest(curves: &[&Curve], target: f64) -> Option<(Method, f64)> {
+    curves
+        .iter()
+        .filter(|c| c.method != Method::PeerDopri5)
+        .filter_map(|c| c.time_to(target).map(|t| (c.method, t)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// One model and method of the zero-overhead comparison.
+struct ZeroOverhead {
+    model: String,
+    method: Method,
+    /// Times to reach [`RATIO_TARGET`], generated and hand-written, and their ratio.
+    generated: Option<f64>,
+    hand: Option<f64>,
+    ratio: Option<f64>,
+    /// The ratio of the times to reach 1e-6.
+    ratio_1e6: Option<f64>,
+    /// The median over the sweep's settings of the ratio of run times at the same setting
+    /// (the same steps and evaluations: a cross-check less sensitive to one noisy run).
+    median_ratio: Option<f64>,
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    v.retain(|x| x.is_finite());
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(v[n / 2]),
+        _ => Some(0.5 * (v[n / 2 - 1] + v[n / 2])),
+    }
+}
+
+/// The fastest method to an error, and its time.
+type Fastest = Option<(Method, f64)>;
+
+/// mbd against the peer on one model: (model, mbd method, t_mbd, t_peer, ratio) at 1e-8.
+type PeerRow = (String, Method, Option<f64>, Option<f64>, Option<f64>);
+
+struct Figures {
+    /// Per mechanism, in order: (name, title, fastest to 1e-6, fastest to 1e-10).
+    per_mechanism: Vec<(String, String, Fastest, Fastest)>,
+    /// Generated against hand-written, per model and method.
+    zero_overhead: Vec<ZeroOverhead>,
+    /// (model, mbd method, t_mbd, t_peer, ratio) at 1e-8.
+    peer: Vec<PeerRow>,
+    /// (mechanism, method, reason).
+    skipped: Vec<(String, Method, String)>,
+}
+
+/// The error at which the zero-overhead and peer ratios are read.
+const RATIO_TARGET: f64 = 1e-8;
+
+fn figures(curves: &[Curve], problems: &[Problem], pairs: &[(Problem, Problem)]) -> Figures {
+    let of =
+        |name: &str| -> Vec<&Curve> { curves.iter().filter(|c| c.mechanism == name).collect() };
+    let per_mechanism = problems
+        .iter()
+        .map(|p| {
+            let cs = of(p.name);
+            (
+                p.name.to_string(),
+                p.title.to_string(),
+                fastest(&cs, 1e-6),
+                fastest(&cs, 1e-10),
+            )
+        })
+        .collect();
+    let find = |name: &str, m: Method| curves.iter().find(|c| c.mechanism == name && c.method == m);
+    let ratio = |a: Option<f64>, b: Option<f64>| a.zip(b).map(|(a, b)| a / b);
+    let mut zero = Vec::new();
+    let mut peer = Vec::new();
+    for (generated, hand) in pairs {
+        for m in Method::MBD {
+            let (tg, th) = (
+                find(generated.name, m).and_then(|c| c.time_to(RATIO_TARGET)),
+                find(hand.name, m).and_then(|c| c.time_to(RATIO_TARGET)),
+            );
+            let at = |name: &str, target| find(name, m).and_then(|c| c.time_to(target));
+            if let (Some(cg), Some(ch)) = (find(generated.name, m), find(hand.name, m)) {
+                let per_setting: Vec<f64> = cg
+                    .runs
+                    .iter()
+                    .zip(&ch.runs)
+                    .filter_map(|(a, b)| Some(a.point()?.0 / b.point()?.0))
+                    .collect();
+                zero.push(ZeroOverhead {
+                    model: generated.name.to_string(),
+                    method: m,
+                    generated: tg,
+                    hand: th,
+                    ratio: ratio(tg, th),
+                    ratio_1e6: ratio(at(generated.name, 1e-6), at(hand.name, 1e-6)),
+                    median_ratio: median(per_setting),
+                });
+            }
+        }
+        if let Some(pc) = find(generated.name, Method::PeerDopri5) {
+            let tp = pc.time_to(RATIO_TARGET);
+            for m in [Method::Dopri5NoProjection, Method::Dopri5] {
+                if let Some(c) = find(generated.name, m) {
+                    let tm = c.time_to(RATIO_TARGET);
+                    peer.push((generated.name.to_string(), m, tm, tp, ratio(tm, tp)));
+                }
+            }
+        }
+    }
+    let skipped = curves
+        .iter()
+        .filter_map(|c| {
+            c.skipped()
+                .map(|why| (c.mechanism.to_string(), c.method, why))
+        })
+        .collect();
+    Figures {
+        per_mechanism,
+        zero_overhead: zero,
+        peer,
+        skipped,
+    }
+}
+
+fn summary_text(f: &Figures) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<32} {:>24} {:>24}",
+        "mechanism", "fastest to 1e-6 [s]", "fastest to 1e-10 [s]"
+    );
+    let cell = |x: &Option<(Method, f64)>| {
+        x.map_or_else(
+            || "not reached".to_string(),
+            |(m, t)| format!("{t:.3e} {m}"),
+        )
+    };
+    for (name, _, a, b) in &f.per_mechanism {
+        let _ = writeln!(s, "{:<32} {:>24} {:>24}", name, cell(a), cell(b));
+    }
+    let _ = writeln!(
+        s,
+        "\nzero overhead: time to reach {RATIO_TARGET:e} relative error, generated / hand-written"
+    );
+    for z in &f.zero_overhead {
+        let _ = writeln!(
+            s,
+            "  {:<16} {:<18} generated {:>10}  hand-written {:>10}  ratio {:>6}  (at 1e-6: {:>6}; median per setting: {:>6})",
+            z.model,
+            z.method.name(),
+            fmt_time(z.generated),
+            fmt_time(z.hand),
+            fmt_ratio(z.ratio),
+            fmt_ratio(z.ratio_1e6),
+            fmt_ratio(z.median_ratio)
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\npeer: time to reach {RATIO_TARGET:e}, mbd / ode_solvers Dopri5 (same generated rhs)"
+    );
+    for (name, m, tm, tp, r) in &f.peer {
+        let _ = writeln!(
+            s,
+            "  {:<18} {:<24} mbd {:>10}  peer {:>10}  ratio {}",
+            name,
+            m.name(),
+            fmt_time(*tm),
+            fmt_time(*tp),
+            fmt_ratio(*r)
+        );
+    }
+    if !f.skipped.is_empty() {
+        let _ = writeln!(s, "\nnot run:");
+        for (name, m, why) in &f.skipped {
+            let _ = writeln!(s, "  {name} / {m}: {why}");
+        }
+    }
+    s
+}
+
+fn slug(name: &str) -> String {
+    name.chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect::<String>()
+        .replace("__", "_")
+        .trim_matches('_')
+        .to_string()
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn write_report(
+    dir: &Path,
+    rows: &[Row],
+    curves: &[Curve],
+    problems: &[Problem],
+    f: &Figures,
+    timing: Timing,
+) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut csv =
+        String::from("mechanism,method,setting,error,runtime_s,steps,rhs_evals,jac_evals,note\n");
+    let opt = |v: Option<String>| v.unwrap_or_default();
+    for r in rows {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{}",
+            csv_field(&r.mechanism),
+            csv_field(&r.method),
+            csv_field(&r.setting),
+            opt(r.error.map(|v| format!("{v:e}"))),
+            opt(r.runtime_s.map(|v| format!("{v:e}"))),
+            opt(r.steps.map(|v| v.to_string())),
+            opt(r.rhs_evals.map(|v| v.to_string())),
+            opt(r.jac_evals.map(|v| v.to_string())),
+            csv_field(r.note.as_deref().unwrap_or(""))
+        );
+    }
+    std::fs::write(dir.join("rows.csv"), csv)?;
+
+    let mut md = String::from("# mbd work-precision report\n\n");
+    let _ = writeln!(
+        md,
+        "Error: the largest relative error of a run's measured quantities against their exact \
+         references (the cases' own). Time: wall time of the whole run (integration, events, \
+         outputs), median of {} repeats. Times to an error are interpolated in log-log on each \
+         method's Pareto front. Every row is in `rows.csv`.\n",
+        timing.repeats
+    );
+    md.push_str("## Fastest method per mechanism\n\n");
+    md.push_str(
+        "| mechanism | measured | to 1e-6: method | time [s] | to 1e-10: method | time [s] |\n",
+    );
+    md.push_str("|---|---|---|---|---|---|\n");
+    let cell = |x: &Option<(Method, f64)>| {
+        x.map_or_else(
+            || "not reached | -".to_string(),
+            |(m, t)| format!("{m} | {t:.3e}"),
+        )
+    };
+    for (name, title, a, b) in &f.per_mechanism {
+        let _ = writeln!(md, "| {name} | {title} | {} | {} |", cell(a), cell(b));
+    }
+    let _ = writeln!(
+        md,
+        "\n## Zero overhead: generated / hand-written, time to {RATIO_TARGET:e}\n\n\
+         The hand-written twins (`mechanisms::handwritten`) run through the same integrators.\n\n\
+         | model | method | generated [s] | hand-written [s] | ratio | ratio at 1e-6 | median ratio per setting |\n\
+         |---|---|---|---|---|---|---|"
+    );
+    for z in &f.zero_overhead {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} |",
+            z.model,
+            z.method,
+            fmt_time(z.generated),
+            fmt_time(z.hand),
+            fmt_ratio(z.ratio),
+            fmt_ratio(z.ratio_1e6),
+            fmt_ratio(z.median_ratio)
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n## Against a peer: mbd / `ode_solvers` Dopri5, time to {RATIO_TARGET:e}\n\n\
+         Both integrate the same generated right-hand side; the peer has no projection onto \
+         the constraint manifolds, so on the slider-crank `DOPRI5 (no projection)` is the same \
+         algorithm.\n\n\
+         | model | mbd method | mbd [s] | peer [s] | ratio |\n|---|---|---|---|---|"
+    );
+    for (name, m, tm, tp, r) in &f.peer {
+        let _ = writeln!(
+            md,
+            "| {name} | {m} | {} | {} | {} |",
+            fmt_time(*tm),
+            fmt_time(*tp),
+            fmt_ratio(*r)
+        );
+    }
+    if !f.skipped.is_empty() {
+        md.push_str("\n## Not run\n\n");
+        for (name, m, why) in &f.skipped {
+            let _ = writeln!(md, "- {name} / {m}: {why}");
+        }
+    }
+    md.push_str("\n## Cases without a time integration\n\n");
+    for (case, why) in excluded_cases() {
+        let _ = writeln!(md, "- {case}: {why}");
+    }
+    md.push_str("\n## Plots\n\n");
+    for p in problems {
+        let series: Vec<(String, Vec<(f64, f64)>)> = curves
+            .iter()
+            .filter(|c| c.mechanism == p.name)
+            .map(|c| (c.method.name().to_string(), c.points()))
+            .filter(|(_, pts)| !pts.is_empty())
+            .collect();
+        let file = format!("{}.svg", slug(p.name));
+        let plot = svg::log_log_plot(
+            &format!("{}: {}", p.name, p.title),
+            "run time [s]",
+            "max relative error",
+            &series,
+        );
+        std::fs::write(dir.join(&file), plot)?;
+        let _ = writeln!(md, "![{}]({file})\n", p.name);
+    }
+    std::fs::write(dir.join("summary.md"), md)
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    let timing = Timing {
+        repeats: args.repeats,
+        ..Timing::default()
+    };
+    let keep = |p: &Problem| args.only.as_deref().is_none_or(|s| p.name.contains(s));
+    let cases: Vec<Problem> = workprecision::cases()
+        .into_iter()
+        .filter(|p| keep(p))
+        .collect();
+    let pairs: Vec<(Problem, Problem)> = zero_overhead()
+        .into_iter()
+        .filter(|(g, h)| keep(g) || keep(h))
+        .collect();
+    let mut problems: Vec<Problem> = cases.clone();
+    for (g, h) in &pairs {
+        problems.extend([*g, *h]);
+    }
+    if problems.is_empty() {
+        eprintln!("no mechanism matches {:?}", args.only);
+        return ExitCode::FAILURE;
+    }
+    let method_count = |ps: &[&Problem]| {
+        let mut m: Vec<Method> = ps.iter().flat_map(|p| p.methods.iter().copied()).collect();
+        m.sort_unstable();
+        m.dedup();
+        m.len()
+    };
+    let total = cases.iter().map(|c| method_count(&[c])).sum::<usize>()
+        + pairs
+            .iter()
+            .map(|(g, h)| method_count(&[g, h]))
+            .sum::<usize>();
+    let mut progress = Progress {
+        done: 0,
+        total,
+        start: Instant::now(),
+    };
+    let mut curves = Vec::new();
+    for case in &cases {
+        curves.extend(sweep_group(&[case], timing, &mut progress));
+    }
+    for (g, h) in &pairs {
+        curves.extend(sweep_group(&[g, h], timing, &mut progress));
+    }
+    let all_rows: Vec<Row> = curves.iter().flat_map(rows).collect();
+    let figs = figures(&curves, &problems, &pairs);
+    let summary = summary_text(&figs);
+    if args.json {
+        match serde_json::to_string_pretty(&all_rows) {
+            Ok(s) => println!("{s}"),
+            Err(e) => {
+                eprintln!("cannot serialise the rows: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+        eprint!("{summary}");
+    } else {
+        print!("{summary}");
+    }
+    if let Some(dir) = &args.out
+        && let Err(e) = write_report(dir, &all_rows, &curves, &problems, &figs, timing)
+    {
+        eprintln!("cannot write the report to {}: {e}", dir.display());
+        return ExitCode::FAILURE;
+    }
+    eprintln!(
+        "work-precision: {} runs in {:.0} s",
+        all_rows.len(),
+        progress.start.elapsed().as_secs_f64()
+    );
+    ExitCode::SUCCESS
+}
