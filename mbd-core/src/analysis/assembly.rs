@@ -24,7 +24,8 @@ use crate::model::{Constrained, Vector};
 /// Errors: [`Error::AssemblyFailed`] (with the residual) when the iterations run out or a
 /// Newton step cannot be taken because `J_F` lost rank far from a solution (a loop that
 /// cannot close ends, at best, stretched straight, where the Jacobian is singular);
-/// [`Error::SingularConstraintJacobian`] when a solution is found at which `J_F` has lost rank;
+/// [`Error::SingularConstraintJacobian`] when a solution is found at which `J_F` has lost rank,
+/// or Newton reached it only linearly (a multiple root: the rank is lost within the tolerance);
 /// [`Error::NonFinite`] when `Phi` is not finite.
 pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
     sys: &S,
@@ -37,6 +38,8 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
     let free = free_set(held);
     let mut q = *q0;
     let mut iterations = 0;
+    // Size of the previous full Newton step, to tell quadratic from linear convergence.
+    let mut previous: Option<f64> = None;
     loop {
         let phi = sys.phi(t, &q);
         if !phi.iter().all(|v| v.is_finite()) || !q.iter().all(|v| v.is_finite()) {
@@ -46,12 +49,17 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
         let step = min_norm_solve(&sys.phi_q(t, &q), &free, &(-phi));
         let converged = residual <= opts.tol || step.as_ref().is_some_and(|dq| negligible(dq, &q));
         if converged {
-            return step
-                .map(|dq| q + dq)
-                .ok_or(Error::SingularConstraintJacobian { t });
+            let dq = step.ok_or(Error::SingularConstraintJacobian { t })?;
+            if singular_root(&dq, &q, previous) {
+                return Err(Error::SingularConstraintJacobian { t });
+            }
+            return Ok(q + dq);
         }
         match step {
-            Some(dq) if iterations < opts.max_iterations => q = damped(sys, t, &q, &dq, &phi),
+            Some(dq) if iterations < opts.max_iterations => {
+                previous = Some(max_norm(&dq));
+                q = damped(sys, t, &q, &dq, &phi);
+            }
             _ => {
                 return Err(Error::AssemblyFailed {
                     t,
@@ -62,6 +70,20 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
         }
         iterations += 1;
     }
+}
+
+/// Whether Newton reached `|Phi| <= tol` only linearly, the mark of a multiple root: the
+/// step `dq` at the converged point is still more than a tenth of the step before it, and
+/// well above rounding. Near a regular root the ratio of successive steps goes to zero
+/// (quadratic convergence); at a root where `J_F` is singular (a toggle or dead-centre
+/// position reached within the tolerance) it stays near 1/2, the residual reaches `tol`
+/// while `q` is still about `sqrt(tol)` from the root, and `J_F` there is regular only by
+/// that distance: velocities solved with it would be finite but meaningless (1e6 rad/s
+/// where the truth is infinite). Such a root is reported as singular.
+fn singular_root<const N: usize>(dq: &Vector<N>, q: &Vector<N>, previous: Option<f64>) -> bool {
+    let size = max_norm(dq);
+    let rounding = 1e3 * f64::EPSILON * max_norm(q).max(1.0);
+    previous.is_some_and(|p| size > 0.1 * p && size > rounding)
 }
 
 /// `q + alpha dq` for the first `alpha` in `1, 1/2, ..., 1/64` that reduces `|Phi|_2`
