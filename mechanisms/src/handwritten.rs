@@ -115,17 +115,20 @@ impl From<&DoublePendulum> for DoublePendulumByHand {
 
 impl DoublePendulumByHand {
     #[inline]
-    fn mass_and_forces(&self, q: &Vector<2>, qd: &Vector<2>) -> (Matrix2<f64>, Vector<2>) {
-        let (a, b, ad, bd) = (q[0], q[1], qd[0], qd[1]);
-        let (s, c) = (a - b).sin_cos();
-        let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
+    fn mass(&self, c: f64) -> Matrix2<f64> {
+        let (m1, m2, l1, l2) = (self.m1, self.m2, self.l1, self.l2);
         let m12 = m2 * l1 * l2 * c;
-        let mass = Matrix2::new((m1 + m2) * l1 * l1, m12, m12, m2 * l2 * l2);
-        let f = Vector::<2>::new(
+        Matrix2::new((m1 + m2) * l1 * l1, m12, m12, m2 * l2 * l2)
+    }
+
+    #[inline]
+    fn forces_at(&self, q: &Vector<2>, qd: &Vector<2>, s: f64) -> Vector<2> {
+        let (a, b, ad, bd) = (q[0], q[1], qd[0], qd[1]);
+        let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
+        Vector::<2>::new(
             -m2 * l1 * l2 * s * bd * bd - (m1 + m2) * g * l1 * a.sin(),
             m2 * l1 * l2 * s * ad * ad - m2 * g * l2 * b.sin(),
-        );
-        (mass, f)
+        )
     }
 }
 
@@ -133,20 +136,20 @@ impl mbd::Mechanism<2> for DoublePendulumByHand {
     const COORDINATES: [&'static str; 2] = ["a", "b"];
 
     fn mass_matrix(&self, _t: f64, q: &Vector<2>) -> Matrix<2, 2> {
-        self.mass_and_forces(q, &Vector::<2>::zeros()).0
+        self.mass((q[0] - q[1]).cos())
     }
 
     fn forces(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> Vector<2> {
-        self.mass_and_forces(q, qd).1
+        self.forces_at(q, qd, (q[0] - q[1]).sin())
     }
 
     fn acceleration(&self, t: f64, q: &Vector<2>, qd: &Vector<2>) -> mbd::Result<Vector<2>> {
-        let (mass, f) = self.mass_and_forces(q, qd);
-        mbd::solve::solve_mass::<2>(t, &mass, &f)
+        let (s, c) = (q[0] - q[1]).sin_cos();
+        mbd::solve::solve_mass::<2>(t, &self.mass(c), &self.forces_at(q, qd, s))
     }
 
     fn energy(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> f64 {
-        let (mass, _) = self.mass_and_forces(q, qd);
+        let mass = self.mass((q[0] - q[1]).cos());
         let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
         0.5 * qd.dot(&(mass * qd)) - (m1 + m2) * g * l1 * q[0].cos() - m2 * g * l2 * q[1].cos()
     }
@@ -208,57 +211,55 @@ impl From<&SliderCrank> for SliderCrankByHand {
     }
 }
 
-/// Everything the equations of motion of the slider-crank need at one state.
-struct SliderCrankTerms {
-    mass: Matrix<3, 3>,
-    f: Vector<3>,
-    phi_q: Matrix<2, 3>,
-    gamma: Vector<2>,
-}
-
 impl SliderCrankByHand {
+    /// `M` from `(sin θ, cos θ, sin β, cos β)`.
     #[inline]
-    fn terms(&self, q: &Vector<3>, qd: &Vector<3>) -> SliderCrankTerms {
-        let (st, ct) = q[0].sin_cos();
-        let (sb, cb) = q[1].sin_cos();
-        let (thd, bed) = (qd[0], qd[1]);
-        let (r, l, g) = (self.r, self.l, self.g);
-        let ic = self.m_c * r * r / 12.0;
-        let ir = self.m_r * l * l / 12.0;
+    fn mass(&self, st: f64, ct: f64, sb: f64, cb: f64) -> Matrix<3, 3> {
+        let (r, l) = (self.r, self.l);
         let mut mass = Matrix::<3, 3>::zeros();
-        // Crank: J = (r/2)(−sin θ, cos θ) on θ, angle θ.
-        mass[(0, 0)] = self.m_c * r * r / 4.0 + ic + self.m_r * r * r;
+        // Crank: J = (r/2)(−sin θ, cos θ) on θ, angle θ; inertia m_c r²/12 about its centre.
         // Rod: J_θ = r(−sin θ, cos θ), J_β = (l/2)(−sin β, −cos β), angle −β.
+        mass[(0, 0)] = self.m_c * r * r / 3.0 + self.m_r * r * r;
         let jtb = self.m_r * r * l / 2.0 * (st * sb - ct * cb);
         mass[(0, 1)] = jtb;
         mass[(1, 0)] = jtb;
-        mass[(1, 1)] = self.m_r * l * l / 4.0 + ir;
+        mass[(1, 1)] = self.m_r * l * l / 3.0;
         mass[(2, 2)] = self.m_p;
-        // Velocity-product accelerations a0 = (dJ/dt) qd of the two centres.
-        let (thd2, bed2) = (thd * thd, bed * bed);
+        mass
+    }
+
+    /// `f = −Σ Jᵀ m (a0 − gravity)`, with `a0 = (dJ/dt) qd` of the two centres, gravity `(0, −g)`.
+    #[inline]
+    fn forces_at(&self, st: f64, ct: f64, sb: f64, cb: f64, qd: &Vector<3>) -> Vector<3> {
+        let (r, l, g) = (self.r, self.l, self.g);
+        let (thd2, bed2) = (qd[0] * qd[0], qd[1] * qd[1]);
         let a0c = [-r / 2.0 * ct * thd2, -r / 2.0 * st * thd2];
         let a0r = [
             -r * ct * thd2 - l / 2.0 * cb * bed2,
             -r * st * thd2 + l / 2.0 * sb * bed2,
         ];
-        // f = −Σ Jᵀ m (a0 − gravity), gravity (0, −g).
-        let f = Vector::<3>::new(
+        Vector::<3>::new(
             -self.m_c * (r / 2.0 * (-st) * a0c[0] + r / 2.0 * ct * (a0c[1] + g))
                 - self.m_r * (r * (-st) * a0r[0] + r * ct * (a0r[1] + g)),
             -self.m_r * (l / 2.0 * (-sb) * a0r[0] + l / 2.0 * (-cb) * (a0r[1] + g)),
             0.0,
-        );
-        let phi_q = Matrix::<2, 3>::new(r * st, l * sb, 1.0, -r * ct, l * cb, 0.0);
-        let gamma = Vector::<2>::new(
+        )
+    }
+
+    #[inline]
+    fn phi_q_at(&self, st: f64, ct: f64, sb: f64, cb: f64) -> Matrix<2, 3> {
+        let (r, l) = (self.r, self.l);
+        Matrix::<2, 3>::new(r * st, l * sb, 1.0, -r * ct, l * cb, 0.0)
+    }
+
+    #[inline]
+    fn gamma_at(&self, st: f64, ct: f64, sb: f64, cb: f64, qd: &Vector<3>) -> Vector<2> {
+        let (r, l) = (self.r, self.l);
+        let (thd2, bed2) = (qd[0] * qd[0], qd[1] * qd[1]);
+        Vector::<2>::new(
             -(r * ct * thd2 + l * cb * bed2),
             -(r * st * thd2 - l * sb * bed2),
-        );
-        SliderCrankTerms {
-            mass,
-            f,
-            phi_q,
-            gamma,
-        }
+        )
     }
 }
 
@@ -266,11 +267,13 @@ impl mbd::Mechanism<3> for SliderCrankByHand {
     const COORDINATES: [&'static str; 3] = ["theta", "beta", "x"];
 
     fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Matrix<3, 3> {
-        self.terms(q, &Vector::<3>::zeros()).mass
+        let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
+        self.mass(st, ct, sb, cb)
     }
 
     fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Vector<3> {
-        self.terms(q, qd).f
+        let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
+        self.forces_at(st, ct, sb, cb, qd)
     }
 
     fn acceleration(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> mbd::Result<Vector<3>> {
@@ -278,8 +281,8 @@ impl mbd::Mechanism<3> for SliderCrankByHand {
     }
 
     fn energy(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> f64 {
-        let mass = self.terms(q, qd).mass;
-        let (st, sb) = (q[0].sin(), q[1].sin());
+        let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
+        let mass = self.mass(st, ct, sb, cb);
         let (r, l) = (self.r, self.l);
         0.5 * qd.dot(&(mass * qd))
             + self.g * (self.m_c * r / 2.0 * st + self.m_r * (r * st - l / 2.0 * sb))
@@ -294,10 +297,8 @@ impl Constrained<3, 2> for SliderCrankByHand {
     }
 
     fn phi_q(&self, _t: f64, q: &Vector<3>) -> Matrix<2, 3> {
-        let (st, ct) = q[0].sin_cos();
-        let (sb, cb) = q[1].sin_cos();
-        let (r, l) = (self.r, self.l);
-        Matrix::<2, 3>::new(r * st, l * sb, 1.0, -r * ct, l * cb, 0.0)
+        let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
+        self.phi_q_at(st, ct, sb, cb)
     }
 
     fn phi_t(&self, _t: f64, _q: &Vector<3>) -> Vector<2> {
@@ -305,7 +306,8 @@ impl Constrained<3, 2> for SliderCrankByHand {
     }
 
     fn gamma(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Vector<2> {
-        self.terms(q, qd).gamma
+        let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
+        self.gamma_at(st, ct, sb, cb, qd)
     }
 
     fn acceleration_and_multipliers(
@@ -314,8 +316,14 @@ impl Constrained<3, 2> for SliderCrankByHand {
         q: &Vector<3>,
         qd: &Vector<3>,
     ) -> mbd::Result<(Vector<3>, Vector<2>)> {
-        let k = self.terms(q, qd);
-        mbd::solve::solve_augmented::<3, 2, 5>(t, &k.mass, &k.f, &k.phi_q, &k.gamma)
+        let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
+        mbd::solve::solve_augmented::<3, 2, 5>(
+            t,
+            &self.mass(st, ct, sb, cb),
+            &self.forces_at(st, ct, sb, cb, qd),
+            &self.phi_q_at(st, ct, sb, cb),
+            &self.gamma_at(st, ct, sb, cb, qd),
+        )
     }
 }
 
