@@ -152,8 +152,10 @@ const PALETTE: [&str; 8] = [
 ];
 
 /// Several curves on log-log axes (a work-precision diagram): `series` are `(name, points)`
-/// with positive `(x, y)`; non-positive or non-finite points are left out. Ticks at the
-/// powers of ten, a legend in the top right corner, a dot on every point.
+/// with positive `(x, y)`; non-positive or non-finite points are left out. The `i`-th series
+/// has the `i`-th colour whether or not it has points (so that one caller's plots agree);
+/// a series without points is not drawn nor listed. Ticks at the powers of ten, a legend in
+/// the top right corner, a dot on every point.
 pub fn log_log_plot(
     title: &str,
     x_label: &str,
@@ -252,7 +254,11 @@ pub fn log_log_plot(
         H / 2.0,
         esc(y_label)
     );
+    let mut drawn = 0usize;
     for (i, (name, pts)) in logs.iter().enumerate() {
+        if pts.is_empty() {
+            continue;
+        }
         let colour = PALETTE[i % PALETTE.len()];
         let path: Vec<String> = pts
             .iter()
@@ -271,7 +277,8 @@ pub fn log_log_plot(
                 sy(y)
             );
         }
-        let ly = PAD_T + 14.0 + 16.0 * i as f64;
+        let ly = PAD_T + 14.0 + 16.0 * drawn as f64;
+        drawn += 1;
         let lx = W - PAD_R - 170.0;
         let _ = write!(
             s,

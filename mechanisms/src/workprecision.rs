@@ -13,6 +13,11 @@
 //! median over repeats of batches long enough for the clock). [`time_to_reach`] reads the
 //! time to reach an error off a curve, interpolating in log-log on its Pareto front.
 //!
+//! Every run takes its model's parameters through [`std::hint::black_box`]: they are runtime
+//! data, as in an application, and the compiler cannot fold them into the code (which it does
+//! unevenly: a hand-written `-(g/l) sin θ` with constant `g/l` loses its division, the
+//! generated mass-matrix solve does not).
+//!
 //! The binary `work-precision` drives it all and writes the report.
 
 use crate::handwritten::{
@@ -34,6 +39,7 @@ use mbd::integrate::{
 use mbd::{Constrained, OdeSystem, Options, Stats, Vector};
 use std::cell::Cell;
 use std::fmt;
+use std::hint::black_box;
 use std::sync::OnceLock;
 use std::time::Instant;
 
@@ -512,7 +518,7 @@ pub fn zero_overhead() -> Vec<(Problem, Problem)> {
 // case's own references.
 
 fn case01(s: &Setting) -> Result<Measured, Failure> {
-    let model = c01::MODEL;
+    let model = black_box(c01::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 10.0, &events)?;
     let apex = event(&sol, 0, "the apex")?;
@@ -537,7 +543,7 @@ fn case05(s: &Setting) -> Result<Measured, Failure> {
                 .into(),
         ));
     }
-    let model = c05::MODEL;
+    let model = black_box(c05::MODEL);
     let events = model.events();
     let sliding = model.sliding([1.0]);
     let sol = solve_ode(s, &sliding, 0.0, model.initial_state(), 20.0, &events)?;
@@ -553,7 +559,7 @@ fn case05(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case07(s: &Setting) -> Result<Measured, Failure> {
-    let model = c07::MODEL;
+    let model = black_box(c07::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 5.0, &events)?;
     let at_b = event(&sol, 0, "the arrival at B")?;
@@ -565,7 +571,7 @@ fn case07(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case08(s: &Setting) -> Result<Measured, Failure> {
-    let (guide_model, bumper) = (c08::MODEL, c08::BUMPER);
+    let (guide_model, bumper) = black_box((c08::MODEL, c08::BUMPER));
     let guide_events = guide_model.events();
     let guide = solve_mechanism::<_, 1, 2>(
         s,
@@ -592,7 +598,7 @@ fn case08(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case09(s: &Setting) -> Result<Measured, Failure> {
-    let model = c09::MODEL;
+    let model = black_box(c09::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 10.0, &events)?;
     let exit = event(&sol, 0, "the exit")?;
@@ -611,7 +617,7 @@ fn case09(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case10(s: &Setting) -> Result<Measured, Failure> {
-    let model = c10::MODEL;
+    let model = black_box(c10::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 2, 4>(s, &model, 0.0, model.initial_state(), 10.0, &events)?;
     let bottom = event(&sol, 0, "the lowest position")?;
@@ -624,7 +630,7 @@ fn case10(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case19(s: &Setting) -> Result<Measured, Failure> {
-    let model = c19::MODEL;
+    let model = black_box(c19::MODEL);
     // The case's start: the state at t = 0 by kinematic analysis from the init guess.
     let guess = model.initial_state().fixed_rows::<2>(0).into_owned();
     let k = kinematics(&model, 0.0, &guess, &NewtonOptions::default())?;
@@ -645,7 +651,7 @@ fn case19(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case20(s: &Setting) -> Result<Measured, Failure> {
-    let model = c20::MODEL;
+    let model = black_box(c20::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 2.0, &events)?;
     let at_60 = event(&sol, 0, "the 60° position")?;
@@ -657,7 +663,7 @@ fn case20(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case23(s: &Setting) -> Result<Measured, Failure> {
-    let (model, reversed) = (c23::MODEL, c23::REVERSED);
+    let (model, reversed) = black_box((c23::MODEL, c23::REVERSED));
     let events = model.events();
     let first =
         solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 200.0, &events[..1])?;
@@ -674,7 +680,7 @@ fn case23(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case26(s: &Setting) -> Result<Measured, Failure> {
-    let model = c26::MODEL;
+    let model = black_box(c26::MODEL);
     let events = model.events();
     let sol = solve_loop::<_, 2, 1, 3, 4>(s, &model, 0.0, model.initial_state(), 2.0, &events)?;
     let hit = event(&sol, 0, "OA vertical")?;
@@ -686,7 +692,7 @@ fn case26(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case27(s: &Setting) -> Result<Measured, Failure> {
-    let model = c27::MODEL;
+    let model = black_box(c27::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 5.0, &events)?;
     let fastest = event(&sol, 0, "the maximum angular speed")?;
@@ -705,7 +711,7 @@ fn case27(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case28(s: &Setting) -> Result<Measured, Failure> {
-    let model = c28::MODEL;
+    let model = black_box(c28::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 5.0, &events)?;
     let slowest = event(&sol, 0, "the minimum angular speed")?;
@@ -730,7 +736,7 @@ fn case28(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn case30(s: &Setting) -> Result<Measured, Failure> {
-    let model = c30::MODEL;
+    let model = black_box(c30::MODEL);
     let events = model.events();
     let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 5.0, &events)?;
     let extreme = event(&sol, 0, "the turning point")?;
@@ -914,7 +920,7 @@ fn pendulum_run<S: OdeSystem<2> + mbd::Mechanism<1>>(
 }
 
 fn pendulum_generated(s: &Setting) -> Result<Measured, Failure> {
-    let p = handwritten::PENDULUM;
+    let p = black_box(handwritten::PENDULUM);
     if s.method == Method::PeerDopri5 {
         let (t1, theta, theta_dot) = pendulum_reference();
         let y0 = Vector::<2>::new(PENDULUM_RUN.0, 0.0);
@@ -929,7 +935,7 @@ fn pendulum_generated(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn pendulum_by_hand(s: &Setting) -> Result<Measured, Failure> {
-    pendulum_run(s, &PendulumByHand::from(&handwritten::PENDULUM))
+    pendulum_run(s, &PendulumByHand::from(&black_box(handwritten::PENDULUM)))
 }
 
 /// Initial state `[a, b, a', b']` and length of one leg of the double-pendulum round trip.
@@ -973,12 +979,12 @@ fn double_run<S: OdeSystem<4> + mbd::Mechanism<2>>(
 }
 
 fn double_generated(s: &Setting) -> Result<Measured, Failure> {
-    let p = handwritten::DOUBLE_PENDULUM;
+    let p = black_box(handwritten::DOUBLE_PENDULUM);
     double_run(s, &p, &p)
 }
 
 fn double_by_hand(s: &Setting) -> Result<Measured, Failure> {
-    let p = handwritten::DOUBLE_PENDULUM;
+    let p = black_box(handwritten::DOUBLE_PENDULUM);
     double_run(s, &p, &DoublePendulumByHand::from(&p))
 }
 
@@ -1044,7 +1050,7 @@ fn slider_run<S: OdeSystem<6> + Constrained<3, 2>>(
 }
 
 fn slider_generated(s: &Setting) -> Result<Measured, Failure> {
-    let p = handwritten::SLIDER_CRANK;
+    let p = black_box(handwritten::SLIDER_CRANK);
     if s.method == Method::PeerDopri5 {
         let (t1, theta, theta_dot) = slider_reference();
         let y0 = handwritten::slider_crank_state(&p, SLIDER_RUN.0, 0.0);
@@ -1059,7 +1065,10 @@ fn slider_generated(s: &Setting) -> Result<Measured, Failure> {
 }
 
 fn slider_by_hand(s: &Setting) -> Result<Measured, Failure> {
-    slider_run(s, &SliderCrankByHand::from(&handwritten::SLIDER_CRANK))
+    slider_run(
+        s,
+        &SliderCrankByHand::from(&black_box(handwritten::SLIDER_CRANK)),
+    )
 }
 
 // ---------------------------------------------------------------------------------------

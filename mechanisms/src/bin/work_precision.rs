@@ -228,6 +228,16 @@ struct Figures {
     skipped: Vec<(String, Method, String)>,
 }
 
+/// Every method, in the order of the plots' colours.
+const ALL_METHODS: [Method; 6] = [
+    Method::Rk4,
+    Method::Dopri5,
+    Method::Radau5,
+    Method::GeneralizedAlpha,
+    Method::Dopri5NoProjection,
+    Method::PeerDopri5,
+];
+
 /// The error at which the zero-overhead and peer ratios are read.
 const RATIO_TARGET: f64 = 1e-8;
 
@@ -475,15 +485,26 @@ fn write_report(
     }
     md.push_str("\n## Plots\n\n");
     for p in problems {
-        let series: Vec<(String, Vec<(f64, f64)>)> = curves
+        // Every method in a fixed order, so that a method has the same colour in every plot;
+        // errors are floored at 1e-16 (an exact result) and runs off by more than 10x left out.
+        let series: Vec<(String, Vec<(f64, f64)>)> = ALL_METHODS
             .iter()
-            .filter(|c| c.mechanism == p.name)
-            .map(|c| (c.method.name().to_string(), c.points()))
-            .filter(|(_, pts)| !pts.is_empty())
+            .map(|&m| {
+                let pts = curves
+                    .iter()
+                    .find(|c| c.mechanism == p.name && c.method == m)
+                    .map(|c| c.points())
+                    .unwrap_or_default()
+                    .into_iter()
+                    .filter(|&(_, e)| e <= 10.0)
+                    .map(|(t, e)| (t, e.max(1e-16)))
+                    .collect();
+                (m.name().to_string(), pts)
+            })
             .collect();
         let file = format!("{}.svg", slug(p.name));
         let plot = svg::log_log_plot(
-            &format!("{}: {}", p.name, p.title),
+            &format!("{}: work-precision", p.name),
             "run time [s]",
             "max relative error",
             &series,
