@@ -82,7 +82,9 @@ pub struct Gauss {
     /// Steps allowed before [`Error::TooManySteps`].
     pub max_steps: usize,
     /// Newton stops when the scaled increment `max_i |Δz_i| / (1 + |y_i|)` falls below `tol`,
-    /// or stops decreasing below `1e3 tol` (rounding).
+    /// or stops decreasing once below `1e-8`: that is rounding, which a stiff right-hand
+    /// side amplifies (k = 1e10 N/m turns `eps |x|` into a force error of 1e-7 N). An
+    /// increment that stops decreasing above `1e-8` is divergence.
     pub tol: f64,
     /// Newton iterations per step (per Jacobian) before giving up.
     pub max_iterations: usize,
@@ -126,6 +128,9 @@ impl Gauss {
         Ok(())
     }
 }
+
+/// Below this scaled increment, a Newton iteration that stops decreasing has reached rounding.
+const STAGNATION: f64 = 1e-8;
 
 fn finite<const D: usize>(v: &Vector<D>) -> bool {
     v.iter().all(|x| x.is_finite())
@@ -210,7 +215,7 @@ impl Gauss {
             }
             if norm >= previous {
                 // No more progress: at rounding this is convergence, above it divergence.
-                return Ok(if previous <= 1e3 * self.tol {
+                return Ok(if previous <= STAGNATION {
                     Stages::Converged { z, f, slow }
                 } else {
                     Stages::Failed { non_finite: false }
