@@ -20,7 +20,7 @@
 //! shows on the pendulum is that solve, not the generated expressions.
 //!
 //! Each twin implements the same traits as the generated model ([`OdeSystem`], and
-//! [`Mechanism`](mbd::Mechanism) / [`Constrained`] where the generated one has them), so the
+//! [`Mechanism`] / [`Constrained`] where the generated one has them), so the
 //! same integrator runs both. The benchmark `rhs` and the `work-precision` report share them.
 
 use mbd::nalgebra::Matrix2;
