@@ -565,10 +565,10 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             None => ([g.zero(), g.zero()], g.zero()),
         };
         let mut local = at;
-        let mut angle = g.add(p_angle, offset);
+        let mut relative = offset;
         let joint = match (&tb.joint, coord.flatten(), axis) {
             (parse::Joint::Revolute(_), Some(j), _) => {
-                angle = g.add(angle, coords[j].z);
+                relative = g.add(relative, coords[j].z);
                 tree::JointKin::Revolute { coord: j }
             }
             (parse::Joint::Prismatic { .. }, Some(j), Some(axis)) => {
@@ -576,11 +576,11 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
                     let d = g.mul(a, coords[j].z);
                     *l = g.add(*l, d);
                 }
-                let axis = tree::rotate(&mut g, p_angle, axis);
                 tree::JointKin::Prismatic { coord: j, axis }
             }
             _ => tree::JointKin::Fixed,
         };
+        let angle = g.add(p_angle, relative);
         let moved = tree::rotate(&mut g, p_angle, local);
         let mut origin = [g.add(p_origin[0], moved[0]), g.add(p_origin[1], moved[1])];
         if let Some((rx, ry)) = &tb.reaction {
@@ -592,13 +592,13 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             }
         }
         let arm = tree::rotate(&mut g, angle, com);
-        let com = [g.add(origin[0], arm[0]), g.add(origin[1], arm[1])];
+        let com_world = [g.add(origin[0], arm[0]), g.add(origin[1], arm[1])];
         let z = g.zero();
         let rigid = !g.is_zero(inertia);
         bodies.push(BodyKin {
             mass,
             inertia: rigid.then_some([[inertia, z, z], [z, z, z], [z, z, z]]),
-            r: com.to_vec(),
+            r: com_world.to_vec(),
             angle: rigid.then_some(angle),
             rot: None,
         });
@@ -612,9 +612,11 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         nodes.push(tree::Node {
             parent,
             joint,
+            at: local,
+            relative,
+            com,
             origin,
             angle,
-            com,
             mass,
             inertia,
         });

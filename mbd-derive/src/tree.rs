@@ -1,20 +1,21 @@
-//! Joint trees: body frames composed joint by joint, and the articulated-body recursion
-//! that gives a planar tree's accelerations in O(n) straight-line code.
+//! Joint trees: the articulated-body recursion that gives a planar tree's accelerations in
+//! O(n) straight-line code.
 //!
-//! Everything is expressed in the ground frame, with planar spatial vectors referred to the
-//! world origin `O`: a motion `(w, vx, vy)` (angular rate, velocity of the body point at
-//! `O`) and a force `(n, fx, fy)` (moment about `O`, resultant). This is Featherstone's
-//! articulated-body algorithm in absolute coordinates (RBDA, ch. 7): no frame transforms
-//! between bodies, and each body's kinematics are the nodes the rest of the model shares.
+//! Featherstone's articulated-body algorithm (RBDA, ch. 7) in body coordinates, with planar
+//! spatial vectors: a motion `(w, vx, vy)` (angular rate, velocity of the frame origin) and a
+//! force `(n, fx, fy)` (moment about the frame origin, resultant), both in the body's frame.
+//! Each body's inertia is then a constant of the parameters, and a joint's transform is one
+//! rotation by its relative angle and one shift by its offset: the same operations a careful
+//! hand-written implementation does, unrolled over the tree at compile time.
 
-use crate::sym::{Expr, Graph};
+use crate::sym::{Expr, Func, Graph};
 
 /// A joint as the recursion sees it: the index of its coordinate among the full ones.
 pub enum JointKin {
     Revolute {
         coord: usize,
     },
-    /// `axis`: the unit direction in the ground frame.
+    /// `axis`: the unit direction in the parent's frame.
     Prismatic {
         coord: usize,
         axis: [Expr; 2],
@@ -35,11 +36,15 @@ impl JointKin {
 pub struct Node {
     pub parent: Option<usize>,
     pub joint: JointKin,
-    /// The joint origin in the ground frame (the revolute axis).
+    /// The body frame's origin in the parent's frame (the prismatic travel included).
+    pub at: [Expr; 2],
+    /// The body frame's angle relative to the parent's.
+    pub relative: Expr,
+    /// The mass centre in the body's frame.
+    pub com: [Expr; 2],
+    /// The frame in the ground's coordinates (for loop closures).
     pub origin: [Expr; 2],
     pub angle: Expr,
-    /// The mass centre in the ground frame.
-    pub com: [Expr; 2],
     pub mass: Expr,
     /// Centroidal inertia; zero for a point mass.
     pub inertia: Expr,
@@ -47,10 +52,11 @@ pub struct Node {
 
 /// `R(angle) v`.
 pub fn rotate(g: &mut Graph, angle: Expr, v: [Expr; 2]) -> [Expr; 2] {
-    let (c, s) = (
-        g.call(crate::sym::Func::Cos, angle),
-        g.call(crate::sym::Func::Sin, angle),
-    );
+    let (c, s) = (g.call(Func::Cos, angle), g.call(Func::Sin, angle));
+    rotate_cs(g, c, s, v)
+}
+
+fn rotate_cs(g: &mut Graph, c: Expr, s: Expr, v: [Expr; 2]) -> [Expr; 2] {
     let (cx, sy, sx, cy) = (
         g.mul(c, v[0]),
         g.mul(s, v[1]),
@@ -89,7 +95,7 @@ fn cross_force(g: &mut Graph, v: V3, f: V3) -> V3 {
     [g.sub(a, b), g.neg(c), d]
 }
 
-/// Spatial inertia about `O` of mass `m` at `c` with centroidal inertia `i`.
+/// Spatial inertia about the frame origin of mass `m` at `c` with centroidal inertia `i`.
 fn inertia_at_origin(g: &mut Graph, m: Expr, c: [Expr; 2], i: Expr) -> M3 {
     let r2 = g.dot(&c, &c);
     let mr2 = g.mul(m, r2);
@@ -99,14 +105,96 @@ fn inertia_at_origin(g: &mut Graph, m: Expr, c: [Expr; 2], i: Expr) -> M3 {
     [[g.add(i, mr2), nmcy, mcx], [nmcy, m, z], [mcx, z, m]]
 }
 
-/// The motion subspace of a joint in the ground frame.
-fn subspace(g: &mut Graph, node: &Node) -> Option<V3> {
-    match &node.joint {
-        JointKin::Revolute { .. } => {
-            let nx = g.neg(node.origin[0]);
-            Some([g.one(), node.origin[1], nx])
+/// A joint's parent-to-child transform: rotation by the relative angle (`cos`, `sin`) and the
+/// child origin `r` in the parent's frame.
+struct Transform {
+    c: Expr,
+    s: Expr,
+    r: [Expr; 2],
+}
+
+impl Transform {
+    fn new(g: &mut Graph, node: &Node) -> Self {
+        Transform {
+            c: g.call(Func::Cos, node.relative),
+            s: g.call(Func::Sin, node.relative),
+            r: node.at,
         }
-        JointKin::Prismatic { axis, .. } => Some([g.zero(), axis[0], axis[1]]),
+    }
+
+    /// `R^T v` (parent axes to child axes).
+    fn to_child(&self, g: &mut Graph, v: [Expr; 2]) -> [Expr; 2] {
+        let s = g.neg(self.s);
+        rotate_cs(g, self.c, s, v)
+    }
+
+    /// `R v` (child axes to parent axes).
+    fn to_parent(&self, g: &mut Graph, v: [Expr; 2]) -> [Expr; 2] {
+        rotate_cs(g, self.c, self.s, v)
+    }
+
+    /// `w x r` for the planar rate `w`: `w (-r_y, r_x)`.
+    fn arm(&self, g: &mut Graph, w: Expr) -> [Expr; 2] {
+        let (a, b) = (g.mul(w, self.r[1]), g.mul(w, self.r[0]));
+        [g.neg(a), b]
+    }
+
+    /// A motion vector of the parent frame seen in the child frame.
+    fn motion(&self, g: &mut Graph, v: V3) -> V3 {
+        let arm = self.arm(g, v[0]);
+        let at_child = [g.add(v[1], arm[0]), g.add(v[2], arm[1])];
+        let lin = self.to_child(g, at_child);
+        [v[0], lin[0], lin[1]]
+    }
+
+    /// A force of the child frame seen in the parent frame (`X^T f`).
+    fn force(&self, g: &mut Graph, f: V3) -> V3 {
+        let lin = self.to_parent(g, [f[1], f[2]]);
+        let (a, b) = (g.mul(self.r[0], lin[1]), g.mul(self.r[1], lin[0]));
+        let moment = g.sub(a, b);
+        [g.add(f[0], moment), lin[0], lin[1]]
+    }
+
+    /// An articulated inertia of the child frame seen in the parent frame (`X^T I X`):
+    /// rotate the linear blocks, then shift the reference point by `r`.
+    fn inertia(&self, g: &mut Graph, i: &M3) -> M3 {
+        let b = self.to_parent(g, [i[1][0], i[2][0]]);
+        let c0 = self.to_parent(g, [i[1][1], i[2][1]]);
+        let c1 = self.to_parent(g, [i[1][2], i[2][2]]);
+        // R C R^T: rotate the columns (above), then the rows.
+        let r0 = self.to_parent(g, [c0[0], c1[0]]);
+        let r1 = self.to_parent(g, [c0[1], c1[1]]);
+        let cr = [[r0[0], r1[0]], [r0[1], r1[1]]];
+        let rho = [g.neg(self.r[1]), self.r[0]];
+        let w = [
+            {
+                let d = g.dot(&cr[0], &rho);
+                g.add(b[0], d)
+            },
+            {
+                let d = g.dot(&cr[1], &rho);
+                g.add(b[1], d)
+            },
+        ];
+        let (brho, rhow) = (g.dot(&b, &rho), g.dot(&rho, &w));
+        let a = g.add(i[0][0], brho);
+        let a = g.add(a, rhow);
+        [
+            [a, w[0], w[1]],
+            [w[0], cr[0][0], cr[0][1]],
+            [w[1], cr[1][0], cr[1][1]],
+        ]
+    }
+}
+
+/// The motion subspace of a joint in the child's frame.
+fn subspace(g: &mut Graph, node: &Node, x: &Transform) -> Option<V3> {
+    match &node.joint {
+        JointKin::Revolute { .. } => Some([g.one(), g.zero(), g.zero()]),
+        JointKin::Prismatic { axis, .. } => {
+            let a = x.to_child(g, *axis);
+            Some([g.zero(), a[0], a[1]])
+        }
         JointKin::Fixed => None,
     }
 }
@@ -126,15 +214,19 @@ pub struct Inputs<'a> {
 pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<Option<Expr>> {
     let n = nodes.len();
     let z3 = [g.zero(); 3];
+    let xs: Vec<Transform> = nodes.iter().map(|node| Transform::new(g, node)).collect();
     // Pass 1, root to tips: velocities, velocity-product accelerations, bias forces.
     let mut s = Vec::with_capacity(n);
     let mut v: Vec<V3> = Vec::with_capacity(n);
     let mut c: Vec<V3> = Vec::with_capacity(n);
     let mut ia: Vec<M3> = Vec::with_capacity(n);
     let mut pa: Vec<V3> = Vec::with_capacity(n);
-    for node in nodes {
-        let si = subspace(g, node);
-        let vp = node.parent.map_or(z3, |p| v[p]);
+    for (node, x) in nodes.iter().zip(&xs) {
+        let si = subspace(g, node, x);
+        let vp = match node.parent {
+            Some(p) => x.motion(g, v[p]),
+            None => z3,
+        };
         let (vi, ci) = match (si, node.joint.coord()) {
             (Some(si), Some(j)) => {
                 let vj = scale3(g, si, inp.velocity[j]);
@@ -177,11 +269,26 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
                             i_pass[k][r] = i_pass[r][k];
                         }
                     }
+                    let revolute = matches!(node.joint, JointKin::Revolute { .. });
+                    if revolute {
+                        // S = e0: row and column 0 vanish exactly (rounding would leave
+                        // noise, and work, in the symbolic form).
+                        let z = g.zero();
+                        for k in 0..3 {
+                            i_pass[0][k] = z;
+                            i_pass[k][0] = z;
+                        }
+                    }
                     let ic = mat_vec(g, &i_pass, c[i]);
                     let ud = g.mul(u_force, inv_d);
                     let uu = scale3(g, u, ud);
                     let p = add3(g, p_a, ic);
-                    (i_pass, add3(g, p, uu))
+                    let mut p_pass = add3(g, p, uu);
+                    if revolute {
+                        // The joint transmits no moment but its own effort: p^a_0 = tau.
+                        p_pass[0] = inp.tau[j];
+                    }
+                    (i_pass, p_pass)
                 }
                 Some(qdd) => {
                     let sq = scale3(g, si, qdd);
@@ -193,13 +300,15 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
             _ => (i_a, p_a),
         };
         if let Some(p) = node.parent {
+            let i_up = xs[i].inertia(g, &i_pass);
+            let p_up = xs[i].force(g, p_pass);
             for r in 0..3 {
                 for k in r..3 {
-                    ia[p][r][k] = g.add(ia[p][r][k], i_pass[r][k]);
+                    ia[p][r][k] = g.add(ia[p][r][k], i_up[r][k]);
                     ia[p][k][r] = ia[p][r][k];
                 }
             }
-            pa[p] = add3(g, pa[p], p_pass);
+            pa[p] = add3(g, pa[p], p_up);
         }
     }
     // Pass 3, root to tips: accelerations (gravity as an upward acceleration of the ground).
@@ -211,6 +320,7 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
     let mut qdd = vec![None; inp.velocity.len()];
     for (i, node) in nodes.iter().enumerate() {
         let ap = node.parent.map_or(base, |p| a[p]);
+        let ap = xs[i].motion(g, ap);
         let a_prime = add3(g, ap, c[i]);
         let ai = match (s[i], node.joint.coord()) {
             (Some(si), Some(j)) => {
