@@ -123,6 +123,9 @@ struct Row {
     generated_parts: Vec<String>,
     recursive: Option<bool>,
     max_rel_diff: Option<f64>,
+    /// The machine's 1-minute load average before the build: other processes slow builds
+    /// and timings down.
+    load_1min: Option<f64>,
     error: Option<String>,
 }
 
@@ -250,7 +253,13 @@ impl Ctx {
             form: Some(form),
             ..Row::default()
         };
-        eprintln!("[N={n}] building ({form:?} form)");
+        row.load_1min = fs::read_to_string("/proc/loadavg")
+            .ok()
+            .and_then(|s| s.split_whitespace().next()?.parse().ok());
+        eprintln!(
+            "[N={n}] building ({form:?} form), load average {}",
+            row.load_1min.map_or("?".into(), |l| format!("{l:.2}"))
+        );
         match self.build(n, form, true) {
             Ok(s) => row.build_s = Some(s),
             Err(e) => {
@@ -520,7 +529,7 @@ fn print_table(form: Form, rows: &[Row]) {
     );
     for r in rows {
         println!(
-            "{:>4} {:>10} {:>9} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10}  {}",
+            "{:>4} {:>10} {:>9} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>5}  {}",
             r.n_bodies,
             f(r.expand_s, 3),
             f(r.build_s, 2),
@@ -530,6 +539,7 @@ fn print_table(form: Form, rows: &[Row]) {
             f(r.ratio, 2),
             r.max_rel_diff.map_or("-".into(), |v| format!("{v:.1e}")),
             r.recursive.map_or("-".into(), |b| b.to_string()),
+            f(r.load_1min, 1),
             r.generated_parts.join(","),
         );
         if let Some(e) = &r.error {
@@ -538,6 +548,7 @@ fn print_table(form: Form, rows: &[Row]) {
     }
     println!(
         "build_s is the wall time of `cargo build --release` of the chain crate alone (dependencies \
-         prebuilt), expansion included; ratio = rhs_ns / by_hand_ns"
+         prebuilt), expansion included; ratio = rhs_ns / by_hand_ns; load = 1-minute load average before the build \
+         (2 cores)"
     );
 }
