@@ -7,6 +7,15 @@ use crate::model::{Matrix, Vector};
 /// `qdd` from `M qdd = f`: `L D L^T` (M is symmetric positive definite for a well-posed
 /// model), with LU as the fallback for a mass matrix that is merely non-singular.
 pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) -> Result<Vector<N>> {
+    if N == 1 {
+        // One coordinate: `f * (1 / m)`, whose reciprocal an integrator loop can hoist
+        // when the mass is constant (a pendulum's `m l^2`), as hand-written code does.
+        let m = mass[(0, 0)];
+        if m == 0.0 || !m.is_finite() {
+            return Err(Error::SingularMassMatrix { t });
+        }
+        return finite(t, f * (1.0 / m));
+    }
     let x = match crate::linalg::solve_spd(mass, f) {
         Some(x) => x,
         None => Lu::factor(*mass)
@@ -116,5 +125,24 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
         Ok((a_q, a_qd))
     } else {
         Err(Error::NonFinite { t })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One coordinate: `f / m`, and a zero or non-finite mass is a typed error, not a NaN.
+    #[test]
+    fn scalar_mass_solve() {
+        let f = Vector::<1>::new(-3.0);
+        let x = solve_mass::<1>(0.0, &Matrix::<1, 1>::new(0.5), &f).unwrap();
+        assert_eq!(x[0], -6.0);
+        for m in [0.0, f64::NAN, f64::INFINITY] {
+            let err = solve_mass::<1>(2.0, &Matrix::<1, 1>::new(m), &f).unwrap_err();
+            assert_eq!(err, Error::SingularMassMatrix { t: 2.0 });
+        }
+        let err = solve_mass::<1>(1.0, &Matrix::<1, 1>::new(1.0), &Vector::<1>::new(f64::NAN));
+        assert_eq!(err.unwrap_err(), Error::NonFinite { t: 1.0 });
     }
 }

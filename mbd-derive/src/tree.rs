@@ -274,9 +274,9 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
                         // S = e0: row and column 0 vanish exactly (rounding would leave
                         // noise, and work, in the symbolic form).
                         let z = g.zero();
-                        for k in 0..3 {
-                            i_pass[0][k] = z;
-                            i_pass[k][0] = z;
+                        i_pass[0] = [z; 3];
+                        for row in &mut i_pass {
+                            row[0] = z;
                         }
                     }
                     let ic = mat_vec(g, &i_pass, c[i]);
