@@ -15,8 +15,9 @@
 //! ```
 //!
 //! solved by Newton for `q1` (and `lambda1`). The constraint rows are divided by
-//! `beta h^2`, so that they scale like the force rows (whose derivative in `q1` is about
-//! `M / (beta h^2)`) and the iteration matrix stays well conditioned as `h -> 0`
+//! `beta h^2` and the unknown multipliers are `beta h^2 lambda1`, so that both scale like
+//! the force rows and the positions (whose derivative is about `M / (beta h^2)`) and the
+//! iteration matrix stays well conditioned as `h -> 0`
 //! (Bottasso, Bauchau & Cardona, SIAM J. Sci. Comput. 29, 2007). The iteration matrix is
 //! the forward-difference Jacobian of the residual, factored once per step (refreshed once
 //! if Newton is slow). Positions and velocities converge with order 2; the position
@@ -146,7 +147,8 @@ impl GeneralizedAlpha {
             events,
             |scale, t, z: &Vector<A>, qd1, qdd1| {
                 let q1 = z.fixed_rows::<N>(0).into_owned();
-                let lambda = z.fixed_rows::<M>(N).into_owned();
+                // The unknowns carry beta h^2 lambda (see `run`).
+                let lambda = z.fixed_rows::<M>(N) * scale;
                 let mut r = Vector::<A>::zeros();
                 r.fixed_rows_mut::<N>(0).copy_from(
                     &(sys.mass_matrix(t, &q1) * qdd1 + sys.phi_q(t, &q1).transpose() * lambda
@@ -205,6 +207,13 @@ impl GeneralizedAlpha {
         }
         let (mut q, mut qd, mut qdd, mut a, mut z) = (q0, qd0, qdd0, qdd0, z0);
         let (bh2, scale) = (c.beta * h * h, 1.0 / (c.beta * h * h));
+        // The unknowns after q1 (the multipliers) are carried scaled by beta h^2, like the
+        // constraint rows: unscaled, a multiplier of 1e7 N next to positions of 0.1 m gave
+        // the forward-difference Jacobian a column below the residual's rounding (a zero
+        // column for a multiplier that starts at 0), and Newton a singular matrix.
+        for i in N..K {
+            z[i] *= bh2;
+        }
         for k in 0..steps {
             let t = t0 + k as f64 * h;
             let t_next = if k + 1 == steps {
