@@ -255,33 +255,30 @@ fn generalized_alpha_on_the_shaken_block_does_not_care_about_k() {
     assert!(hi <= 3.0 * lo, "{errs:?}");
 }
 
-/// Gauss (h = 1e-3) is A-stable: for k up to 1e6 its error is set by the slow motion,
-/// O((w h)^4) in the non-stiff range (2e-11 at k = 1e2), growing to 1.6e-7 at 1e6 as the
-/// method falls to its stage order in the stiff limit (Hairer & Wanner II, Sect. IV.15);
-/// asserted below (w h)^2, like generalized-α. From k = 1e7 its Newton iteration on the
-/// stage equations stops converging to rounding (h sqrt(k/m) >= 3, a fast mode that it
-/// does not damp) and the run ends with a typed `NewtonFailed`, never a NaN: Gauss is for
-/// long conservative runs, not for stiff problems.
+/// Gauss (h = 1e-3) is A-stable: every run finishes, finite, for every k. But its error
+/// grows in proportion to k, a factor 10 per decade, from 2.2e-11 of the amplitude at
+/// k = 1e2 to 1.6e-7 at 1e6 and 1.6e-3 at 1e10 (measured): the local error of a method
+/// with stage order 2 on `y' = lambda (y - g) + g'` carries powers of `h lambda`, and not
+/// being L-stable (`R(-inf) = 1`) Gauss does not damp what the fast mode picks up
+/// (Hairer & Wanner II, Sect. IV.15). Asserted: finite everywhere, and below (w h)^2 (like
+/// generalized-α) up to k = 1e6. A fixed-step method without error estimate cannot warn:
+/// Gauss is for long conservative runs, stiff problems belong to Radau IIA.
 #[test]
-fn gauss_on_the_shaken_block_is_stable_or_stops_typed() {
+fn gauss_on_the_shaken_block_is_stable_for_every_k() {
     let h = 1e-3;
     for k in KS {
         let model = ShakenBlock::new(k);
-        let r = mbd::integrate::Gauss::new(h).solve(&model, 0.0, model.y0(), 2.0, &[]);
-        match r {
-            Ok(sol) => {
-                let err = model.error(&sol.t, &sol.y);
-                eprintln!(
-                    "Gauss h = 1e-3 shaken block k = {k:.0e}: error {err:.2e}, jacobians {}",
-                    sol.stats.n_jac
-                );
-                assert!(err < (model.w * h).powi(2), "k = {k}: {err}");
-            }
-            Err(e) => {
-                eprintln!("Gauss h = 1e-3 shaken block k = {k:.0e}: {e}");
-                assert!(matches!(e, Error::NewtonFailed { .. }), "{e}");
-                assert!(k >= 1e7, "k = {k}");
-            }
+        let sol = mbd::integrate::Gauss::new(h)
+            .solve(&model, 0.0, model.y0(), 2.0, &[])
+            .unwrap();
+        let err = model.error(&sol.t, &sol.y);
+        eprintln!(
+            "Gauss h = 1e-3 shaken block k = {k:.0e}: error {err:.2e}, jacobians {}",
+            sol.stats.n_jac
+        );
+        assert!(sol.y.iter().all(|y| y.iter().all(|v| v.is_finite())));
+        if k <= 1e6 {
+            assert!(err < (model.w * h).powi(2), "k = {k}: {err}");
         }
     }
 }
