@@ -161,10 +161,14 @@ impl Transform {
         let b = self.to_parent(g, [i[1][0], i[2][0]]);
         let c0 = self.to_parent(g, [i[1][1], i[2][1]]);
         let c1 = self.to_parent(g, [i[1][2], i[2][2]]);
-        // R C R^T: rotate the columns (above), then the rows.
+        // R C R^T: rotate the columns (above), then the rows; symmetric, so of the second
+        // row only its diagonal entry is computed.
         let r0 = self.to_parent(g, [c0[0], c1[0]]);
-        let r1 = self.to_parent(g, [c0[1], c1[1]]);
-        let cr = [[r0[0], r1[0]], [r0[1], r1[1]]];
+        let r11 = {
+            let (a, b) = (g.mul(self.s, c0[1]), g.mul(self.c, c1[1]));
+            g.add(a, b)
+        };
+        let cr = [[r0[0], r0[1]], [r0[1], r11]];
         let rho = [g.neg(self.r[1]), self.r[0]];
         let w = [
             {
@@ -176,9 +180,18 @@ impl Transform {
                 g.add(b[1], d)
             },
         ];
-        let (brho, rhow) = (g.dot(&b, &rho), g.dot(&rho, &w));
-        let a = g.add(i[0][0], brho);
-        let a = g.add(a, rhow);
+        // a = i00 + 2 b.rho + rho^T C' rho, the last with the parameter-only products
+        // rho_r rho_k (off the dependency chain through C').
+        let brho = g.dot(&b, &rho);
+        let two_brho = g.add(brho, brho);
+        let mut a = g.add(i[0][0], two_brho);
+        for r in 0..2 {
+            for k in 0..2 {
+                let rr = g.mul(rho[r], rho[k]);
+                let term = g.mul(cr[r][k], rr);
+                a = g.add(a, term);
+            }
+        }
         [
             [a, w[0], w[1]],
             [w[0], cr[0][0], cr[0][1]],
@@ -260,11 +273,13 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
                     let one = g.one();
                     let inv_d = g.div(one, d);
                     u_vec[i] = Some((u, inv_d, u_force));
-                    let u_scaled = scale3(g, u, inv_d);
                     let mut i_pass = i_a;
                     for r in 0..3 {
                         for k in r..3 {
-                            let uu = g.mul(u_scaled[r], u[k]);
+                            // `(U_r U_k) / D`: the product waits for `D`, one multiplication
+                            // after it (the inward pass is one long dependency chain).
+                            let uu = g.mul(u[r], u[k]);
+                            let uu = g.mul(uu, inv_d);
                             i_pass[r][k] = g.sub(i_a[r][k], uu);
                             i_pass[k][r] = i_pass[r][k];
                         }
