@@ -12,28 +12,63 @@ use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashMap;
 
+/// Above this many temporaries a body declares them in groups (see [`Block::new`]).
+const FLAT_LIMIT: usize = 1024;
+/// Temporaries per declaration in a long body.
+const GROUP: usize = 1024;
+
 /// One function body under construction.
 struct Block<'a> {
     eq: &'a Equations,
     names: HashMap<Expr, TokenStream>,
     stmts: Vec<TokenStream>,
+    /// Temporaries bound (one per scheduled node), whatever the layout.
+    len: usize,
 }
 
 impl<'a> Block<'a> {
     /// Schedule `roots` and bind every interior node to a temporary.
+    ///
+    /// Every `let` opens a lexical scope that holds the rest of the body, and with debug
+    /// information LLVM walks these scopes recursively: rustc overflowed its stack on a
+    /// 32-link chain's articulated-body recursion (3387 nested `let`s) in the default `dev`
+    /// profile. So a body of more than [`FLAT_LIMIT`] temporaries declares them first, a
+    /// [`GROUP`] per `let (t0, t1, ..): (f64, f64, ..);`, then assigns each once: the
+    /// nesting depth is the number of groups, and the optimised code is the same.
     fn new(eq: &'a Equations, roots: &[Expr]) -> Self {
         let mut b = Block {
             eq,
             names: HashMap::new(),
             stmts: Vec::new(),
+            len: 0,
         };
-        for e in sym::schedule(&eq.g, roots) {
+        let order = sym::schedule(&eq.g, roots);
+        b.len = order.len();
+        let grouped = order.len() > FLAT_LIMIT;
+        let name = |i: usize| format_ident!("t{}", i);
+        if grouped {
+            for start in (0..order.len()).step_by(GROUP) {
+                let names: Vec<_> = (start..order.len().min(start + GROUP)).map(name).collect();
+                let types = names.iter().map(|_| quote!(f64));
+                b.stmts.push(quote!(let (#(#names,)*): (#(#types,)*);));
+            }
+        }
+        for (i, &e) in order.iter().enumerate() {
             let value = b.node(e);
-            let name = format_ident!("t{}", b.stmts.len());
-            b.stmts.push(quote!(let #name: f64 = #value;));
-            b.names.insert(e, quote!(#name));
+            let t = name(i);
+            b.stmts.push(if grouped {
+                quote!(#t = #value;)
+            } else {
+                quote!(let #t: f64 = #value;)
+            });
+            b.names.insert(e, quote!(#t));
         }
         b
+    }
+
+    /// The number of temporaries (scheduled nodes).
+    fn len(&self) -> usize {
+        self.len
     }
 
     fn leaf(&self, e: Expr) -> TokenStream {
@@ -224,7 +259,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         .copied()
         .collect();
     let mf = Block::new(eq, &mf_roots);
-    parts.statements += mf.stmts.len();
+    parts.statements += mf.len();
     let (mf_stmts, mass_fill, force_fill) = (
         mf.stmts(),
         mf.matrix("mass", n, n, &eq.mass),
@@ -242,7 +277,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     } else if let Some(qdd) = &eq.recursive_qdd {
         parts.names.push("articulated_body");
         let b = Block::new(eq, qdd);
-        parts.statements += b.stmts.len();
+        parts.statements += b.len();
         let (s, fill) = (b.stmts(), b.vector("qdd", n, qdd));
         quote! {
             #s
@@ -294,7 +329,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         let gamma = Block::new(eq, &eq.gamma);
         let all: Vec<Expr> = mf_roots.iter().chain(&phi_q_roots).chain(&eq.gamma).copied().collect();
         let full = Block::new(eq, &all);
-        parts.statements += full.stmts.len() + phi.stmts.len();
+        parts.statements += full.len() + phi.len();
         let (p_s, p_f) = (phi.stmts(), phi.vector("phi", m, &eq.phi));
         let (pq_s, pq_f) = (phi_q.stmts(), phi_q.matrix("phi_q", m, n, &eq.phi_q));
         let (pt_s, pt_f) = (phi_t.stmts(), phi_t.vector("phi_t", m, &eq.phi_t));
@@ -341,7 +376,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             roots.extend(mat.iter().flatten());
         }
         let b = Block::new(eq, &roots);
-        parts.statements += b.stmts.len();
+        parts.statements += b.len();
         let (s, mass, pq, rq, rqd, cq, cqd) = (
             b.stmts(),
             b.matrix("mass", n, n, &eq.mass),
@@ -391,7 +426,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         parts.names.push("outputs");
         let roots: Vec<Expr> = eq.outputs.iter().map(|o| o.expr).collect();
         let b = Block::new(eq, &roots);
-        parts.statements += b.stmts.len();
+        parts.statements += b.len();
         let needs_qdd = uses(eq, &roots, |r| matches!(r, Role::Qdd(_) | Role::Lambda(_)));
         let pre = needs_qdd.then(|| solve_qdd_lambda.clone());
         let s = b.stmts();
@@ -567,7 +602,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     let qd_ids: Vec<_> = eq.free.iter().map(|c| format_ident!("{}_dot", c)).collect();
     let q_idx: Vec<usize> = (0..n).collect();
     let qd_idx: Vec<usize> = (n..d).collect();
-    parts.statements += mf.stmts.len() + energy.stmts.len();
+    parts.statements += mf.len() + energy.len();
     let part_names = &parts.names;
     let statements = parts.statements;
     let state_doc = format!(

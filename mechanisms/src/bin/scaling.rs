@@ -10,7 +10,8 @@
 //!   included, with every dependency already built by a warm-up build into the same shared
 //!   target directory (so only the chain crate compiles);
 //! - `generated_lines`: the macro's output (`<dir>/<Struct>.rs`, one token string) parsed with
-//!   `syn::parse_file` and formatted with `prettyplease`, counted in lines;
+//!   `syn::parse_file` and formatted with `prettyplease`, counted in lines (not counting the
+//!   names and types, one per line, of the grouped declarations long bodies start with);
 //! - `rhs_ns`: the generated `OdeSystem::rhs`, timed by the throw-away binary itself (median
 //!   of 201 batches, each long enough to be timed, at a fixed pseudo-random state);
 //! - `handwritten_rhs_ns`: the hand-written articulated-body algorithm
@@ -274,9 +275,7 @@ impl Ctx {
             .and_then(|s| s.trim().parse().ok());
         match fs::read_to_string(dump.join(format!("{name}.rs"))) {
             Ok(code) => match syn::parse_file(&code) {
-                Ok(file) => {
-                    row.generated_lines = Some(prettyplease::unparse(&file).lines().count())
-                }
+                Ok(file) => row.generated_lines = Some(code_lines(&prettyplease::unparse(&file))),
                 Err(e) => eprintln!("[N={n}] the generated code does not parse as a file: {e}"),
             },
             Err(_) => eprintln!("[N={n}] no dump of the generated code (MBD_EXPAND_DUMP)"),
@@ -339,6 +338,23 @@ impl Ctx {
         );
         row
     }
+}
+
+/// Lines of formatted code, without the one-per-line items of the grouped declarations
+/// `let (t0, t1, ..): (f64, f64, ..);` that long generated bodies start with (they would
+/// count every temporary twice).
+fn code_lines(formatted: &str) -> usize {
+    formatted
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            let item = l.strip_suffix(',').unwrap_or(l);
+            let temporary = item
+                .strip_prefix('t')
+                .is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()));
+            !(l.ends_with(',') && (temporary || item == "f64"))
+        })
+        .count()
 }
 
 fn struct_name(n: usize) -> String {
