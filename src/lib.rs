@@ -123,3 +123,8 @@ pub mod __private {
     pub use mbd_core::*;
     pub use nalgebra;
 }
+
+/// The README's examples, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
