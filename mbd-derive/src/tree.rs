@@ -222,139 +222,227 @@ pub struct Inputs<'a> {
     pub gravity: [Expr; 2],
 }
 
+/// How a joint's coordinate enters one body's step.
+#[derive(Clone, Copy)]
+enum JointInput {
+    /// Free: its generalised force other than gravity and inertia.
+    Free { tau: Expr },
+    /// Driven: its known acceleration.
+    Driven { qdd: Expr },
+    /// A fixed joint.
+    Locked,
+}
+
+impl JointInput {
+    fn of(node: &Node, inp: &Inputs<'_>) -> Self {
+        match node.joint.coord() {
+            Some(j) => match inp.prescribed[j] {
+                None => JointInput::Free { tau: inp.tau[j] },
+                Some(qdd) => JointInput::Driven { qdd },
+            },
+            None => JointInput::Locked,
+        }
+    }
+}
+
+/// Pass 1 of one body: velocity `v`, velocity-product acceleration `c`, bias force `p` and
+/// rigid spatial inertia, from the parent's velocity (`None`: the ground) and the joint rate.
+struct Outward {
+    s: Option<V3>,
+    v: V3,
+    c: V3,
+    p: V3,
+    inertia: M3,
+}
+
+fn outward(
+    g: &mut Graph,
+    node: &Node,
+    x: &Transform,
+    parent: Option<V3>,
+    rate: Option<Expr>,
+) -> Outward {
+    let z3 = [g.zero(); 3];
+    let s = subspace(g, node, x);
+    let vp = match parent {
+        Some(v) => x.motion(g, v),
+        None => z3,
+    };
+    let (v, c) = match (s, rate) {
+        (Some(si), Some(rate)) => {
+            let vj = scale3(g, si, rate);
+            let v = add3(g, vp, vj);
+            (v, cross_motion(g, v, vj))
+        }
+        _ => (vp, z3),
+    };
+    let inertia = inertia_at_origin(g, node.mass, node.com, node.inertia);
+    let iv = mat_vec(g, &inertia, v);
+    let p = cross_force(g, v, iv);
+    Outward {
+        s,
+        v,
+        c,
+        p,
+        inertia,
+    }
+}
+
+/// What pass 3 needs of a free joint: `U = I^A S`, `1 / D` and `u = tau - S . p^A`.
+#[derive(Clone, Copy)]
+struct Articulated {
+    u: V3,
+    inv_d: Expr,
+    u_force: Expr,
+}
+
+/// Pass 2 of one body: from its articulated inertia and bias force `(i_a, p_a)` (its own
+/// plus its children's), what it hands its parent, in its own frame.
+fn inward(
+    g: &mut Graph,
+    node: &Node,
+    s: Option<V3>,
+    joint: JointInput,
+    (i_a, p_a): (M3, V3),
+    c: V3,
+) -> (M3, V3, Option<Articulated>) {
+    let Some(si) = s else {
+        return (i_a, p_a, None);
+    };
+    match joint {
+        JointInput::Free { tau } => {
+            let u = mat_vec(g, &i_a, si);
+            let d = g.dot(&si, &u);
+            let sp = g.dot(&si, &p_a);
+            let u_force = g.sub(tau, sp);
+            // One division per joint; the articulated inertia stays symmetric.
+            let one = g.one();
+            let inv_d = g.div(one, d);
+            let mut i_pass = i_a;
+            for r in 0..3 {
+                for k in r..3 {
+                    // `(U_r U_k) / D`: the product waits for `D`, one multiplication
+                    // after it (the inward pass is one long dependency chain).
+                    let uu = g.mul(u[r], u[k]);
+                    let uu = g.mul(uu, inv_d);
+                    i_pass[r][k] = g.sub(i_a[r][k], uu);
+                    i_pass[k][r] = i_pass[r][k];
+                }
+            }
+            let revolute = matches!(node.joint, JointKin::Revolute { .. });
+            if revolute {
+                // S = e0: row and column 0 vanish exactly (rounding would leave
+                // noise, and work, in the symbolic form).
+                let z = g.zero();
+                i_pass[0] = [z; 3];
+                for row in &mut i_pass {
+                    row[0] = z;
+                }
+            }
+            let ic = mat_vec(g, &i_pass, c);
+            let ud = g.mul(u_force, inv_d);
+            let uu = scale3(g, u, ud);
+            let p = add3(g, p_a, ic);
+            let mut p_pass = add3(g, p, uu);
+            if revolute {
+                // The joint transmits no moment but its own effort: p^a_0 = tau.
+                p_pass[0] = tau;
+            }
+            let art = Articulated { u, inv_d, u_force };
+            (i_pass, p_pass, Some(art))
+        }
+        JointInput::Driven { qdd } => {
+            let sq = scale3(g, si, qdd);
+            let acc = add3(g, c, sq);
+            let ic = mat_vec(g, &i_a, acc);
+            (i_a, add3(g, p_a, ic), None)
+        }
+        JointInput::Locked => (i_a, p_a, None),
+    }
+}
+
+/// Pass 3 of one body: its acceleration from its parent's (in the parent's frame), and
+/// its free joint's acceleration.
+fn accelerate(
+    g: &mut Graph,
+    x: &Transform,
+    s: Option<V3>,
+    joint: JointInput,
+    parent: V3,
+    c: V3,
+    art: Option<Articulated>,
+) -> (V3, Option<Expr>) {
+    let ap = x.motion(g, parent);
+    let a_prime = add3(g, ap, c);
+    let Some(si) = s else {
+        return (a_prime, None);
+    };
+    let (acc, free) = match (joint, art) {
+        (JointInput::Free { .. }, Some(art)) => {
+            let ua = g.dot(&art.u, &a_prime);
+            let num = g.sub(art.u_force, ua);
+            (g.mul(num, art.inv_d), true)
+        }
+        (JointInput::Driven { qdd }, _) => (qdd, false),
+        _ => return (a_prime, None),
+    };
+    let sq = scale3(g, si, acc);
+    (add3(g, a_prime, sq), free.then_some(acc))
+}
+
+/// Adds a child's inertia and bias force, seen in the parent's frame, to the parent's.
+fn hand_on(g: &mut Graph, (ia, pa): (&mut M3, &mut V3), (i_up, p_up): (M3, V3)) {
+    for r in 0..3 {
+        for k in r..3 {
+            ia[r][k] = g.add(ia[r][k], i_up[r][k]);
+            ia[k][r] = ia[r][k];
+        }
+    }
+    *pa = add3(g, *pa, p_up);
+}
+
+/// The ground's fictitious acceleration that stands for gravity.
+fn base_acceleration(g: &mut Graph, gravity: [Expr; 2]) -> V3 {
+    let (gx, gy) = (g.neg(gravity[0]), g.neg(gravity[1]));
+    [g.zero(), gx, gy]
+}
+
 /// The accelerations of the free joint coordinates: `Some(qdd)` at each free coordinate a
 /// joint moves, by the three passes of the articulated-body algorithm.
 pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<Option<Expr>> {
-    let n = nodes.len();
-    let z3 = [g.zero(); 3];
     let xs: Vec<Transform> = nodes.iter().map(|node| Transform::new(g, node)).collect();
-    // Pass 1, root to tips: velocities, velocity-product accelerations, bias forces.
-    let mut s = Vec::with_capacity(n);
-    let mut v: Vec<V3> = Vec::with_capacity(n);
-    let mut c: Vec<V3> = Vec::with_capacity(n);
-    let mut ia: Vec<M3> = Vec::with_capacity(n);
-    let mut pa: Vec<V3> = Vec::with_capacity(n);
+    let joints: Vec<JointInput> = nodes.iter().map(|n| JointInput::of(n, inp)).collect();
+    // Pass 1, root to tips.
+    let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
     for (node, x) in nodes.iter().zip(&xs) {
-        let si = subspace(g, node, x);
-        let vp = match node.parent {
-            Some(p) => x.motion(g, v[p]),
-            None => z3,
-        };
-        let (vi, ci) = match (si, node.joint.coord()) {
-            (Some(si), Some(j)) => {
-                let vj = scale3(g, si, inp.velocity[j]);
-                let vi = add3(g, vp, vj);
-                (vi, cross_motion(g, vi, vj))
-            }
-            _ => (vp, z3),
-        };
-        let inertia = inertia_at_origin(g, node.mass, node.com, node.inertia);
-        let iv = mat_vec(g, &inertia, vi);
-        pa.push(cross_force(g, vi, iv));
-        ia.push(inertia);
-        s.push(si);
-        v.push(vi);
-        c.push(ci);
+        let parent = node.parent.map(|p| out[p].v);
+        let rate = node.joint.coord().map(|j| inp.velocity[j]);
+        let o = outward(g, node, x, parent, rate);
+        out.push(o);
     }
-    // Pass 2, tips to root: articulated inertias and bias forces.
-    // Per free joint: `U = I^A S`, `1 / D` and `u = tau - S . p^A`.
-    let mut u_vec: Vec<Option<(V3, Expr, Expr)>> = (0..n).map(|_| None).collect();
-    for i in (0..n).rev() {
-        let node = &nodes[i];
-        let (i_a, p_a) = (ia[i], pa[i]);
-        let (i_pass, p_pass) = match (s[i], node.joint.coord()) {
-            (Some(si), Some(j)) => match inp.prescribed[j] {
-                None => {
-                    let u = mat_vec(g, &i_a, si);
-                    let d = g.dot(&si, &u);
-                    let sp = g.dot(&si, &p_a);
-                    let u_force = g.sub(inp.tau[j], sp);
-                    // One division per joint; the articulated inertia stays symmetric.
-                    let one = g.one();
-                    let inv_d = g.div(one, d);
-                    u_vec[i] = Some((u, inv_d, u_force));
-                    let mut i_pass = i_a;
-                    for r in 0..3 {
-                        for k in r..3 {
-                            // `(U_r U_k) / D`: the product waits for `D`, one multiplication
-                            // after it (the inward pass is one long dependency chain).
-                            let uu = g.mul(u[r], u[k]);
-                            let uu = g.mul(uu, inv_d);
-                            i_pass[r][k] = g.sub(i_a[r][k], uu);
-                            i_pass[k][r] = i_pass[r][k];
-                        }
-                    }
-                    let revolute = matches!(node.joint, JointKin::Revolute { .. });
-                    if revolute {
-                        // S = e0: row and column 0 vanish exactly (rounding would leave
-                        // noise, and work, in the symbolic form).
-                        let z = g.zero();
-                        i_pass[0] = [z; 3];
-                        for row in &mut i_pass {
-                            row[0] = z;
-                        }
-                    }
-                    let ic = mat_vec(g, &i_pass, c[i]);
-                    let ud = g.mul(u_force, inv_d);
-                    let uu = scale3(g, u, ud);
-                    let p = add3(g, p_a, ic);
-                    let mut p_pass = add3(g, p, uu);
-                    if revolute {
-                        // The joint transmits no moment but its own effort: p^a_0 = tau.
-                        p_pass[0] = inp.tau[j];
-                    }
-                    (i_pass, p_pass)
-                }
-                Some(qdd) => {
-                    let sq = scale3(g, si, qdd);
-                    let acc = add3(g, c[i], sq);
-                    let ic = mat_vec(g, &i_a, acc);
-                    (i_a, add3(g, p_a, ic))
-                }
-            },
-            _ => (i_a, p_a),
-        };
-        if let Some(p) = node.parent {
-            let i_up = xs[i].inertia(g, &i_pass);
-            let p_up = xs[i].force(g, p_pass);
-            for r in 0..3 {
-                for k in r..3 {
-                    ia[p][r][k] = g.add(ia[p][r][k], i_up[r][k]);
-                    ia[p][k][r] = ia[p][r][k];
-                }
-            }
-            pa[p] = add3(g, pa[p], p_up);
+    // Pass 2, tips to root.
+    let mut ia: Vec<M3> = out.iter().map(|o| o.inertia).collect();
+    let mut pa: Vec<V3> = out.iter().map(|o| o.p).collect();
+    let mut arts: Vec<Option<Articulated>> = vec![None; nodes.len()];
+    for i in (0..nodes.len()).rev() {
+        let (i_pass, p_pass, art) =
+            inward(g, &nodes[i], out[i].s, joints[i], (ia[i], pa[i]), out[i].c);
+        arts[i] = art;
+        if let Some(p) = nodes[i].parent {
+            let up = (xs[i].inertia(g, &i_pass), xs[i].force(g, p_pass));
+            hand_on(g, (&mut ia[p], &mut pa[p]), up);
         }
     }
-    // Pass 3, root to tips: accelerations (gravity as an upward acceleration of the ground).
-    let base = {
-        let (gx, gy) = (g.neg(inp.gravity[0]), g.neg(inp.gravity[1]));
-        [g.zero(), gx, gy]
-    };
-    let mut a: Vec<V3> = Vec::with_capacity(n);
+    // Pass 3, root to tips (gravity as an upward acceleration of the ground).
+    let base = base_acceleration(g, inp.gravity);
+    let mut a: Vec<V3> = Vec::with_capacity(nodes.len());
     let mut qdd = vec![None; inp.velocity.len()];
     for (i, node) in nodes.iter().enumerate() {
-        let ap = node.parent.map_or(base, |p| a[p]);
-        let ap = xs[i].motion(g, ap);
-        let a_prime = add3(g, ap, c[i]);
-        let ai = match (s[i], node.joint.coord()) {
-            (Some(si), Some(j)) => {
-                let acc = match (&u_vec[i], inp.prescribed[j]) {
-                    (Some((u, inv_d, u_force)), None) => {
-                        let ua = g.dot(u, &a_prime);
-                        let num = g.sub(*u_force, ua);
-                        let acc = g.mul(num, *inv_d);
-                        qdd[j] = Some(acc);
-                        acc
-                    }
-                    (_, Some(known)) => known,
-                    (None, None) => unreachable!("pass 2 visits every free joint"),
-                };
-                let sq = scale3(g, si, acc);
-                add3(g, a_prime, sq)
-            }
-            _ => a_prime,
-        };
+        let parent = node.parent.map_or(base, |p| a[p]);
+        let (ai, acc) = accelerate(g, &xs[i], out[i].s, joints[i], parent, out[i].c, arts[i]);
+        if let (Some(acc), Some(j)) = (acc, node.joint.coord()) {
+            qdd[j] = Some(acc);
+        }
         a.push(ai);
     }
     qdd
