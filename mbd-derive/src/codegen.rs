@@ -36,16 +36,28 @@ impl<'a> Block<'a> {
     /// [`GROUP`] per `let (t0, t1, ..): (f64, f64, ..);`, then assigns each once: the
     /// nesting depth is the number of groups, and the optimised code is the same.
     fn new(eq: &'a Equations, roots: &[Expr]) -> Self {
+        Self::after(eq, roots, &HashMap::new(), 0)
+    }
+
+    /// A block that follows others in the same function: nodes they bound (`known`) are
+    /// reused, new temporaries are numbered from `first`.
+    fn after(
+        eq: &'a Equations,
+        roots: &[Expr],
+        known: &HashMap<Expr, TokenStream>,
+        first: usize,
+    ) -> Self {
         let mut b = Block {
             eq,
-            names: HashMap::new(),
+            names: known.clone(),
             stmts: Vec::new(),
             len: 0,
         };
-        let order = sym::schedule(&eq.g, roots);
+        let mut order = sym::schedule(&eq.g, roots);
+        order.retain(|e| !known.contains_key(e));
         b.len = order.len();
         let grouped = order.len() > FLAT_LIMIT;
-        let name = |i: usize| format_ident!("t{}", i);
+        let name = |i: usize| format_ident!("t{}", first + i);
         if grouped {
             for start in (0..order.len()).step_by(GROUP) {
                 let names: Vec<_> = (start..order.len().min(start + GROUP)).map(name).collect();
@@ -85,6 +97,14 @@ impl<'a> Block<'a> {
                 Some(Role::Qdd(i)) => quote!(qdd[#i]),
                 Some(Role::Lambda(k)) => quote!(lambda[#k]),
                 Some(Role::FrictionDirection(k)) => quote!(direction[#k]),
+                Some(Role::RunLocal { per_link }) => {
+                    let name = format_ident!("{}", self.eq.g.sym_name(s));
+                    if *per_link {
+                        quote!(#name[link])
+                    } else {
+                        quote!(#name)
+                    }
+                }
                 None => {
                     // A driven/relaxed symbol left after reduction would be a bug in the
                     // mechanics stage; fail the build loudly rather than compute garbage.
@@ -185,6 +205,111 @@ impl<'a> Block<'a> {
     }
 }
 
+/// The body of `acceleration` for a joint tree whose tail run of identical links is rolled
+/// into three loops ([`crate::model::Equations::rolled`]): the rest of the tree unrolled
+/// around them, one link's code per loop. Returns the code and its number of temporaries.
+fn rolled_recursion(
+    eq: &Equations,
+    rolled: &crate::tree::Rolled,
+    first: usize,
+    qdd: &[Expr],
+    n: usize,
+) -> (TokenStream, usize) {
+    let len = rolled.len;
+    let ident = |e: Expr| {
+        let s = eq.g.as_sym(e).expect("a placeholder is a symbol");
+        format_ident!("{}", eq.g.sym_name(s))
+    };
+    let mut known: HashMap<Expr, TokenStream> = HashMap::new();
+    let mut temporaries = 0;
+    let mut code = Vec::new();
+    // The other joints' accelerations, once the inward loop has handed on the run.
+    let others: Vec<(usize, Expr)> = qdd
+        .iter()
+        .enumerate()
+        .filter(|(i, e)| !(first..first + len).contains(i) && !eq.g.is_zero(**e))
+        .map(|(i, &e)| (i, e))
+        .collect();
+    for (index, l) in rolled.loops.iter().enumerate() {
+        // Before the loop: the carried values' starts (and, before the last loop, the
+        // other joints' accelerations).
+        let mut roots: Vec<Expr> = l.carried.iter().map(|c| c.1).collect();
+        if index == 2 {
+            roots.extend(others.iter().map(|o| o.1));
+        }
+        let before = Block::after(eq, &roots, &known, temporaries);
+        temporaries += before.len();
+        let (stmts, carried) = (
+            before.stmts(),
+            l.carried.iter().map(|c| {
+                let (name, start) = (ident(c.0), before.leaf(c.1));
+                quote!(let mut #name: f64 = #start;)
+            }),
+        );
+        let arrays = l.stored.iter().map(|st| {
+            let name = ident(st.0);
+            quote!(let mut #name = [0.0f64; #len];)
+        });
+        code.push(quote!(#stmts #(#carried)* #(#arrays)*));
+        if index == 2 {
+            let sets = others.iter().map(|(i, e)| {
+                let v = before.leaf(*e);
+                quote!(qdd[#i] = #v;)
+            });
+            code.push(quote!(#(#sets)*));
+        }
+        known = before.names.clone();
+
+        // One link.
+        let mut roots: Vec<Expr> = l.carried.iter().map(|c| c.2).collect();
+        roots.extend(l.stored.iter().map(|st| st.1));
+        roots.extend(l.qdd);
+        let body = Block::after(eq, &roots, &known, temporaries);
+        temporaries += body.len();
+        let coordinate = (index == 0).then(|| {
+            let (q, qd) = (ident(rolled.q), ident(rolled.qd));
+            quote! {
+                let #q = q[#first + link];
+                let #qd = qd[#first + link];
+            }
+        });
+        let stmts = body.stmts();
+        let stores = l.stored.iter().map(|st| {
+            let (name, v) = (ident(st.0), body.leaf(st.1));
+            quote!(#name[link] = #v;)
+        });
+        let acc = l.qdd.map(|e| {
+            let v = body.leaf(e);
+            quote!(qdd[#first + link] = #v;)
+        });
+        let (names, next): (Vec<_>, Vec<_>) = l
+            .carried
+            .iter()
+            .map(|c| (ident(c.0), body.leaf(c.2)))
+            .unzip();
+        let range = if l.reverse {
+            quote!((0..#len).rev())
+        } else {
+            quote!(0..#len)
+        };
+        code.push(quote! {
+            for link in #range {
+                #coordinate
+                #stmts
+                #(#stores)*
+                #acc
+                (#(#names,)*) = (#(#next,)*);
+            }
+        });
+    }
+    let code = quote! {
+        let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
+        #(#code)*
+        ::mbd::__private::solve::finite(t, qdd)
+    };
+    (code, temporaries)
+}
+
 fn method(f: Func) -> &'static str {
     match f {
         Func::Sin => "sin",
@@ -274,6 +399,11 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
 
     let acceleration = if constrained {
         quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
+    } else if let (Some((rolled, first)), Some(qdd)) = (&eq.rolled, &eq.recursive_qdd) {
+        parts.names.extend(["articulated_body", "rolled_chain"]);
+        let (code, statements) = rolled_recursion(eq, rolled, *first, qdd, n);
+        parts.statements += statements;
+        code
     } else if let Some(qdd) = &eq.recursive_qdd {
         parts.names.push("articulated_body");
         let b = Block::new(eq, qdd);

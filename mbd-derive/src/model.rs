@@ -30,6 +30,11 @@ pub enum Role {
     /// Sliding direction (+1 or -1) of friction `k`: `sign(qd_s)` in the model itself,
     /// a fixed mode in its sliding view, so that no step integrates through `sign(0)`.
     FrictionDirection(usize),
+    /// A loop-local value of a rolled joint chain ([`tree::Rolled`]): read as the variable
+    /// itself, or (`per_link`) at the link's index of the array of that name.
+    RunLocal {
+        per_link: bool,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -107,6 +112,10 @@ pub struct Equations {
     /// `qdd` of a joint tree by the articulated-body recursion, when that evaluates the
     /// accelerations instead of the mass matrix.
     pub recursive_qdd: Option<Vec<Expr>>,
+    /// The same recursion with a run of identical links rolled into loops (long chains),
+    /// with the run's first joint as a free-coordinate index; `recursive_qdd` is then the
+    /// other free coordinates' accelerations (`None`-free: zero at the run's).
+    pub rolled: Option<(tree::Rolled, usize)>,
     /// Initial positions and velocities of the free coordinates (parameters allowed).
     pub init_q: Vec<Expr>,
     pub init_qd: Vec<Expr>,
@@ -1017,6 +1026,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         parse::Evaluation::Recursive => true,
         parse::Evaluation::Auto => eligible && nodes.len() >= RECURSIVE_FROM_BODIES,
     };
+    let mut rolled: Option<tree::Rolled> = None;
     let qdd_recursive: Vec<Option<Expr>> = if recursive {
         let velocity: Vec<Expr> = coords.iter().map(|c| c.zd).collect();
         let prescribed: Vec<Option<Expr>> = coords
@@ -1033,7 +1043,14 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
             tau: &q_applied,
             gravity,
         };
-        tree::articulated_body(&mut g, &nodes, &inputs)
+        match tree::rolled(&mut g, &nodes, &inputs) {
+            Some(r) => {
+                let qdd = r.qdd.clone();
+                rolled = Some(r);
+                qdd
+            }
+            None => tree::articulated_body(&mut g, &nodes, &inputs),
+        }
     } else {
         Vec::new()
     };
@@ -1086,8 +1103,40 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         // Every free coordinate is a joint's (a pure tree): the recursion gives each one.
         full_rows.extend(free_idx.iter().map(|&i| qdd_recursive[i].unwrap_or(zero)));
     }
+    // A rolled chain's expressions around its loops (the carried values' starts) are in
+    // full coordinates too.
+    let run_inits: Vec<Expr> = rolled
+        .iter()
+        .flat_map(|r| r.loops.iter())
+        .flat_map(|l| l.carried.iter().map(|c| c.1))
+        .collect();
+    let n_rows_recursive = full_rows.len();
+    full_rows.extend(&run_inits);
     let mut reduced = g.substitute_all(&full_rows, &reduce);
+    let reduced_inits = reduced.split_off(n_rows_recursive);
     let recursive_qdd = recursive.then(|| reduced.split_off(n_rows));
+    let rolled = match rolled {
+        Some(mut r) => {
+            let mut inits = reduced_inits.into_iter();
+            for l in &mut r.loops {
+                for c in &mut l.carried {
+                    c.1 = inits.next().expect("one reduced start per carried value");
+                }
+            }
+            for (e, per_link) in r.placeholders() {
+                roles.insert(g.as_sym(e).expect("symbol"), Role::RunLocal { per_link });
+            }
+            let first = free_idx.iter().position(|&i| i == r.first_coord);
+            let consecutive = first.is_some_and(|f| {
+                (0..r.len).all(|k| free_idx.get(f + k) == Some(&(r.first_coord + k)))
+            });
+            match (first, consecutive) {
+                (Some(f), true) => Some((r, f)),
+                _ => unreachable!("a rolled run's joints are free, consecutive coordinates"),
+            }
+        }
+        None => None,
+    };
     let mass: Vec<Vec<Expr>> = reduced[..n * n]
         .chunks(n.max(1))
         .take(n)
@@ -1414,6 +1463,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         frictions,
         frictionless,
         recursive_qdd,
+        rolled,
         init_q,
         init_qd,
     })

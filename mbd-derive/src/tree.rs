@@ -447,3 +447,245 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
     }
     qdd
 }
+
+/// Links in a run below which the recursion stays unrolled: measured with the `scaling`
+/// report, unrolled code is faster up to about 8 links and falls behind a loop once it
+/// outgrows the instruction caches (16 links and up).
+pub const ROLL_FROM: usize = 12;
+
+/// One loop over the links of a run (see [`Rolled`]).
+pub struct Loop {
+    /// Tips to root (the inward pass).
+    pub reverse: bool,
+    /// Loop-carried values: placeholder symbol, value before the first link (an expression
+    /// of the rest of the tree, evaluated just before the loop), value handed to the next.
+    pub carried: Vec<(Expr, Expr, Expr)>,
+    /// Per-link values kept for the later loops: placeholder symbol (read at the link's
+    /// index), value.
+    pub stored: Vec<(Expr, Expr)>,
+    /// The link's joint acceleration (the last loop).
+    pub qdd: Option<Expr>,
+}
+
+/// The articulated-body recursion with a run of identical links (the tail of a `chain`)
+/// generated once, as three loops over the links, instead of unrolled: the code of one
+/// link, whatever the length of the run. Placeholder symbols stand for the link's
+/// coordinate and rate (`q`, `qd`), for loop-carried values and for stored ones; the rest of
+/// the tree stays unrolled around the loops.
+pub struct Rolled {
+    /// Full-coordinate index of the run's first joint; the run's joints are consecutive.
+    pub first_coord: usize,
+    pub len: usize,
+    pub q: Expr,
+    pub qd: Expr,
+    /// Outward velocities, inward articulated inertias, outward accelerations.
+    pub loops: [Loop; 3],
+    /// The accelerations of the other free coordinates (`None` at the run's), evaluated
+    /// after the inward loop.
+    pub qdd: Vec<Option<Expr>>,
+}
+
+impl Rolled {
+    /// Every placeholder symbol, and whether it is read per link (a stored array).
+    pub fn placeholders(&self) -> Vec<(Expr, bool)> {
+        let mut all = vec![(self.q, false), (self.qd, false)];
+        for l in &self.loops {
+            all.extend(l.carried.iter().map(|c| (c.0, false)));
+            all.extend(l.stored.iter().map(|s| (s.0, true)));
+        }
+        all
+    }
+}
+
+/// The tail of `nodes` that is a run of at least [`ROLL_FROM`] identical links: each a
+/// free revolute joint on the one before, with the same offset, mass centre, mass and
+/// inertia, no applied generalised force and consecutive coordinates. `None` without one.
+fn tail_run(g: &Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<usize> {
+    let last = nodes.last()?;
+    let same = |n: &Node| {
+        n.at == last.at && n.com == last.com && n.mass == last.mass && n.inertia == last.inertia
+    };
+    let coord = |n: &Node| match n.joint {
+        JointKin::Revolute { coord }
+            if inp.prescribed[coord].is_none() && g.is_zero(inp.tau[coord]) =>
+        {
+            matches!(g.node(n.relative), crate::sym::Node::Sym(_)).then_some(coord)
+        }
+        _ => None,
+    };
+    let mut start = nodes.len() - 1;
+    coord(last)?;
+    while start > 0 {
+        let n = &nodes[start];
+        let prev = &nodes[start - 1];
+        let chained = n.parent == Some(start - 1)
+            && same(prev)
+            && prev.parent.is_some()
+            && matches!((coord(prev), coord(n)), (Some(a), Some(b)) if a + 1 == b);
+        if !chained {
+            break;
+        }
+        start -= 1;
+    }
+    (nodes.len() - start >= ROLL_FROM && nodes[start].parent.is_some()).then_some(start)
+}
+
+/// The recursion of [`articulated_body`] with its tail run rolled into loops, when the tree
+/// has one (see [`tail_run`]).
+pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled> {
+    let start = tail_run(g, nodes, inp)?;
+    let len = nodes.len() - start;
+    let head = &nodes[start];
+    let parent = head.parent?;
+    let JointKin::Revolute { coord: first_coord } = head.joint else {
+        return None;
+    };
+    let mut ph = |name: &str| g.symbol(&format!("__mbd_run_{name}"));
+    let (q, qd) = (ph("q"), ph("qd"));
+    let v_in = [ph("vw"), ph("vx"), ph("vy")];
+    let k_names = ["k00", "k01", "k02", "k11", "k12", "k22"];
+    let k_in: Vec<Expr> = k_names.iter().map(|n| ph(n)).collect();
+    let f_in = [ph("f0"), ph("f1"), ph("f2")];
+    let a_in = [ph("aw"), ph("ax"), ph("ay")];
+    // One link, its angle the placeholder `q`.
+    let link = Node {
+        parent: Some(0),
+        joint: JointKin::Revolute { coord: first_coord },
+        at: head.at,
+        relative: q,
+        com: head.com,
+        origin: head.origin,
+        angle: head.angle,
+        mass: head.mass,
+        inertia: head.inertia,
+    };
+    let zero = g.zero();
+    let tau = JointInput::Free { tau: zero };
+
+    // Loop 1: velocities; keeps the rotation, c and p per link.
+    let x = Transform::new(g, &link);
+    let o = outward(g, &link, &x, Some(v_in), Some(qd));
+    let mut stored1 = Vec::new();
+    let keep = |g: &mut Graph, name: &str, value: Expr, into: &mut Vec<(Expr, Expr)>| {
+        if g.as_const(value).is_some() {
+            return value;
+        }
+        let s = g.symbol(&format!("__mbd_run_{name}"));
+        into.push((s, value));
+        s
+    };
+    let cs = keep(g, "cos", x.c, &mut stored1);
+    let sn = keep(g, "sin", x.s, &mut stored1);
+    let c_k = [0, 1, 2].map(|i| keep(g, &format!("c{i}"), o.c[i], &mut stored1));
+    let p_k = [0, 1, 2].map(|i| keep(g, &format!("p{i}"), o.p[i], &mut stored1));
+
+    // Prefix, pass 1: the velocity of the run's parent.
+    let xs: Vec<Transform> = nodes[..start]
+        .iter()
+        .map(|n| Transform::new(g, n))
+        .collect();
+    let joints: Vec<JointInput> = nodes[..start]
+        .iter()
+        .map(|n| JointInput::of(n, inp))
+        .collect();
+    let mut out: Vec<Outward> = Vec::with_capacity(start);
+    for (node, x) in nodes[..start].iter().zip(&xs) {
+        let parent = node.parent.map(|p| out[p].v);
+        let rate = node.joint.coord().map(|j| inp.velocity[j]);
+        let o = outward(g, node, x, parent, rate);
+        out.push(o);
+    }
+    let loop1 = Loop {
+        reverse: false,
+        carried: (0..3)
+            .map(|i| (v_in[i], out[parent].v[i], o.v[i]))
+            .collect(),
+        stored: stored1,
+        qdd: None,
+    };
+
+    // Loop 2, tips to root: the articulated inertia from the link's own and the child's
+    // hand-on (carried; zero below the tip).
+    let xt = Transform {
+        c: cs,
+        s: sn,
+        r: head.at,
+    };
+    let own = inertia_at_origin(g, head.mass, head.com, head.inertia);
+    let k_full = [
+        [k_in[0], k_in[1], k_in[2]],
+        [k_in[1], k_in[3], k_in[4]],
+        [k_in[2], k_in[4], k_in[5]],
+    ];
+    let mut i_a = own;
+    for r in 0..3 {
+        for c in 0..3 {
+            i_a[r][c] = g.add(own[r][c], k_full[r][c]);
+        }
+    }
+    let p_a = add3(g, p_k, f_in);
+    let s_link = subspace(g, &link, &xt);
+    let (i_pass, p_pass, art) = inward(g, &link, s_link, tau, (i_a, p_a), c_k);
+    let art = art?;
+    let (i_up, p_up) = (xt.inertia(g, &i_pass), xt.force(g, p_pass));
+    let mut stored2 = Vec::new();
+    let u = [0, 1, 2].map(|i| keep(g, &format!("u{i}"), art.u[i], &mut stored2));
+    let inv_d = keep(g, "inv_d", art.inv_d, &mut stored2);
+    let u_force = keep(g, "u_force", art.u_force, &mut stored2);
+    let up_entries = [
+        i_up[0][0], i_up[0][1], i_up[0][2], i_up[1][1], i_up[1][2], i_up[2][2],
+    ];
+    let mut carried2: Vec<(Expr, Expr, Expr)> =
+        (0..6).map(|i| (k_in[i], zero, up_entries[i])).collect();
+    carried2.extend((0..3).map(|i| (f_in[i], zero, p_up[i])));
+    let loop2 = Loop {
+        reverse: true,
+        carried: carried2,
+        stored: stored2,
+        qdd: None,
+    };
+
+    // Prefix, pass 2, with the run's hand-on (the carried values after loop 2), and pass 3.
+    let mut ia: Vec<M3> = out.iter().map(|o| o.inertia).collect();
+    let mut pa: Vec<V3> = out.iter().map(|o| o.p).collect();
+    hand_on(g, (&mut ia[parent], &mut pa[parent]), (k_full, f_in));
+    let mut arts: Vec<Option<Articulated>> = vec![None; start];
+    for i in (0..start).rev() {
+        let (i_pass, p_pass, a) =
+            inward(g, &nodes[i], out[i].s, joints[i], (ia[i], pa[i]), out[i].c);
+        arts[i] = a;
+        if let Some(p) = nodes[i].parent {
+            let up = (xs[i].inertia(g, &i_pass), xs[i].force(g, p_pass));
+            hand_on(g, (&mut ia[p], &mut pa[p]), up);
+        }
+    }
+    let base = base_acceleration(g, inp.gravity);
+    let mut a: Vec<V3> = Vec::with_capacity(start);
+    let mut qdd = vec![None; inp.velocity.len()];
+    for (i, node) in nodes[..start].iter().enumerate() {
+        let p = node.parent.map_or(base, |p| a[p]);
+        let (ai, acc) = accelerate(g, &xs[i], out[i].s, joints[i], p, out[i].c, arts[i]);
+        if let (Some(acc), Some(j)) = (acc, node.joint.coord()) {
+            qdd[j] = Some(acc);
+        }
+        a.push(ai);
+    }
+
+    // Loop 3: accelerations.
+    let art = Articulated { u, inv_d, u_force };
+    let (a_link, acc) = accelerate(g, &xt, s_link, tau, a_in, c_k, Some(art));
+    let loop3 = Loop {
+        reverse: false,
+        carried: (0..3).map(|i| (a_in[i], a[parent][i], a_link[i])).collect(),
+        stored: Vec::new(),
+        qdd: acc,
+    };
+    Some(Rolled {
+        first_coord,
+        len,
+        q,
+        qd,
+        loops: [loop1, loop2, loop3],
+        qdd,
+    })
+}

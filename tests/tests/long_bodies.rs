@@ -33,6 +33,7 @@ fn thirty_two_link_recursion_equals_the_mass_matrix_form() {
         g: 9.81,
     };
     assert!(Chain32::GENERATED.parts.contains(&"articulated_body"));
+    assert!(Chain32::GENERATED.parts.contains(&"rolled_chain"));
     // A fixed, irregular state: angles in [-1.2, 1.2], rates in [-2, 2].
     let q = Vector::<32>::from_fn(|i, _| 1.2 * (((i * 37) % 17) as f64 / 8.0 - 1.0));
     let qd = Vector::<32>::from_fn(|i, _| 2.0 * (((i * 11) % 13) as f64 / 6.0 - 1.0));
