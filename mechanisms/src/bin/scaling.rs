@@ -1,7 +1,7 @@
 //! How the derive scales with the number of bodies: planar chains of N = 2, 4, 8, 16, 32
 //! (64 with `--max 64`) uniform links, each compiled as its own throw-away crate.
 //!
-//! `cargo run --release -p mechanisms --bin scaling [-- --json --max 32 --form explicit|chain]`
+//! `cargo run --release -p mechanisms --bin scaling [-- --json --max 32 --sizes 2,4,10 --form explicit|chain]`
 //!
 //! Per N the report gives
 //! - `expand_s`: the derive's own expansion time, written by the macro itself when the build
@@ -28,8 +28,7 @@
 //! explicit form's build grows too fast to wait for N = 64 on a two-core machine.
 
 use clap::{Parser, ValueEnum};
-use mbd::{OdeSystem, Vector};
-use mechanisms::chain_by_hand::{ChainByHand, chain_source, explicit_source};
+use mechanisms::chain_by_hand::{chain_source, explicit_source};
 use serde::Serialize;
 use std::fs;
 use std::io::Read;
@@ -89,6 +88,9 @@ struct Args {
     /// too long to build here.
     #[arg(long, default_value_t = 32)]
     max: usize,
+    /// The chain lengths to build instead, e.g. `--sizes 2,4,8,10,16`.
+    #[arg(long, value_delimiter = ',')]
+    sizes: Option<Vec<usize>>,
     /// Model form; default: `chain` if it builds at N = 2, else `explicit`.
     #[arg(long, value_enum)]
     form: Option<Form>,
@@ -144,11 +146,14 @@ fn main() {
         .clone()
         .unwrap_or_else(|| work.join("target"));
     let timeout = Duration::from_secs(args.timeout);
-    let ns: Vec<usize> = [2, 4, 8, 16, 32, 64]
-        .into_iter()
-        .filter(|&n| n <= args.max)
-        .collect();
-    if args.max < 64 {
+    let ns: Vec<usize> = match &args.sizes {
+        Some(sizes) => sizes.iter().copied().filter(|&n| n >= 1).collect(),
+        None => [2, 4, 8, 16, 32, 64]
+            .into_iter()
+            .filter(|&n| n <= args.max)
+            .collect(),
+    };
+    if args.sizes.is_none() && args.max < 64 {
         eprintln!("scaling: N up to {} (pass --max 64 for N = 64)", args.max);
     }
     let ctx = Ctx {
@@ -292,37 +297,20 @@ impl Ctx {
                 return row;
             }
         };
-        let mut generated_rhs = Vec::new();
         for line in out.lines() {
             let (key, value) = line.split_once(' ').unwrap_or((line, ""));
             match key {
                 "rhs_ns" => row.rhs_ns = value.parse().ok(),
                 "handwritten_rhs_ns" => row.handwritten_rhs_ns = value.parse().ok(),
+                "max_rel_diff" => row.max_rel_diff = value.parse().ok(),
                 "statements" => row.statements = value.parse().ok(),
                 "part" => row.generated_parts.push(value.to_string()),
-                "rhs" => generated_rhs.extend(value.parse::<f64>().ok()),
-                "error" => row.error = Some(format!("generated rhs: {value}")),
+                "error" => row.error = Some(format!("rhs: {value}")),
                 _ => {}
             }
         }
         row.recursive = Some(row.generated_parts.iter().any(|p| p == "articulated_body"));
 
-        // The hand-written algorithm's value at the same state (its time comes from the
-        // chain binary, which timed both in turns).
-        match handwritten(n, &state(n)) {
-            Some(Ok(by_hand)) => {
-                if generated_rhs.len() == by_hand.len() {
-                    let scale = by_hand.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-                    let diff = generated_rhs
-                        .iter()
-                        .zip(&by_hand)
-                        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-                    row.max_rel_diff = Some(diff / scale);
-                }
-            }
-            Some(Err(e)) => row.error = Some(format!("hand-written rhs: {e}")),
-            None => row.error = Some(format!("no hand-written chain instantiated for N = {n}")),
-        }
         if let (Some(a), Some(b)) = (row.rhs_ns, row.handwritten_rhs_ns) {
             row.ratio = Some(a / b);
         }
@@ -374,23 +362,6 @@ fn state(n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The hand-written chain's rhs at `y`, for the N this binary instantiates.
-fn handwritten(n: usize, y: &[f64]) -> Option<Result<Vec<f64>, mbd::Error>> {
-    macro_rules! arms {
-        ($($n:literal => $d:literal),*) => {
-            match n {
-                $($n => {
-                    let chain = ChainByHand::<$n>::new(M, L, G);
-                    let y = Vector::<$d>::from_column_slice(y);
-                    Some(chain.rhs(0.0, &y).map(|value| value.as_slice().to_vec()))
-                })*
-                _ => None,
-            }
-        };
-    }
-    arms!(2 => 4, 4 => 8, 8 => 16, 16 => 32, 32 => 64, 64 => 128)
-}
-
 fn write_crate(root: &Path, dir: &Path, n: usize, form: Form) -> std::io::Result<()> {
     fs::create_dir_all(dir.join("src"))?;
     let manifest = format!(
@@ -426,10 +397,13 @@ fn write_crate(root: &Path, dir: &Path, n: usize, form: Form) -> std::io::Result
          \x20   match model.rhs(0.0, &y) {{\n\
          \x20       Err(e) => println!(\"error {{e}}\"),\n\
          \x20       Ok(v) => {{\n\
-         \x20           for x in v.iter() {{ println!(\"rhs {{x:?}}\"); }}\n\
+         \x20           let hand = mechanisms::chain_by_hand::ChainByHand::<{n}>::new({M:?}, {L:?}, {G:?});\n\
+         \x20           match hand.rhs(0.0, &y) {{\n\
+         \x20               Err(e) => println!(\"error hand-written: {{e}}\"),\n\
+         \x20               Ok(h) => println!(\"max_rel_diff {{:?}}\", (v - h).amax() / h.amax()),\n\
+         \x20           }}\n\
          \x20           // Generated and hand-written timed in turns, {ROUNDS} rounds: the least\n\
          \x20           // median of each is the one least disturbed by the rest of the machine.\n\
-         \x20           let hand = mechanisms::chain_by_hand::ChainByHand::<{n}>::new({M:?}, {L:?}, {G:?});\n\
          \x20           let (mut generated, mut by_hand) = (f64::INFINITY, f64::INFINITY);\n\
          \x20           for _ in 0..{ROUNDS} {{\n\
          \x20               generated = generated.min(median_ns(|| {{\n\
