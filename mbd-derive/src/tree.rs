@@ -407,45 +407,94 @@ fn base_acceleration(g: &mut Graph, gravity: [Expr; 2]) -> V3 {
     [g.zero(), gx, gy]
 }
 
+/// The three passes of the recursion unrolled over a tree (all of it, or the part around a
+/// rolled run), one body at a time.
+struct Unrolled<'n> {
+    nodes: &'n [Node],
+    xs: Vec<Transform>,
+    joints: Vec<JointInput>,
+    out: Vec<Outward>,
+}
+
+impl<'n> Unrolled<'n> {
+    /// Pass 1, root to tips: velocities, velocity products, bias forces, rigid inertias.
+    fn new(g: &mut Graph, nodes: &'n [Node], inp: &Inputs<'_>) -> Self {
+        let xs: Vec<Transform> = nodes.iter().map(|node| Transform::new(g, node)).collect();
+        let joints: Vec<JointInput> = nodes.iter().map(|n| JointInput::of(n, inp)).collect();
+        let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
+        for (node, x) in nodes.iter().zip(&xs) {
+            let parent = node.parent.map(|p| out[p].v);
+            let rate = node.joint.coord().map(|j| inp.velocity[j]);
+            let o = outward(g, node, x, parent, rate);
+            out.push(o);
+        }
+        Unrolled {
+            nodes,
+            xs,
+            joints,
+            out,
+        }
+    }
+
+    /// Passes 2 (tips to root, with `extra` handed on to one body by a part of the tree
+    /// not in `nodes`) and 3 (root to tips, gravity as an upward acceleration of the
+    /// ground): every body's acceleration and the free joints' accelerations, indexed like
+    /// the full coordinates.
+    fn finish(
+        &self,
+        g: &mut Graph,
+        inp: &Inputs<'_>,
+        extra: Option<(usize, (M3, V3))>,
+    ) -> (Vec<V3>, Vec<Option<Expr>>) {
+        let (nodes, xs, out) = (self.nodes, &self.xs, &self.out);
+        let mut ia: Vec<M3> = out.iter().map(|o| o.inertia).collect();
+        let mut pa: Vec<V3> = out.iter().map(|o| o.p).collect();
+        if let Some((i, up)) = extra {
+            hand_on(g, (&mut ia[i], &mut pa[i]), up);
+        }
+        let mut arts: Vec<Option<Articulated>> = vec![None; nodes.len()];
+        for i in (0..nodes.len()).rev() {
+            let (i_pass, p_pass, art) = inward(
+                g,
+                &nodes[i],
+                out[i].s,
+                self.joints[i],
+                (ia[i], pa[i]),
+                out[i].c,
+            );
+            arts[i] = art;
+            if let Some(p) = nodes[i].parent {
+                let up = (xs[i].inertia(g, &i_pass), xs[i].force(g, p_pass));
+                hand_on(g, (&mut ia[p], &mut pa[p]), up);
+            }
+        }
+        let base = base_acceleration(g, inp.gravity);
+        let mut a: Vec<V3> = Vec::with_capacity(nodes.len());
+        let mut qdd = vec![None; inp.velocity.len()];
+        for (i, node) in nodes.iter().enumerate() {
+            let parent = node.parent.map_or(base, |p| a[p]);
+            let (ai, acc) = accelerate(
+                g,
+                &xs[i],
+                out[i].s,
+                self.joints[i],
+                parent,
+                out[i].c,
+                arts[i],
+            );
+            if let (Some(acc), Some(j)) = (acc, node.joint.coord()) {
+                qdd[j] = Some(acc);
+            }
+            a.push(ai);
+        }
+        (a, qdd)
+    }
+}
+
 /// The accelerations of the free joint coordinates: `Some(qdd)` at each free coordinate a
 /// joint moves, by the three passes of the articulated-body algorithm.
 pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<Option<Expr>> {
-    let xs: Vec<Transform> = nodes.iter().map(|node| Transform::new(g, node)).collect();
-    let joints: Vec<JointInput> = nodes.iter().map(|n| JointInput::of(n, inp)).collect();
-    // Pass 1, root to tips.
-    let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
-    for (node, x) in nodes.iter().zip(&xs) {
-        let parent = node.parent.map(|p| out[p].v);
-        let rate = node.joint.coord().map(|j| inp.velocity[j]);
-        let o = outward(g, node, x, parent, rate);
-        out.push(o);
-    }
-    // Pass 2, tips to root.
-    let mut ia: Vec<M3> = out.iter().map(|o| o.inertia).collect();
-    let mut pa: Vec<V3> = out.iter().map(|o| o.p).collect();
-    let mut arts: Vec<Option<Articulated>> = vec![None; nodes.len()];
-    for i in (0..nodes.len()).rev() {
-        let (i_pass, p_pass, art) =
-            inward(g, &nodes[i], out[i].s, joints[i], (ia[i], pa[i]), out[i].c);
-        arts[i] = art;
-        if let Some(p) = nodes[i].parent {
-            let up = (xs[i].inertia(g, &i_pass), xs[i].force(g, p_pass));
-            hand_on(g, (&mut ia[p], &mut pa[p]), up);
-        }
-    }
-    // Pass 3, root to tips (gravity as an upward acceleration of the ground).
-    let base = base_acceleration(g, inp.gravity);
-    let mut a: Vec<V3> = Vec::with_capacity(nodes.len());
-    let mut qdd = vec![None; inp.velocity.len()];
-    for (i, node) in nodes.iter().enumerate() {
-        let parent = node.parent.map_or(base, |p| a[p]);
-        let (ai, acc) = accelerate(g, &xs[i], out[i].s, joints[i], parent, out[i].c, arts[i]);
-        if let (Some(acc), Some(j)) = (acc, node.joint.coord()) {
-            qdd[j] = Some(acc);
-        }
-        a.push(ai);
-    }
-    qdd
+    Unrolled::new(g, nodes, inp).finish(g, inp, None).1
 }
 
 /// Links in a run below which the recursion stays unrolled: measured with the `scaling`
@@ -547,7 +596,7 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     let k_in: Vec<Expr> = k_names.iter().map(|n| ph(n)).collect();
     let f_in = [ph("f0"), ph("f1"), ph("f2")];
     let a_in = [ph("aw"), ph("ax"), ph("ay")];
-    // One link, its angle the placeholder `q`.
+    // One link, its angle the placeholder `q` (each pass is given its parent directly).
     let link = Node {
         parent: Some(0),
         joint: JointKin::Revolute { coord: first_coord },
@@ -579,26 +628,12 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     let c_k = [0, 1, 2].map(|i| keep(g, &format!("c{i}"), o.c[i], &mut stored1));
     let p_k = [0, 1, 2].map(|i| keep(g, &format!("p{i}"), o.p[i], &mut stored1));
 
-    // Prefix, pass 1: the velocity of the run's parent.
-    let xs: Vec<Transform> = nodes[..start]
-        .iter()
-        .map(|n| Transform::new(g, n))
-        .collect();
-    let joints: Vec<JointInput> = nodes[..start]
-        .iter()
-        .map(|n| JointInput::of(n, inp))
-        .collect();
-    let mut out: Vec<Outward> = Vec::with_capacity(start);
-    for (node, x) in nodes[..start].iter().zip(&xs) {
-        let parent = node.parent.map(|p| out[p].v);
-        let rate = node.joint.coord().map(|j| inp.velocity[j]);
-        let o = outward(g, node, x, parent, rate);
-        out.push(o);
-    }
+    // The rest of the tree, pass 1: the velocity of the run's parent.
+    let rest = Unrolled::new(g, &nodes[..start], inp);
     let loop1 = Loop {
         reverse: false,
         carried: (0..3)
-            .map(|i| (v_in[i], out[parent].v[i], o.v[i]))
+            .map(|i| (v_in[i], rest.out[parent].v[i], o.v[i]))
             .collect(),
         stored: stored1,
         qdd: None,
@@ -645,31 +680,9 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
         qdd: None,
     };
 
-    // Prefix, pass 2, with the run's hand-on (the carried values after loop 2), and pass 3.
-    let mut ia: Vec<M3> = out.iter().map(|o| o.inertia).collect();
-    let mut pa: Vec<V3> = out.iter().map(|o| o.p).collect();
-    hand_on(g, (&mut ia[parent], &mut pa[parent]), (k_full, f_in));
-    let mut arts: Vec<Option<Articulated>> = vec![None; start];
-    for i in (0..start).rev() {
-        let (i_pass, p_pass, a) =
-            inward(g, &nodes[i], out[i].s, joints[i], (ia[i], pa[i]), out[i].c);
-        arts[i] = a;
-        if let Some(p) = nodes[i].parent {
-            let up = (xs[i].inertia(g, &i_pass), xs[i].force(g, p_pass));
-            hand_on(g, (&mut ia[p], &mut pa[p]), up);
-        }
-    }
-    let base = base_acceleration(g, inp.gravity);
-    let mut a: Vec<V3> = Vec::with_capacity(start);
-    let mut qdd = vec![None; inp.velocity.len()];
-    for (i, node) in nodes[..start].iter().enumerate() {
-        let p = node.parent.map_or(base, |p| a[p]);
-        let (ai, acc) = accelerate(g, &xs[i], out[i].s, joints[i], p, out[i].c, arts[i]);
-        if let (Some(acc), Some(j)) = (acc, node.joint.coord()) {
-            qdd[j] = Some(acc);
-        }
-        a.push(ai);
-    }
+    // The rest of the tree, passes 2 and 3, with the run's hand-on (the values carried out
+    // of loop 2).
+    let (a, qdd) = rest.finish(g, inp, Some((parent, (k_full, f_in))));
 
     // Loop 3: accelerations.
     let art = Articulated { u, inv_d, u_force };
