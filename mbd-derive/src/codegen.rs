@@ -231,10 +231,12 @@ fn rolled_recursion(
         .map(|(i, &e)| (i, e))
         .collect();
     for (index, l) in rolled.loops.iter().enumerate() {
+        // Outward velocities first (they read the coordinates), accelerations last.
+        let (velocities, accelerations) = (index == 0, index == rolled.loops.len() - 1);
         // Before the loop: the carried values' starts (and, before the last loop, the
         // other joints' accelerations).
         let mut roots: Vec<Expr> = l.carried.iter().map(|c| c.1).collect();
-        if index == 2 {
+        if accelerations {
             roots.extend(others.iter().map(|o| o.1));
         }
         let before = Block::after(eq, &roots, &known, temporaries);
@@ -251,7 +253,7 @@ fn rolled_recursion(
             quote!(let mut #name = [0.0f64; #len];)
         });
         code.push(quote!(#stmts #(#carried)* #(#arrays)*));
-        if index == 2 {
+        if accelerations {
             let sets = others.iter().map(|(i, e)| {
                 let v = before.leaf(*e);
                 quote!(qdd[#i] = #v;)
@@ -266,7 +268,7 @@ fn rolled_recursion(
         roots.extend(l.qdd);
         let body = Block::after(eq, &roots, &known, temporaries);
         temporaries += body.len();
-        let coordinate = (index == 0).then(|| {
+        let coordinate = velocities.then(|| {
             let (q, qd) = (ident(rolled.q), ident(rolled.qd));
             quote! {
                 let #q = q[#first + link];
