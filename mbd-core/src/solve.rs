@@ -25,6 +25,17 @@ pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) ->
     finite(t, x)
 }
 
+/// The acceleration `a` of a one-coordinate model, computed by generated code as `f / m`
+/// with the factors they share cancelled: refused (typed error) when the mass `m` is zero or
+/// not finite, or `a` is not finite.
+#[inline]
+pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
+    if m == 0.0 || !m.is_finite() {
+        return Err(Error::SingularMassMatrix { t });
+    }
+    finite(t, Vector::<1>::new(a))
+}
+
 /// `(qdd, lambda)` from `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` (`A = N + M`),
 /// by LU with partial pivoting of the whole augmented matrix, which stays regular when
 /// `M` alone is singular (massless coordinates fixed by constraints).
@@ -54,6 +65,7 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
 }
 
 /// `x`, or [`Error::NonFinite`] if any entry is NaN or infinite: no NaN reaches the user.
+#[inline]
 pub fn finite<const N: usize>(t: f64, x: Vector<N>) -> Result<Vector<N>> {
     if x.iter().all(|v| v.is_finite()) {
         Ok(x)
@@ -144,5 +156,17 @@ mod tests {
         }
         let err = solve_mass::<1>(1.0, &Matrix::<1, 1>::new(1.0), &Vector::<1>::new(f64::NAN));
         assert_eq!(err.unwrap_err(), Error::NonFinite { t: 1.0 });
+    }
+
+    /// The generated one-coordinate form: the acceleration passes when the mass is usable.
+    #[test]
+    fn one_coordinate_checks_the_mass_and_the_result() {
+        assert_eq!(one_coordinate(0.0, 2.0, -4.5).unwrap()[0], -4.5);
+        for m in [0.0, f64::NAN, f64::NEG_INFINITY] {
+            let err = one_coordinate(3.0, m, 1.0).unwrap_err();
+            assert_eq!(err, Error::SingularMassMatrix { t: 3.0 });
+        }
+        let err = one_coordinate(1.0, 1.0, f64::INFINITY).unwrap_err();
+        assert_eq!(err, Error::NonFinite { t: 1.0 });
     }
 }

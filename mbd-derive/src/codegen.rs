@@ -10,7 +10,7 @@ use crate::parse::{Direction, Mechanism};
 use crate::sym::{self, Expr, Func, Node};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Above this many temporaries a body declares them in groups (see [`Block::new`]).
 const FLAT_LIMIT: usize = 1024;
@@ -55,6 +55,7 @@ impl<'a> Block<'a> {
         };
         let mut order = sym::schedule(&eq.g, roots);
         order.retain(|e| !known.contains_key(e));
+        parameters_first(eq, &mut order);
         b.len = order.len();
         let grouped = order.len() > FLAT_LIMIT;
         let name = |i: usize| format_ident!("t{}", first + i);
@@ -203,6 +204,29 @@ impl<'a> Block<'a> {
         }
         quote!(let mut #id = ::mbd::__private::Matrix::<#r, #c>::zeros(); #(#sets)*)
     }
+}
+
+/// Reorders a schedule so that the nodes of parameters and constants alone come first (a
+/// stable partition, so children still precede parents): they do not wait for the state,
+/// so a quotient of parameters overlaps a `sin` call instead of following it, and a loop's
+/// invariants stand apart from its body.
+fn parameters_first(eq: &Equations, order: &mut Vec<Expr>) {
+    let mut varying: HashSet<Expr> = HashSet::new();
+    for &e in order.iter() {
+        let state = eq.g.node(e).children().any(|c| {
+            varying.contains(&c)
+                || match eq.g.node(c) {
+                    Node::Sym(s) => !matches!(eq.roles.get(&s), Some(Role::Param(_))),
+                    _ => false,
+                }
+        });
+        if state {
+            varying.insert(e);
+        }
+    }
+    let (fixed, state): (Vec<Expr>, Vec<Expr>) = order.iter().partition(|e| !varying.contains(e));
+    *order = fixed;
+    order.extend(state);
 }
 
 /// The body of `acceleration` for a joint tree whose tail run of identical links is rolled
@@ -415,6 +439,14 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             #s
             #fill
             ::mbd::__private::solve::finite(t, qdd)
+        }
+    } else if let Some(qdd) = eq.single_qdd {
+        let mass = eq.mass[0][0];
+        let b = Block::new(eq, &[mass, qdd]);
+        let (s, m, a) = (b.stmts(), b.leaf(mass), b.leaf(qdd));
+        quote! {
+            #s
+            ::mbd::__private::solve::one_coordinate(t, #m, #a)
         }
     } else {
         quote! {

@@ -112,6 +112,9 @@ pub struct Equations {
     /// `qdd` of a joint tree by the articulated-body recursion, when that evaluates the
     /// accelerations instead of the mass matrix.
     pub recursive_qdd: Option<Vec<Expr>>,
+    /// `qdd` of a one-coordinate model without constraints, `f / m` with shared factors
+    /// cancelled.
+    pub single_qdd: Option<Expr>,
     /// The same recursion with a run of identical links rolled into loops (long chains),
     /// with the run's first joint as a free-coordinate index; `recursive_qdd` is then the
     /// other free coordinates' accelerations (`None`-free: zero at the run's).
@@ -1342,6 +1345,15 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         let q = g.mul(mn, sign);
         forces[f.coord] = g.sub(forces[f.coord], q);
     }
+    // One free coordinate without constraints: `qdd = f / m` with the factors the two share
+    // cancelled (`-m g l sin(theta) / (m l^2)` is `-g sin(theta) / l`), as one writes it by
+    // hand; generated code checks `m` itself before using it.
+    let single_qdd = (n == 1 && phi.is_empty() && rolled.is_none() && recursive_qdd.is_none())
+        .then(|| {
+            let parameters_only =
+                |g: &Graph, e: Expr| !uses_roles(g, &roles, e, |r| !matches!(r, Role::Param(_)));
+            g.quotient_cancelled(forces[0], mass[0][0], parameters_only)
+        });
 
     // Residual Jacobians for implicit methods.
     let jacobian = ast.jacobian.then(|| {
@@ -1463,6 +1475,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         frictions,
         frictionless,
         recursive_qdd,
+        single_qdd,
         rolled,
         init_q,
         init_qd,

@@ -14,12 +14,40 @@ use mechanisms::handwritten::{
     SliderCrankByHand, slider_crank_state,
 };
 use std::hint::black_box;
+use std::time::Instant;
+
+/// The least time per call of `generated` and `hand` over interleaved batches (generated,
+/// hand, generated, ...): on a shared machine criterion's figures drift between benchmarks
+/// run one after the other, the interleaved minimum is the robust ratio.
+fn interleaved(name: &str, generated: &dyn Fn(), hand: &dyn Fn()) {
+    let batch = |run: &dyn Fn()| {
+        let start = Instant::now();
+        for _ in 0..1000 {
+            run();
+        }
+        start.elapsed().as_secs_f64() * 1e9 / 1000.0
+    };
+    let (mut g, mut h) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..2000 {
+        g = g.min(batch(generated));
+        h = h.min(batch(hand));
+    }
+    println!(
+        "{name}: min over interleaved batches: generated {g:.2} ns, hand-written {h:.2} ns, ratio {:.3}",
+        g / h
+    );
+}
 
 fn benches(c: &mut Criterion) {
     let p = PENDULUM;
     let ph = PendulumByHand::from(&p);
     let y = Vector::<2>::new(0.7, 0.3);
     assert!((p.rhs(0.0, &y).unwrap() - ph.rhs(0.0, &y).unwrap()).norm() < 1e-14);
+    interleaved(
+        "pendulum",
+        &|| drop(black_box(p.rhs(0.0, black_box(&y)))),
+        &|| drop(black_box(ph.rhs(0.0, black_box(&y)))),
+    );
     c.bench_function("pendulum/generated", |b| {
         b.iter(|| p.rhs(0.0, black_box(&y)).unwrap())
     });
@@ -31,6 +59,11 @@ fn benches(c: &mut Criterion) {
     let dh = DoublePendulumByHand::from(&d);
     let y = Vector::<4>::new(0.7, -0.4, 0.3, 1.1);
     assert!((d.rhs(0.0, &y).unwrap() - dh.rhs(0.0, &y).unwrap()).norm() < 1e-12);
+    interleaved(
+        "double_pendulum",
+        &|| drop(black_box(d.rhs(0.0, black_box(&y)))),
+        &|| drop(black_box(dh.rhs(0.0, black_box(&y)))),
+    );
     c.bench_function("double_pendulum/generated", |b| {
         b.iter(|| d.rhs(0.0, black_box(&y)).unwrap())
     });
@@ -42,6 +75,11 @@ fn benches(c: &mut Criterion) {
     let sh = SliderCrankByHand::from(&s);
     let y = slider_crank_state(&s, 0.6, 5.0);
     assert!((s.rhs(0.0, &y).unwrap() - sh.rhs(0.0, &y).unwrap()).norm() < 1e-9);
+    interleaved(
+        "slider_crank",
+        &|| drop(black_box(s.rhs(0.0, black_box(&y)))),
+        &|| drop(black_box(sh.rhs(0.0, black_box(&y)))),
+    );
     c.bench_function("slider_crank/generated", |b| {
         b.iter(|| s.rhs(0.0, black_box(&y)).unwrap())
     });

@@ -408,6 +408,72 @@ impl Graph {
         let products: Vec<Expr> = a.iter().zip(b).map(|(&x, &y)| self.mul(x, y)).collect();
         self.sum(products)
     }
+
+    /// `a / b` with the factors the two products share cancelled, and the numerator's
+    /// `constant` factors divided first: `-(m g l sin q) / (m l^2)` is `(-g / l) sin q`, the
+    /// quotient of parameters computed apart from (and before) what depends on the state.
+    /// Only for a caller that has checked `b != 0` itself (a cancelled factor that is zero
+    /// would otherwise turn `0 / 0` into a number).
+    pub fn quotient_cancelled(
+        &mut self,
+        a: Expr,
+        b: Expr,
+        constant: impl Fn(&Self, Expr) -> bool,
+    ) -> Expr {
+        let (mut ca, mut fa) = (1.0, Vec::new());
+        let (mut cb, mut fb) = (1.0, Vec::new());
+        self.factors(a, &mut ca, &mut fa);
+        self.factors(b, &mut cb, &mut fb);
+        for (base, na) in fa.iter_mut() {
+            if let Some((_, nb)) = fb.iter_mut().find(|(x, _)| x == base) {
+                let k = (*na).min(*nb);
+                *na -= k;
+                *nb -= k;
+            }
+        }
+        let (fixed, varying): (Vec<_>, Vec<_>) =
+            fa.into_iter().partition(|&(base, _)| constant(self, base));
+        let numerator = self.product(ca, &fixed);
+        let denominator = self.product(cb, &fb);
+        let ratio = self.div(numerator, denominator);
+        let rest = self.product(1.0, &varying);
+        self.mul(ratio, rest)
+    }
+
+    /// `e` as `coefficient * prod base^n` (bases with positive integer powers).
+    fn factors(&self, e: Expr, coefficient: &mut f64, out: &mut Vec<(Expr, i32)>) {
+        match self.node(e) {
+            Node::Const(c) => *coefficient *= c.value(),
+            Node::Neg(x) => {
+                *coefficient = -*coefficient;
+                self.factors(x, coefficient, out);
+            }
+            Node::Mul(x, y) => {
+                self.factors(x, coefficient, out);
+                self.factors(y, coefficient, out);
+            }
+            _ => {
+                let (base, n) = match self.power(e) {
+                    (b, n) if n > 0 => (b, n),
+                    _ => (e, 1),
+                };
+                match out.iter_mut().find(|(x, _)| *x == base) {
+                    Some((_, k)) => *k += n,
+                    None => out.push((base, n)),
+                }
+            }
+        }
+    }
+
+    /// `coefficient * prod base^n`, skipping zero powers.
+    fn product(&mut self, coefficient: f64, factors: &[(Expr, i32)]) -> Expr {
+        let mut p = self.constant(coefficient);
+        for &(base, n) in factors.iter().filter(|(_, n)| *n > 0) {
+            let f = self.powi(base, n);
+            p = self.mul(p, f);
+        }
+        p
+    }
 }
 
 #[cfg(test)]
@@ -419,6 +485,30 @@ mod tests {
         let x = g.symbol("x");
         let y = g.symbol("y");
         (g, x, y)
+    }
+
+    #[test]
+    fn quotient_cancels_shared_factors() {
+        let (mut g, x, y) = setup();
+        let (m, l) = (g.symbol("m"), g.symbol("l"));
+        let s = g.call(crate::sym::Func::Sin, x);
+        let parameter = |g: &Graph, e: Expr| !g.free_symbols(e).contains(&g.as_sym(x).unwrap());
+        // -(m y l sin x) / (m l^2) = (-y / l) sin x.
+        let my = g.mul(m, y);
+        let myl = g.mul(my, l);
+        let f = g.mul(myl, s);
+        let f = g.neg(f);
+        let l2 = g.powi(l, 2);
+        let mass = g.mul(m, l2);
+        let q = g.quotient_cancelled(f, mass, parameter);
+        let minus_y = g.neg(y);
+        let ratio = g.div(minus_y, l);
+        assert_eq!(q, g.mul(ratio, s));
+        // Nothing shared: the plain quotient, times the varying part.
+        let plain = g.quotient_cancelled(s, l, parameter);
+        let one = g.one();
+        let one_over_l = g.div(one, l);
+        assert_eq!(plain, g.mul(one_over_l, s));
     }
 
     #[test]
