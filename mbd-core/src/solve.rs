@@ -75,6 +75,7 @@ pub fn finite<const N: usize>(t: f64, x: Vector<N>) -> Result<Vector<N>> {
 }
 
 /// `y' = [qd; qdd]` for a second-order model with `y = [q; qd]` (`D = 2 N`).
+#[inline]
 pub fn second_order_rhs<const N: usize, const D: usize>(
     y: &Vector<D>,
     acceleration: impl FnOnce(&Vector<N>, &Vector<N>) -> Result<Vector<N>>,
