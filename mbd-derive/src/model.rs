@@ -116,8 +116,8 @@ pub struct Equations {
     /// cancelled.
     pub single_qdd: Option<Expr>,
     /// The same recursion with a run of identical links rolled into loops (long chains),
-    /// with the run's first joint as a free-coordinate index; `recursive_qdd` is then the
-    /// other free coordinates' accelerations (`None`-free: zero at the run's).
+    /// and the free-coordinate index of the run's first joint; `recursive_qdd` then holds
+    /// the other free coordinates' accelerations, and zeros at the run's.
     pub rolled: Option<(tree::Rolled, usize)>,
     /// Initial positions and velocities of the free coordinates (parameters allowed).
     pub init_q: Vec<Expr>,
@@ -1346,8 +1346,8 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         forces[f.coord] = g.sub(forces[f.coord], q);
     }
     // One free coordinate without constraints: `qdd = f / m` with the factors the two share
-    // cancelled (`-m g l sin(theta) / (m l^2)` is `-g sin(theta) / l`), as one writes it by
-    // hand; generated code checks `m` itself before using it.
+    // cancelled and the parameters' quotient apart (`-m g l sin(theta) / (m l^2)` is
+    // `(-g / l) sin(theta)`), as one writes it by hand; generated code checks `m` first.
     let single_qdd = (n == 1 && phi.is_empty() && rolled.is_none() && recursive_qdd.is_none())
         .then(|| {
             let parameters_only =
