@@ -573,6 +573,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     });
     let ode_impl = quote! {
         impl ::mbd::__private::OdeSystem<#d> for #ident {
+            #[inline]
             fn rhs(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<::mbd::__private::Vector<#d>> {
                 ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| ::mbd::__private::Mechanism::<#n>::acceleration(self, t, q, qd))
             }

@@ -77,6 +77,7 @@ impl mbd::Mechanism<1> for PendulumByHand {
 }
 
 impl OdeSystem<2> for PendulumByHand {
+    #[inline]
     fn rhs(&self, _t: f64, y: &Vector<2>) -> mbd::Result<Vector<2>> {
         Ok(Vector::<2>::new(y[1], -self.g / self.l * y[0].sin()))
     }
@@ -163,6 +164,7 @@ impl mbd::Mechanism<2> for DoublePendulumByHand {
 }
 
 impl OdeSystem<4> for DoublePendulumByHand {
+    #[inline]
     fn rhs(&self, t: f64, y: &Vector<4>) -> mbd::Result<Vector<4>> {
         let q = Vector::<2>::new(y[0], y[1]);
         let qd = Vector::<2>::new(y[2], y[3]);
@@ -335,6 +337,7 @@ impl Constrained<3, 2> for SliderCrankByHand {
 }
 
 impl OdeSystem<6> for SliderCrankByHand {
+    #[inline]
     fn rhs(&self, t: f64, y: &Vector<6>) -> mbd::Result<Vector<6>> {
         let q = Vector::<3>::new(y[0], y[1], y[2]);
         let qd = Vector::<3>::new(y[3], y[4], y[5]);
