@@ -38,7 +38,7 @@ struct Args {
     /// Number of members (parameter and initial-condition variations).
     #[arg(long, default_value_t = 64)]
     members: usize,
-    /// End time of every run [s].
+    /// End time of every run, in seconds.
     #[arg(long, default_value_t = 10.0)]
     t_end: f64,
     /// Print one JSON object instead of text.

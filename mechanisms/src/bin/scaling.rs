@@ -94,10 +94,10 @@ struct Args {
     /// Model form; default: `chain` if it builds at N = 2, else `explicit`.
     #[arg(long, value_enum)]
     form: Option<Form>,
-    /// Where the throw-away crates are written (default: <workspace>/target/scaling).
+    /// Where the throw-away crates are written (default: `<workspace>/target/scaling`).
     #[arg(long)]
     work_dir: Option<PathBuf>,
-    /// CARGO_TARGET_DIR shared by the throw-away crates (default: <work-dir>/target).
+    /// `CARGO_TARGET_DIR` shared by the throw-away crates (default: `<work-dir>/target`).
     #[arg(long)]
     target_dir: Option<PathBuf>,
     /// Give up one build after this many seconds (the row reports it).
