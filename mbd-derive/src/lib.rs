@@ -1,10 +1,10 @@
 //! The `#[derive(Mechanism)]` of mbd: a mechanism described by attributes on a struct of
 //! parameters becomes exact, specialised equations of motion at compile time.
 //!
-//! Stages, each its own module: [`parse`] (attributes -> AST), [`lower`] (user expressions
-//! -> symbolic values, with spanned errors), [`model`] (Lagrangian mechanics in minimal
-//! coordinates, constraints, reactions), [`sym`] (the symbolic engine: hash-consed DAG,
-//! exact derivatives), [`codegen`] (straight-line Rust).
+//! Stages, each its own module: `parse` (attributes -> AST), `lower` (user expressions
+//! -> symbolic values, with spanned errors), `model` (Lagrangian mechanics in minimal
+//! coordinates, constraints, reactions), `sym` (the symbolic engine: hash-consed DAG,
+//! exact derivatives), `codegen` (straight-line Rust).
 //! The language itself is documented on the facade crate `mbd`.
 
 mod codegen;

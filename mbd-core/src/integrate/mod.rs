@@ -1,6 +1,6 @@
 //! Time integration: shared options, statistics, dense output and the solution record.
 //!
-//! Every method advances an [`OdeSystem`](crate::OdeSystem) of fixed dimension `D` and
+//! Every method advances an [`OdeSystem`] of fixed dimension `D` and
 //! returns a [`Solution`]: the accepted steps, the dense output between them (one
 //! [`Segment`] per step), the events found, and the work done ([`Stats`]).
 
@@ -55,11 +55,11 @@ pub struct Options {
     pub h0: Option<f64>,
     /// Fixed step for fixed-step methods; largest step for adaptive ones (`None`: `t1 - t0`).
     pub h_max: Option<f64>,
-    /// Steps allowed before [`Error::TooManySteps`](crate::Error::TooManySteps).
+    /// Steps allowed before [`Error::TooManySteps`].
     pub max_steps: usize,
     /// Keep one dense-output [`Segment`] per step in the [`Solution`].
     pub dense: bool,
-    /// Call [`OdeSystem::project`](crate::OdeSystem::project) after each accepted step.
+    /// Call [`OdeSystem::project`] after each accepted step.
     pub project: bool,
 }
 

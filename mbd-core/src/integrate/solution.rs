@@ -62,7 +62,7 @@ pub enum Flow {
 
 /// Bookkeeping every method shares: records accepted steps, locates events on the step's
 /// dense segment (a sign change of `g` between the segment's ends, refined by
-/// [`locate`](super::events::locate) to `|dt| <= 1e-12 (|t| + 1)`), and stops at terminal
+/// [`locate`] to `|dt| <= 1e-12 (|t| + 1)`), and stops at terminal
 /// events. Event functions are evaluated once per step at the step's end; a step in which
 /// `g` crosses zero twice shows no sign change and reports nothing.
 pub struct Recorder<'r, 'e, const D: usize> {
