@@ -23,25 +23,30 @@ impl Lcg {
     }
 }
 
-/// Five uniform links; `chain` chooses the recursion (five bodies).
-#[derive(Debug, Mechanism)]
-#[gravity(0.0, -g)]
-#[chain(link, n = 5, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0)]
-pub struct Chain5 {
-    pub m: f64,
-    pub l: f64,
-    pub g: f64,
+/// One mechanism description stamped twice: as `$name` with the given evaluation (or the
+/// macro's choice) and as `$dense` forced onto the mass-matrix solve, the independent
+/// derivation (Kane's equations, no recursion) the recursion is checked against.
+macro_rules! with_mass_matrix_twin {
+    ($(#[doc = $doc:literal])* $([$($eval:tt)*])? $name:ident, $dense:ident, { $($field:ident),* }, $(#[$attr:meta])*) => {
+        $(#[doc = $doc])*
+        #[derive(Debug, Mechanism)]
+        $(#[mechanism($($eval)*)])?
+        $(#[$attr])*
+        pub struct $name { $(pub $field: f64),* }
+
+        #[doc = concat!("[`", stringify!($name), "`] on the mass-matrix solve.")]
+        #[derive(Debug, Mechanism)]
+        #[mechanism(mass_matrix)]
+        $(#[$attr])*
+        pub struct $dense { $(pub $field: f64),* }
+    };
 }
 
-/// The same chain, forced onto the mass-matrix solve.
-#[derive(Debug, Mechanism)]
-#[mechanism(mass_matrix)]
-#[gravity(0.0, -g)]
-#[chain(link, n = 5, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0)]
-pub struct Chain5Dense {
-    pub m: f64,
-    pub l: f64,
-    pub g: f64,
+with_mass_matrix_twin! {
+    /// Five uniform links; `chain` chooses the recursion (five bodies).
+    Chain5, Chain5Dense, { m, l, g },
+    #[gravity(0.0, -g)]
+    #[chain(link, n = 5, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0)]
 }
 
 /// The same chain written out: relative angles `q1..q5`, absolute `t_k = q1 + .. + qk`,
@@ -130,57 +135,29 @@ fn one_body_recursion_matches_the_compound_pendulum() {
     }
 }
 
-/// A branched tree with every joint kind, a driven joint and applied forces:
-/// a cart on a prismatic joint; an arm pinned to it; a slider running along the arm; a
-/// weight welded to the arm's end at 0.3 rad; a wheel pinned to the cart; a flap on the
-/// weight driven by `d(t)`; a spring, a damper, a viscous torque and a generalised force.
-#[derive(Debug, Mechanism)]
-#[mechanism(recursive)]
-#[gravity(0.0, -g)]
-#[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = m1, inertia = 0.3)]
-#[body(arm, parent = cart, joint = revolute(a), at = [0.1, 0.05], com = [0.0, -0.4],
-       mass = m2, inertia = 0.05)]
-#[body(slider, parent = arm, joint = prismatic(s, [0.0, -1.0]), at = [0.0, -0.2],
-       com = [0.02, 0.0], mass = 0.7, inertia = 0.01)]
-#[body(weight, parent = arm, joint = fixed, at = [0.0, -0.8], angle = 0.3, com = [0.05, 0.0],
-       mass = 0.4, inertia = 0.002)]
-#[body(wheel, parent = cart, joint = revolute(w), at = [-0.2, 0.0], com = [0.03, 0.0],
-       mass = 0.5, inertia = 0.02)]
-#[body(flap, parent = weight, joint = revolute(d), com = [0.0, -0.1], mass = 0.2, inertia = 0.001)]
-#[drive(d = 0.5 * sin(2.0 * t))]
-#[spring(k1, from = [0.0, 0.0], to = slider, k = 50.0, length = 0.3)]
-#[damper(c1, from = [0.0, 1.0], to = wheel, c = 2.0)]
-#[torque(tq, on = arm, value = -0.7 * der(a) + 0.4 * cos(w))]
-#[generalized_force(gf, along = x, value = -3.0 * x)]
-pub struct Tree {
-    pub m1: f64,
-    pub m2: f64,
-    pub g: f64,
-}
-
-/// The same tree on the mass-matrix solve.
-#[derive(Debug, Mechanism)]
-#[mechanism(mass_matrix)]
-#[gravity(0.0, -g)]
-#[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = m1, inertia = 0.3)]
-#[body(arm, parent = cart, joint = revolute(a), at = [0.1, 0.05], com = [0.0, -0.4],
-       mass = m2, inertia = 0.05)]
-#[body(slider, parent = arm, joint = prismatic(s, [0.0, -1.0]), at = [0.0, -0.2],
-       com = [0.02, 0.0], mass = 0.7, inertia = 0.01)]
-#[body(weight, parent = arm, joint = fixed, at = [0.0, -0.8], angle = 0.3, com = [0.05, 0.0],
-       mass = 0.4, inertia = 0.002)]
-#[body(wheel, parent = cart, joint = revolute(w), at = [-0.2, 0.0], com = [0.03, 0.0],
-       mass = 0.5, inertia = 0.02)]
-#[body(flap, parent = weight, joint = revolute(d), com = [0.0, -0.1], mass = 0.2, inertia = 0.001)]
-#[drive(d = 0.5 * sin(2.0 * t))]
-#[spring(k1, from = [0.0, 0.0], to = slider, k = 50.0, length = 0.3)]
-#[damper(c1, from = [0.0, 1.0], to = wheel, c = 2.0)]
-#[torque(tq, on = arm, value = -0.7 * der(a) + 0.4 * cos(w))]
-#[generalized_force(gf, along = x, value = -3.0 * x)]
-pub struct TreeDense {
-    pub m1: f64,
-    pub m2: f64,
-    pub g: f64,
+with_mass_matrix_twin! {
+    /// A branched tree with every joint kind, a driven joint and applied forces:
+    /// a cart on a prismatic joint; an arm pinned to it; a slider running along the arm; a
+    /// weight welded to the arm's end at 0.3 rad; a wheel pinned to the cart; a flap on the
+    /// weight driven by `d(t)`; a spring, a damper, a viscous torque and a generalised force.
+    [recursive] Tree, TreeDense, { m1, m2, g },
+    #[gravity(0.0, -g)]
+    #[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = m1, inertia = 0.3)]
+    #[body(arm, parent = cart, joint = revolute(a), at = [0.1, 0.05], com = [0.0, -0.4],
+           mass = m2, inertia = 0.05)]
+    #[body(slider, parent = arm, joint = prismatic(s, [0.0, -1.0]), at = [0.0, -0.2],
+           com = [0.02, 0.0], mass = 0.7, inertia = 0.01)]
+    #[body(weight, parent = arm, joint = fixed, at = [0.0, -0.8], angle = 0.3,
+           com = [0.05, 0.0], mass = 0.4, inertia = 0.002)]
+    #[body(wheel, parent = cart, joint = revolute(w), at = [-0.2, 0.0], com = [0.03, 0.0],
+           mass = 0.5, inertia = 0.02)]
+    #[body(flap, parent = weight, joint = revolute(d), com = [0.0, -0.1], mass = 0.2,
+           inertia = 0.001)]
+    #[drive(d = 0.5 * sin(2.0 * t))]
+    #[spring(k1, from = [0.0, 0.0], to = slider, k = 50.0, length = 0.3)]
+    #[damper(c1, from = [0.0, 1.0], to = wheel, c = 2.0)]
+    #[torque(tq, on = arm, value = -0.7 * der(a) + 0.4 * cos(w))]
+    #[generalized_force(gf, along = x, value = -3.0 * x)]
 }
 
 /// The same tree written out by hand, frame by frame (`R(a) v` expanded):
@@ -427,42 +404,20 @@ fn reaction_in_a_recursive_tree() {
     }
 }
 
-/// A spring-loaded cart with a driven arm carrying a 14-link chain: the chain's last 13
-/// links are one run of identical links, generated once as loops (`rolled_chain`), the
-/// cart, arm and first link unrolled around them. Checked against the same tree on the
-/// mass-matrix solve (Kane's equations, no recursion at all).
-#[derive(Debug, Mechanism)]
-#[gravity(0.0, -g)]
-#[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = 2.0, inertia = 0.3)]
-#[body(arm, parent = cart, joint = revolute(d), at = [0.2, 0.0], com = [0.0, -0.1],
-       mass = 0.5, inertia = 0.01)]
-#[drive(d = 0.3 * sin(2.0 * t))]
-#[chain(link, n = 14, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0,
-        parent = arm, at = [0.0, -0.2])]
-#[spring(k1, from = [0.0, 0.0], to = cart, k = 40.0, length = 0.1)]
-#[torque(tq, on = link_1, value = -0.5 * der(link_q1))]
-pub struct RolledTree {
-    pub m: f64,
-    pub l: f64,
-    pub g: f64,
-}
-
-/// [`RolledTree`] on the mass-matrix solve.
-#[derive(Debug, Mechanism)]
-#[mechanism(mass_matrix)]
-#[gravity(0.0, -g)]
-#[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = 2.0, inertia = 0.3)]
-#[body(arm, parent = cart, joint = revolute(d), at = [0.2, 0.0], com = [0.0, -0.1],
-       mass = 0.5, inertia = 0.01)]
-#[drive(d = 0.3 * sin(2.0 * t))]
-#[chain(link, n = 14, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0,
-        parent = arm, at = [0.0, -0.2])]
-#[spring(k1, from = [0.0, 0.0], to = cart, k = 40.0, length = 0.1)]
-#[torque(tq, on = link_1, value = -0.5 * der(link_q1))]
-pub struct RolledTreeDense {
-    pub m: f64,
-    pub l: f64,
-    pub g: f64,
+with_mass_matrix_twin! {
+    /// A spring-loaded cart with a driven arm carrying a 14-link chain: the chain's last 13
+    /// links are one run of identical links, generated once as loops (`rolled_chain`), the
+    /// cart, arm and first link unrolled around them. Checked against its mass-matrix twin.
+    RolledTree, RolledTreeDense, { m, l, g },
+    #[gravity(0.0, -g)]
+    #[body(cart, joint = prismatic(x, [1.0, 0.0]), mass = 2.0, inertia = 0.3)]
+    #[body(arm, parent = cart, joint = revolute(d), at = [0.2, 0.0], com = [0.0, -0.1],
+           mass = 0.5, inertia = 0.01)]
+    #[drive(d = 0.3 * sin(2.0 * t))]
+    #[chain(link, n = 14, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0,
+            parent = arm, at = [0.0, -0.2])]
+    #[spring(k1, from = [0.0, 0.0], to = cart, k = 40.0, length = 0.1)]
+    #[torque(tq, on = link_1, value = -0.5 * der(link_q1))]
 }
 
 #[test]
