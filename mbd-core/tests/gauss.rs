@@ -8,6 +8,9 @@ use mbd_core::integrate::{Dopri5, Gauss, Integrator, Options};
 use mbd_core::{Error, OdeSystem, Result, Vector};
 use std::f64::consts::PI;
 
+mod exact;
+use exact::pendulum_angle;
+
 /// `y' = f(t, y)` from a closure.
 struct Ode<F>(F);
 
@@ -30,37 +33,6 @@ fn slope(hs: &[f64], errs: &[f64]) -> f64 {
 /// `x'' = -w^2 x`, `x(0) = 1`, `x'(0) = 0`: `x = cos w t`, `x' = -w sin w t`.
 fn oscillator(w: f64) -> Ode<impl Fn(f64, &Vector<2>) -> Vector<2>> {
     Ode(move |_t: f64, y: &Vector<2>| Vector::<2>::new(y[1], -w * w * y[0]))
-}
-
-/// The arithmetic-geometric mean.
-fn agm(mut a: f64, mut b: f64) -> f64 {
-    while (a - b).abs() > 4.0 * f64::EPSILON * a {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    a
-}
-
-/// `K(k) = pi / (2 AGM(1, sqrt(1 - k^2)))` (DLMF 19.8.5).
-fn elliptic_k(k: f64) -> f64 {
-    PI / (2.0 * agm(1.0, (1.0 - k * k).sqrt()))
-}
-
-/// Jacobi `sn(u, k)` by the descending Landen scheme (Abramowitz & Stegun 16.4).
-fn jacobi_sn(u: f64, k: f64) -> f64 {
-    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
-    let (mut av, mut cv) = (vec![a], vec![k]);
-    while cv.last().is_some_and(|c| c.abs() > 4.0 * f64::EPSILON) && cv.len() < 40 {
-        let c = 0.5 * (a - b);
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-        av.push(a);
-        cv.push(c);
-    }
-    let n = av.len() - 1;
-    let mut phi = 2f64.powi(n as i32) * av[n] * u;
-    for i in (1..=n).rev() {
-        phi = 0.5 * (phi + (cv[i] * phi.sin() / av[i]).asin());
-    }
-    phi.sin()
 }
 
 /// The tableau satisfies the collocation conditions `sum_j a_ij c_j^(k-1) = c_i^k / k`
@@ -118,8 +90,7 @@ fn order_four_is_measured() {
     let w2 = 9.81;
     let pendulum = Ode(move |_t: f64, y: &Vector<2>| Vector::<2>::new(y[1], -w2 * y[0].sin()));
     let theta0 = PI / 3.0;
-    let k = (theta0 / 2.0).sin();
-    let exact = |t: f64| 2.0 * (k * jacobi_sn(elliptic_k(k) - w2.sqrt() * t, k)).asin();
+    let exact = |t: f64| pendulum_angle(w2.sqrt(), theta0, t);
     let errs: Vec<f64> = hs
         .iter()
         .map(|&h| {

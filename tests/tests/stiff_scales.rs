@@ -14,7 +14,9 @@
 use mbd::integrate::{Dopri5, Integrator, Radau5};
 use mbd::nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use mbd::prelude::*;
-use std::f64::consts::PI;
+
+#[path = "../../mbd-core/tests/exact/mod.rs"]
+mod exact;
 
 /// Three rigid bodies in a row, each moving along x (`x1..x3`) and turning (`p1..p3`).
 /// Linear springs wall - 1 - 2 - 3 (`k1..k3`), torsional springs ground - 3 - 2 - 1
@@ -215,40 +217,12 @@ pub struct UnitFreePendulum {
     pub g: f64,
 }
 
-/// The arithmetic-geometric mean.
-fn agm(mut a: f64, mut b: f64) -> f64 {
-    while (a - b).abs() > 4.0 * f64::EPSILON * a {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    a
-}
-
-/// Jacobi `sn(u, k)` by the descending Landen scheme (Abramowitz & Stegun 16.4).
-fn jacobi_sn(u: f64, k: f64) -> f64 {
-    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
-    let (mut av, mut cv) = (vec![a], vec![k]);
-    while cv.last().is_some_and(|c| c.abs() > 4.0 * f64::EPSILON) && cv.len() < 40 {
-        let c = 0.5 * (a - b);
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-        av.push(a);
-        cv.push(c);
-    }
-    let n = av.len() - 1;
-    let mut phi = 2f64.powi(n as i32) * av[n] * u;
-    for i in (1..=n).rev() {
-        phi = 0.5 * (phi + (cv[i] * phi.sin() / av[i]).asin());
-    }
-    phi.sin()
-}
-
 const THETA0: f64 = 1.0;
 
-/// The angle from the downward vertical, from rest at `THETA0`:
-/// `sin(theta/2) = s sn(K(s) - w t, s)`, `s = sin(theta0/2)`, `w = sqrt(g/l)` (unit-free).
+/// The angle from the downward vertical, from rest at `THETA0` ([`exact::pendulum_angle`],
+/// `w = sqrt(g/l)`, unit-free).
 fn theta(t: f64) -> f64 {
-    let s = (THETA0 / 2.0).sin();
-    let big_k = PI / (2.0 * agm(1.0, (1.0 - s * s).sqrt()));
-    2.0 * (s * jacobi_sn(big_k - (9.81f64).sqrt() * t, s)).asin()
+    exact::pendulum_angle(9.81f64.sqrt(), THETA0, t)
 }
 
 /// One run in length unit `unit` (1e3 for mm, 1 for m, 1e-3 for km) with the constraint

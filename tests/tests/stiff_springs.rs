@@ -21,6 +21,9 @@ use mbd::integrate::{Dopri5, GeneralizedAlpha, Integrator, Radau5, Rk4};
 use mbd::prelude::*;
 use std::f64::consts::PI;
 
+#[path = "../../mbd-core/tests/exact/mod.rs"]
+mod exact;
+
 /// A block on a spring and a damper in parallel whose far end (`base`) is shaken along x
 /// by `a sin(w t)`; `x` is the block's displacement from its rest position.
 #[derive(Debug, Mechanism)]
@@ -336,38 +339,9 @@ impl ElasticPendulum {
     }
 }
 
-/// The arithmetic-geometric mean.
-fn agm(mut a: f64, mut b: f64) -> f64 {
-    while (a - b).abs() > 4.0 * f64::EPSILON * a {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    a
-}
-
-/// Jacobi `sn(u, k)` by the descending Landen scheme (Abramowitz & Stegun 16.4).
-fn jacobi_sn(u: f64, k: f64) -> f64 {
-    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
-    let (mut av, mut cv) = (vec![a], vec![k]);
-    while cv.last().is_some_and(|c| c.abs() > 4.0 * f64::EPSILON) && cv.len() < 40 {
-        let c = 0.5 * (a - b);
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-        av.push(a);
-        cv.push(c);
-    }
-    let n = av.len() - 1;
-    let mut phi = 2f64.powi(n as i32) * av[n] * u;
-    for i in (1..=n).rev() {
-        phi = 0.5 * (phi + (cv[i] * phi.sin() / av[i]).asin());
-    }
-    phi.sin()
-}
-
-/// The rigid pendulum from rest at `theta0`: `sin(theta/2) = s sn(K(s) - w t, s)`,
-/// `s = sin(theta0/2)`, `w = sqrt(g/l)`, `K(s) = pi / (2 AGM(1, sqrt(1 - s^2)))`.
+/// The rigid pendulum from rest at `theta0` ([`exact::pendulum_angle`], `w = sqrt(g/l)`).
 fn rigid_theta(g: f64, l: f64, theta0: f64, t: f64) -> f64 {
-    let s = (theta0 / 2.0).sin();
-    let big_k = PI / (2.0 * agm(1.0, (1.0 - s * s).sqrt()));
-    2.0 * (s * jacobi_sn(big_k - (g / l).sqrt() * t, s)).asin()
+    exact::pendulum_angle((g / l).sqrt(), theta0, t)
 }
 
 /// Radau IIA on the elastic pendulum, rtol = 1e-6, atol = 1e-8, two periods (4 s): the
