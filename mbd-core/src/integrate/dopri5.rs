@@ -1,6 +1,7 @@
 //! Dormand–Prince 5(4) with Hairer's step control, dense output and stiffness detection.
 
 use super::control::{PiController, error_norm};
+use super::non_finite;
 use super::tableau::{DOPRI5, DOPRI5_DENSE, Erk};
 use super::{
     Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
@@ -38,10 +39,6 @@ impl Dopri5 {
     pub fn new(opts: Options) -> Self {
         Dopri5 { opts }
     }
-}
-
-fn non_finite<const D: usize>(v: &Vector<D>) -> bool {
-    !v.iter().all(|x| x.is_finite())
 }
 
 /// Hairer's initial step guess `HINIT` (Hairer–Nørsett–Wanner I, Sect. II.4, p. 169;

@@ -32,6 +32,7 @@
 use super::{
     Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
 };
+use super::{non_finite, positive_finite};
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, OdeSystem, Vector};
@@ -111,15 +112,8 @@ impl Gauss {
 
     fn validate(&self) -> Result<()> {
         let bad = |what: &'static str, detail: String| Err(Error::InvalidInput { what, detail });
-        if !(self.h > 0.0 && self.h.is_finite()) {
-            return bad("h", format!("must be positive and finite, got {}", self.h));
-        }
-        if !(self.tol > 0.0 && self.tol.is_finite()) {
-            return bad(
-                "tol",
-                format!("must be positive and finite, got {}", self.tol),
-            );
-        }
+        positive_finite("h", self.h)?;
+        positive_finite("tol", self.tol)?;
         if self.max_iterations < 2 || self.max_steps == 0 {
             return bad(
                 "max_iterations/max_steps",
@@ -132,10 +126,6 @@ impl Gauss {
 
 /// Below this scaled increment, a Newton iteration that stops decreasing has reached rounding.
 const STAGNATION: f64 = 1e-8;
-
-fn finite<const D: usize>(v: &Vector<D>) -> bool {
-    v.iter().all(|x| x.is_finite())
-}
 
 /// `sum_j m[k][j] v_j` for each `k`.
 fn mix<const D: usize>(m: &[[f64; 2]; 2], v: &[Vector<D>; 2]) -> [Vector<D>; 2] {
@@ -186,7 +176,7 @@ impl Gauss {
             for i in 0..2 {
                 f[i] = sys.rhs(t + C[i] * h, &(y + z[i]))?;
                 stats.n_rhs += 1;
-                if !finite(&f[i]) {
+                if non_finite(&f[i]) {
                     return Ok(Stages::Failed { non_finite: true });
                 }
             }
@@ -271,7 +261,7 @@ impl Integrator for Gauss {
         let mut f0 = if dense {
             stats.n_rhs += 1;
             let f = sys.rhs(t0, &y0)?;
-            if !finite(&f) {
+            if non_finite(&f) {
                 return Err(Error::NonFinite { t: t0 });
             }
             f
@@ -339,7 +329,7 @@ impl Integrator for Gauss {
                     compensation = Vector::<D>::zeros();
                 }
             }
-            if !finite(&y1) {
+            if non_finite(&y1) {
                 return Err(Error::NonFinite { t: t_new });
             }
             if slow && step < n {
@@ -351,7 +341,7 @@ impl Integrator for Gauss {
             let flow = if dense {
                 stats.n_rhs += 1;
                 let f1 = sys.rhs(t_new, &y1)?;
-                if !finite(&f1) {
+                if non_finite(&f1) {
                     return Err(Error::NonFinite { t: t_new });
                 }
                 let seg = Segment::hermite(t, t_new - t, &y, &f0, &y1, &f1);

@@ -23,6 +23,7 @@
 //! if Newton is slow). Positions and velocities converge with order 2; the position
 //! constraints hold to the Newton tolerance at every step (no drift).
 
+use super::positive_finite;
 use super::{Options, Recorder, Segment, Solution, Stats, validate_problem};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
@@ -294,15 +295,8 @@ impl GeneralizedAlpha {
 
     fn validate(&self) -> Result<()> {
         let bad = |what: &'static str, detail: String| Err(Error::InvalidInput { what, detail });
-        if !(self.h > 0.0 && self.h.is_finite()) {
-            return bad("h", format!("must be positive and finite, got {}", self.h));
-        }
-        if !(self.tol > 0.0 && self.tol.is_finite()) {
-            return bad(
-                "tol",
-                format!("must be positive and finite, got {}", self.tol),
-            );
-        }
+        positive_finite("h", self.h)?;
+        positive_finite("tol", self.tol)?;
         if self.max_iterations == 0 || self.max_steps == 0 {
             return bad("max_iterations/max_steps", "must be at least 1".to_string());
         }

@@ -94,32 +94,41 @@ pub struct Stats {
     pub n_rejected: usize,
 }
 
+/// `Ok` when a step size or tolerance `value` is positive and finite, else an
+/// `InvalidInput` naming it.
+pub(crate) fn positive_finite(what: &'static str, value: f64) -> Result<()> {
+    if value > 0.0 && value.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::InvalidInput {
+            what,
+            detail: format!("must be positive and finite, got {value}"),
+        })
+    }
+}
+
+/// Whether a state or derivative has a NaN or infinite component.
+pub(crate) fn non_finite<const D: usize>(v: &Vector<D>) -> bool {
+    !v.iter().all(|x| x.is_finite())
+}
+
 impl Options {
     /// Reject options outside their domain: `rtol > 0` and `atol >= 0` finite, `h0` and
     /// `h_max` finite and positive when given, `max_steps >= 1`.
     pub fn validate(&self) -> Result<()> {
         let bad = |what: &'static str, detail: String| Err(Error::InvalidInput { what, detail });
-        if !(self.rtol > 0.0 && self.rtol.is_finite()) {
-            return bad(
-                "rtol",
-                format!("must be positive and finite, got {}", self.rtol),
-            );
-        }
+        positive_finite("rtol", self.rtol)?;
         if !(self.atol >= 0.0 && self.atol.is_finite()) {
             return bad(
                 "atol",
                 format!("must be non-negative and finite, got {}", self.atol),
             );
         }
-        if let Some(h) = self.h0
-            && !(h > 0.0 && h.is_finite())
-        {
-            return bad("h0", format!("must be positive and finite, got {h}"));
+        if let Some(h) = self.h0 {
+            positive_finite("h0", h)?;
         }
-        if let Some(h) = self.h_max
-            && !(h > 0.0 && h.is_finite())
-        {
-            return bad("h_max", format!("must be positive and finite, got {h}"));
+        if let Some(h) = self.h_max {
+            positive_finite("h_max", h)?;
         }
         if self.max_steps == 0 {
             return bad("max_steps", "must be at least 1".to_string());

@@ -2,6 +2,7 @@
 
 use super::tableau::{Erk, RK4};
 use super::{Event, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem};
+use super::{non_finite, positive_finite};
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
 
@@ -27,10 +28,6 @@ impl Rk4 {
     }
 }
 
-fn non_finite<const D: usize>(v: &Vector<D>) -> bool {
-    !v.iter().all(|x| x.is_finite())
-}
-
 impl Integrator for Rk4 {
     fn name(&self) -> &'static str {
         "RK4"
@@ -44,12 +41,7 @@ impl Integrator for Rk4 {
         t1: f64,
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
-        if !(self.h > 0.0 && self.h.is_finite()) {
-            return Err(Error::InvalidInput {
-                what: "h",
-                detail: format!("must be positive and finite, got {}", self.h),
-            });
-        }
+        positive_finite("h", self.h)?;
         validate_problem(t0, &y0, t1)?;
         let opts = Options {
             dense: true,
