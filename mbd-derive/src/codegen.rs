@@ -457,6 +457,9 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         }
     };
 
+    // A one-coordinate acceleration is a few operations: called out of line from another
+    // crate (where integrators and `rhs` are instantiated), the call costs as much as the body.
+    let inline_acceleration = eq.single_qdd.is_some().then(|| quote!(#[inline]));
     let mechanism_impl = quote! {
         impl ::mbd::__private::Mechanism<#n> for #ident {
             const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
@@ -471,6 +474,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 #fo_fill
                 f
             }
+            #inline_acceleration
             fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
                 #direction

@@ -9,7 +9,7 @@
 
 use crate::lower::{self, Binding, Context, Lowerer, Value};
 use crate::parse::{self, BodyKind, Dim, End, Errors, Load, Mechanism};
-use crate::sym::{Expr, Func, Graph, Sym};
+use crate::sym::{Expr, Func, Graph, Sym, schedule};
 use crate::tree;
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -280,7 +280,27 @@ type Names = HashMap<String, Binding>;
 /// (measured with `cargo bench -p mechanisms --bench rhs`: see docs/ARCHITECTURE.md).
 const RECURSIVE_FROM_BODIES: usize = 2;
 
+/// Up to how many full coordinates Lagrange's form of the forces is derived as well, to take
+/// it when it is shorter than Kane's (its Christoffel symbols are O(n^3)).
+const LAGRANGE_MAX_COORDINATES: usize = 8;
+
+/// Which form of the inertial forces `derive` builds (Kane's and Lagrange's are the same
+/// functions, differently factored).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum InertialForm {
+    /// Lagrange's when the system is scleronomic and it is shorter, else Kane's.
+    Shorter,
+    #[cfg(test)]
+    Kane,
+    #[cfg(test)]
+    Lagrange,
+}
+
 pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
+    derive_with(ast, InertialForm::Shorter)
+}
+
+fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let mut errors = Errors::default();
     let mut g = Graph::new();
     let mut names: Names = HashMap::new();
@@ -939,6 +959,7 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
     // Kane's projection: M_jk = sum m J_j . J_k + Jw_j^T I Jw_k;
     // f_j = Q_j - sum J_j . m a0 - Jw_j^T (I alpha0 + w x I w).
     let mut m_full = vec![vec![zero; nz]; nz];
+    let applied_full = q_full.clone();
     let mut f_full = q_full;
     let mut kinetic = zero;
     for b in &bodies {
@@ -1009,6 +1030,33 @@ pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
         for (k, row) in upper.iter().enumerate() {
             lower[0][k] = row[j];
         }
+    }
+    // Lagrange's form of the same forces, taken instead of Kane's when it is shorter.
+    let time = g.as_sym(t).expect("symbol");
+    let scleronomic = bodies.iter().all(|b| {
+        let rot = b.rot.iter().flatten().flatten();
+        b.r.iter()
+            .chain(&b.angle)
+            .chain(rot)
+            .all(|&e| !g.depends_on(e, time))
+    });
+    match form {
+        InertialForm::Shorter if scleronomic && nz <= LAGRANGE_MAX_COORDINATES => {
+            let lagrange = lagrange_forces(&mut g, &m_full, &applied_full, &zsyms, &coords);
+            let cost = |g: &Graph, f: &[Expr]| {
+                let roots: Vec<Expr> = m_full.iter().flatten().chain(f).copied().collect();
+                schedule(g, &roots).len()
+            };
+            if cost(&g, &lagrange) < cost(&g, &f_full) {
+                f_full = lagrange;
+            }
+        }
+        #[cfg(test)]
+        InertialForm::Lagrange => {
+            assert!(scleronomic, "Lagrange's form needs time-free kinematics");
+            f_full = lagrange_forces(&mut g, &m_full, &applied_full, &zsyms, &coords);
+        }
+        _ => {}
     }
     let half = g_half(&mut g);
     let kinetic = g.mul(half, kinetic);
@@ -1496,6 +1544,72 @@ fn g_half(g: &mut Graph) -> Expr {
     g.constant(0.5)
 }
 
+/// Lagrange's form of the forces of a scleronomic system (kinetic energy `zd^T M zd / 2`):
+/// `f_i = Q_i - sum_{j<=k} C_ijk zd_j zd_k` with the Christoffel sums
+/// `C_ijk = dM_ij/dz_k + dM_ik/dz_j - dM_jk/dz_i` (`j < k`) and `C_ijj = dM_ij/dz_j -
+/// dM_jj/dz_i / 2`. It differentiates the simplified mass matrix, so a velocity-product term
+/// whose sum vanishes is never formed (a pendulum link's own `u'^2`); Kane's `J . (J' qd)`
+/// forms such terms and cancels them only when they meet in one sum.
+fn lagrange_forces(
+    g: &mut Graph,
+    m: &[Vec<Expr>],
+    applied: &[Expr],
+    z: &[Sym],
+    coords: &[Coord],
+) -> Vec<Expr> {
+    let n = z.len();
+    let dm: Vec<Vec<Vec<Expr>>> = m
+        .iter()
+        .map(|row| {
+            row.iter()
+                .map(|&e| z.iter().map(|&s| g.diff(e, s)).collect())
+                .collect()
+        })
+        .collect();
+    (0..n)
+        .map(|i| {
+            let mut velocity_terms = Vec::new();
+            for j in 0..n {
+                for k in j..n {
+                    let terms = if j == k {
+                        vec![(1.0, dm[i][j][j]), (-0.5, dm[j][j][i])]
+                    } else {
+                        vec![(1.0, dm[i][j][k]), (1.0, dm[i][k][j]), (-1.0, dm[j][k][i])]
+                    };
+                    let c = signed_sum(g, &terms);
+                    if g.is_zero(c) {
+                        continue;
+                    }
+                    let v = g.mul(coords[j].zd, coords[k].zd);
+                    velocity_terms.push(g.mul(c, v));
+                }
+            }
+            let c = g.sum(velocity_terms);
+            g.sub(applied[i], c)
+        })
+        .collect()
+}
+
+/// `sum k e` with the coefficients of one node added up first, so `x + y - x` is `y`.
+fn signed_sum(g: &mut Graph, terms: &[(f64, Expr)]) -> Expr {
+    let mut merged: Vec<(f64, Expr)> = Vec::new();
+    for &(k, e) in terms.iter().filter(|(_, e)| !g.is_zero(*e)) {
+        match merged.iter_mut().find(|(_, m)| *m == e) {
+            Some(slot) => slot.0 += k,
+            None => merged.push((k, e)),
+        }
+    }
+    let parts: Vec<Expr> = merged
+        .into_iter()
+        .filter(|(k, _)| *k != 0.0)
+        .map(|(k, e)| {
+            let k = g.constant(k);
+            g.mul(k, e)
+        })
+        .collect();
+    g.sum(parts)
+}
+
 /// `[d/dt e]` without its `zdd` terms: the acceleration-like part that does not depend on
 /// the unknown accelerations (`a0`, `alpha0`).
 fn drop_qdd(g: &mut Graph, kin: &Kin<'_>, v: Expr) -> Expr {
@@ -1588,4 +1702,82 @@ pub fn uses_roles(
     g.free_symbols(e)
         .iter()
         .any(|s| roles.get(s).is_some_and(&pred))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A value for every symbol, the same for one name in every graph.
+    fn value_of(g: &Graph, s: Sym) -> f64 {
+        let h = g
+            .sym_name(s)
+            .bytes()
+            .fold(7u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b)));
+        0.3 + (h % 1000) as f64 / 1000.0
+    }
+
+    /// Kane's and Lagrange's forces of `input`, evaluated at one state: two derivations of
+    /// the same equations, so they must agree to rounding.
+    fn forms_agree(input: syn::DeriveInput) {
+        let ast = parse::Mechanism::from_syn(&input).expect("parses");
+        let kane = derive_with(&ast, InertialForm::Kane).expect("derives");
+        let lagrange = derive_with(&ast, InertialForm::Lagrange).expect("derives");
+        assert_eq!(kane.forces.len(), lagrange.forces.len());
+        for (&k, &l) in kane.forces.iter().zip(&lagrange.forces) {
+            let fk = kane.g.eval(k, &|s| value_of(&kane.g, s));
+            let fl = lagrange.g.eval(l, &|s| value_of(&lagrange.g, s));
+            assert!(fk.is_finite() && fl.is_finite());
+            assert!(
+                (fk - fl).abs() <= 1e-12 * fk.abs().max(1.0),
+                "{}: Kane {fk}, Lagrange {fl}",
+                input.ident
+            );
+        }
+    }
+
+    #[test]
+    fn kane_and_lagrange_give_the_same_forces() {
+        forms_agree(syn::parse_quote! {
+            #[gravity(0.0, -g)]
+            #[coords(a, b)]
+            #[particle(p1, mass = m1, at = [l1 * sin(a), -l1 * cos(a)])]
+            #[particle(p2, mass = m2, at = [l1 * sin(a) + l2 * sin(b), -l1 * cos(a) - l2 * cos(b)])]
+            struct DoublePendulum { m1: f64, m2: f64, l1: f64, l2: f64, g: f64 }
+        });
+        forms_agree(syn::parse_quote! {
+            #[gravity(0.0, -g)]
+            #[coords(theta, beta, x)]
+            #[constraint(x == l * cos(beta) + r * cos(theta))]
+            #[constraint(l * sin(beta) == r * sin(theta))]
+            #[rigid(crank, mass = m_c, inertia = m_c * r * r / 12.0, at = [r / 2.0 * cos(theta), r / 2.0 * sin(theta)], angle = theta)]
+            #[rigid(rod, mass = m_r, inertia = m_r * l * l / 12.0,
+                    at = [r * cos(theta) + l / 2.0 * cos(beta), r * sin(theta) - l / 2.0 * sin(beta)],
+                    angle = -beta)]
+            #[particle(piston, mass = m_p, at = [x, 0.0])]
+            struct SliderCrank { r: f64, l: f64, m_c: f64, m_r: f64, m_p: f64, g: f64 }
+        });
+        // A heavy top: spatial rotation, gyroscopic terms.
+        forms_agree(syn::parse_quote! {
+            #[mechanism(spatial)]
+            #[gravity(0.0, 0.0, -g)]
+            #[coords(psi, theta, phi)]
+            #[rigid3(top, mass = m, inertia = diag(a, a, c),
+                     at = rot_z(psi) * rot_y(theta) * [0.0, 0.0, h],
+                     rotation = rot_z(psi) * rot_y(theta) * rot_z(phi))]
+            struct Top { m: f64, a: f64, c: f64, h: f64, g: f64 }
+        });
+        // Elastic pendulum with a damper, a driven cart carrying it, and a torque.
+        forms_agree(syn::parse_quote! {
+            #[gravity(0.0, -g)]
+            #[coords(r, u)]
+            #[drive(x = a * sin(w * t))]
+            #[particle(cart, mass = m0, at = [x, 0.0])]
+            #[rigid(bob, mass = m, inertia = j, at = [x + r * sin(u), -r * cos(u)], angle = u)]
+            #[spring(s, from = cart, to = bob, k = k, length = l0)]
+            #[damper(d, from = cart, to = bob, c = c)]
+            #[torque(tq, on = bob, value = -c * der(u))]
+            struct Elastic { m0: f64, m: f64, j: f64, k: f64, l0: f64, c: f64, a: f64, w: f64, g: f64 }
+        });
+    }
 }
