@@ -81,13 +81,10 @@ pub fn second_order_rhs<const N: usize, const D: usize>(
     acceleration: impl FnOnce(&Vector<N>, &Vector<N>) -> Result<Vector<N>>,
 ) -> Result<Vector<D>> {
     const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
-    let q = y.fixed_rows::<N>(0).into_owned();
-    let qd = y.fixed_rows::<N>(N).into_owned();
+    let q = Vector::<N>::from_fn(|i, _| y[i]);
+    let qd = Vector::<N>::from_fn(|i, _| y[N + i]);
     let qdd = acceleration(&q, &qd)?;
-    let mut dy = Vector::<D>::zeros();
-    dy.fixed_rows_mut::<N>(0).copy_from(&qd);
-    dy.fixed_rows_mut::<N>(N).copy_from(&qdd);
-    Ok(dy)
+    Ok(Vector::<D>::from_fn(|i, _| if i < N { qd[i] } else { qdd[i - N] }))
 }
 
 /// `df/dy = [0 I; dqdd/dq dqdd/dqd]` for `y = [q; qd]`.

@@ -273,6 +273,11 @@ impl Graph {
     }
 
     /// The node of `node`, creating it if it is new. No simplification happens here.
+    /// The node's expression if it is in the graph already (nothing is added).
+    pub(super) fn existing(&self, node: Node) -> Option<Expr> {
+        self.interned.get(&node).copied()
+    }
+
     pub(super) fn intern(&mut self, node: Node) -> Expr {
         if let Some(&e) = self.interned.get(&node) {
             return e;

@@ -151,8 +151,45 @@ impl Graph {
             let k = self.constant(ka);
             return self.mul(k, s);
         }
+        if ka.abs() == kb.abs()
+            && let Some((p, r, x)) = self.common_factor(ta, tb)
+        {
+            let sum = if ka == kb { self.add(p, r) } else { self.sub(p, r) };
+            let k = self.constant(ka);
+            let kx = self.mul(k, x);
+            return self.mul(sum, kx);
+        }
+        if let Some(e) = self.negated_sum(a, b) {
+            return self.neg(e);
+        }
         let (a, b) = self.ordered(a, b);
         self.intern(Node::Add(a, b))
+    }
+
+    /// `(p, r, x)` if `a = p x` and `b = r x` (one shared operand), for `p x + r x = (p + r) x`:
+    /// two products and a sum become a sum and a product (`m1 g X + m2 g X`).
+    fn common_factor(&self, a: Expr, b: Expr) -> Option<(Expr, Expr, Expr)> {
+        let (Node::Mul(a0, a1), Node::Mul(b0, b1)) = (self.node(a), self.node(b)) else {
+            return None;
+        };
+        [(a0, a1, b0, b1), (a0, a1, b1, b0), (a1, a0, b0, b1), (a1, a0, b1, b0)]
+            .into_iter()
+            .find(|&(x, _, y, _)| x == y)
+            .map(|(x, p, _, r)| (p, r, x))
+    }
+
+    /// `e` when `a + b` is `-e` and `e` is in the graph already (`y - x` after `x - y`): the
+    /// second difference becomes a negation of the first, shared, one.
+    fn negated_sum(&self, a: Expr, b: Expr) -> Option<Expr> {
+        let (x, y) = match (self.node(a), self.node(b)) {
+            (Node::Neg(_), Node::Neg(_)) => return None,
+            (Node::Neg(x), _) => (x, b),
+            (_, Node::Neg(y)) => (y, a),
+            _ => return None,
+        };
+        let minus_y = self.existing(Node::Neg(y))?;
+        let (p, q) = self.ordered(x, minus_y);
+        self.existing(Node::Add(p, q))
     }
 
     /// Whether `a` and `b` are one product associated differently, `(x y) z` and `x (y z)`:
