@@ -74,6 +74,21 @@ pub fn finite<const N: usize>(t: f64, x: Vector<N>) -> Result<Vector<N>> {
     }
 }
 
+/// `y' = [qd; qdd]` as a model wrote it in place, or [`Error::NonFinite`] if an acceleration
+/// (its lower half) is NaN or infinite.
+#[inline]
+pub fn finite_accelerations<const N: usize, const D: usize>(
+    t: f64,
+    dy: Vector<D>,
+) -> Result<Vector<D>> {
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    if dy.iter().skip(N).all(|v| v.is_finite()) {
+        Ok(dy)
+    } else {
+        Err(Error::NonFinite { t })
+    }
+}
+
 /// `y' = [qd; qdd]` for a second-order model with `y = [q; qd]` (`D = 2 N`).
 #[inline]
 pub fn second_order_rhs<const N: usize, const D: usize>(
@@ -84,7 +99,9 @@ pub fn second_order_rhs<const N: usize, const D: usize>(
     let q = Vector::<N>::from_fn(|i, _| y[i]);
     let qd = Vector::<N>::from_fn(|i, _| y[N + i]);
     let qdd = acceleration(&q, &qd)?;
-    Ok(Vector::<D>::from_fn(|i, _| if i < N { qd[i] } else { qdd[i - N] }))
+    Ok(Vector::<D>::from_fn(
+        |i, _| if i < N { qd[i] } else { qdd[i - N] },
+    ))
 }
 
 /// `df/dy = [0 I; dqdd/dq dqdd/dqd]` for `y = [q; qd]`.

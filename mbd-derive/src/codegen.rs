@@ -180,6 +180,13 @@ impl<'a> Block<'a> {
     /// `let mut name = Vector::<N>::zeros(); name[i] = ..;` for the non-zero entries.
     fn vector(&self, name: &str, n: usize, entries: &[Expr]) -> TokenStream {
         let id = format_ident!("{}", name);
+        let sets = self.sets(name, entries);
+        quote!(let mut #id = ::mbd::__private::Vector::<#n>::zeros(); #sets)
+    }
+
+    /// `name[i] = entry;` for the non-zero entries (into a vector declared elsewhere).
+    fn sets(&self, name: &str, entries: &[Expr]) -> TokenStream {
+        let id = format_ident!("{}", name);
         let sets = entries
             .iter()
             .enumerate()
@@ -188,7 +195,7 @@ impl<'a> Block<'a> {
                 let v = self.leaf(*e);
                 quote!(#id[#i] = #v;)
             });
-        quote!(let mut #id = ::mbd::__private::Vector::<#n>::zeros(); #(#sets)*)
+        quote!(#(#sets)*)
     }
 
     fn matrix(&self, name: &str, r: usize, c: usize, entries: &[Vec<Expr>]) -> TokenStream {
@@ -237,7 +244,6 @@ fn rolled_recursion(
     rolled: &crate::tree::Rolled,
     first: usize,
     qdd: &[Expr],
-    n: usize,
 ) -> (TokenStream, usize) {
     let len = rolled.len;
     let ident = |e: Expr| {
@@ -328,12 +334,7 @@ fn rolled_recursion(
             }
         });
     }
-    let code = quote! {
-        let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
-        #(#code)*
-        ::mbd::__private::solve::finite(t, qdd)
-    };
-    (code, temporaries)
+    (quote!(#(#code)*), temporaries)
 }
 
 fn method(f: Func) -> &'static str {
@@ -423,21 +424,30 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     let (fo_stmts, fo_fill) = (force_only.stmts(), force_only.vector("f", n, &eq.forces));
     let (en_stmts, en_value) = (energy.stmts(), energy.leaf(eq.energy));
 
-    let acceleration = if constrained {
-        quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
+    // The articulated-body recursion writes `qdd[i]` into a vector declared around it: a
+    // fresh one in `acceleration`, the lower half of `y'` in `rhs` (no copies of the state).
+    let recursion = if constrained {
+        None
     } else if let (Some((rolled, first)), Some(qdd)) = (&eq.rolled, &eq.recursive_qdd) {
         parts.names.extend(["articulated_body", "rolled_chain"]);
-        let (code, statements) = rolled_recursion(eq, rolled, *first, qdd, n);
+        let (code, statements) = rolled_recursion(eq, rolled, *first, qdd);
         parts.statements += statements;
-        code
+        Some(code)
     } else if let Some(qdd) = &eq.recursive_qdd {
         parts.names.push("articulated_body");
         let b = Block::new(eq, qdd);
         parts.statements += b.len();
-        let (s, fill) = (b.stmts(), b.vector("qdd", n, qdd));
+        let (s, fill) = (b.stmts(), b.sets("qdd", qdd));
+        Some(quote!(#s #fill))
+    } else {
+        None
+    };
+    let acceleration = if constrained {
+        quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
+    } else if let Some(code) = &recursion {
         quote! {
-            #s
-            #fill
+            let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
+            #code
             ::mbd::__private::solve::finite(t, qdd)
         }
     } else if let Some(qdd) = eq.single_qdd {
@@ -575,11 +585,26 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             }
         }
     });
+    let rhs_body = match &recursion {
+        Some(code) => quote! {
+            let q = y.fixed_rows::<#n>(0);
+            let qd = y.fixed_rows::<#n>(#n);
+            let mut dy = ::mbd::__private::Vector::<#d>::from_fn(|i, _| if i < #n { qd[i] } else { 0.0 });
+            {
+                let mut qdd = dy.fixed_rows_mut::<#n>(#n);
+                #code
+            }
+            ::mbd::__private::solve::finite_accelerations::<#n, #d>(t, dy)
+        },
+        None => quote! {
+            ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| ::mbd::__private::Mechanism::<#n>::acceleration(self, t, q, qd))
+        },
+    };
     let ode_impl = quote! {
         impl ::mbd::__private::OdeSystem<#d> for #ident {
             #[inline]
             fn rhs(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<::mbd::__private::Vector<#d>> {
-                ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| ::mbd::__private::Mechanism::<#n>::acceleration(self, t, q, qd))
+                #rhs_body
             }
             #jacobian
             #project

@@ -154,7 +154,11 @@ impl Graph {
         if ka.abs() == kb.abs()
             && let Some((p, r, x)) = self.common_factor(ta, tb)
         {
-            let sum = if ka == kb { self.add(p, r) } else { self.sub(p, r) };
+            let sum = if ka == kb {
+                self.add(p, r)
+            } else {
+                self.sub(p, r)
+            };
             let k = self.constant(ka);
             let kx = self.mul(k, x);
             return self.mul(sum, kx);
@@ -172,10 +176,15 @@ impl Graph {
         let (Node::Mul(a0, a1), Node::Mul(b0, b1)) = (self.node(a), self.node(b)) else {
             return None;
         };
-        [(a0, a1, b0, b1), (a0, a1, b1, b0), (a1, a0, b0, b1), (a1, a0, b1, b0)]
-            .into_iter()
-            .find(|&(x, _, y, _)| x == y)
-            .map(|(x, p, _, r)| (p, r, x))
+        [
+            (a0, a1, b0, b1),
+            (a0, a1, b1, b0),
+            (a1, a0, b0, b1),
+            (a1, a0, b1, b0),
+        ]
+        .into_iter()
+        .find(|&(x, _, y, _)| x == y)
+        .map(|(x, p, _, r)| (p, r, x))
     }
 
     /// `e` when `a + b` is `-e` and `e` is in the graph already (`y - x` after `x - y`): the
