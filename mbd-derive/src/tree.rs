@@ -288,26 +288,35 @@ fn outward(
     }
 }
 
-/// What pass 3 needs of a free joint: `U = I^A S`, `1 / D` and `u = tau - S . p^A`.
+/// What pass 3 needs of a free joint, in the parent's frame: `1 / D`, `X^T U` (`U = I^A S`)
+/// and `e = u - U . c` (`u = tau - S . p^A`), so that `qdd = (e - (X^T U) . a_parent) / D`
+/// waits on the parent's acceleration for one dot product only.
 #[derive(Clone, Copy)]
 struct Articulated {
-    u: V3,
+    v: V3,
+    e: Expr,
     inv_d: Expr,
-    u_force: Expr,
 }
 
 /// Pass 2 of one body: from its articulated inertia and bias force `(i_a, p_a)` (its own
-/// plus its children's), what it hands its parent, in its own frame.
+/// plus its children's), what it hands its parent, in the parent's frame.
+///
+/// The handed-on `I^a = I^A - U U^T / D` and `p^a = p^A + I^a c + U u / D` are each kept as
+/// a part without `1 / D` and a rank-one part with it, transformed to the parent apart, and
+/// joined last: the pass is one long dependency chain through the divisions, and this way
+/// each link adds one division, one multiplication and two additions to it (transforming
+/// after the division adds two rotations and a shift).
 fn inward(
     g: &mut Graph,
     node: &Node,
+    x: &Transform,
     s: Option<V3>,
     joint: JointInput,
     (i_a, p_a): (M3, V3),
     c: V3,
-) -> (M3, V3, Option<Articulated>) {
+) -> ((M3, V3), Option<Articulated>) {
     let Some(si) = s else {
-        return (i_a, p_a, None);
+        return ((x.inertia(g, &i_a), x.force(g, p_a)), None);
     };
     match joint {
         JointInput::Free { tau } => {
@@ -315,49 +324,65 @@ fn inward(
             let d = g.dot(&si, &u);
             let sp = g.dot(&si, &p_a);
             let u_force = g.sub(tau, sp);
-            // One division per joint; the articulated inertia stays symmetric.
             let one = g.one();
             let inv_d = g.div(one, d);
-            let mut i_pass = i_a;
-            for r in 0..3 {
-                for k in r..3 {
-                    // `(U_r U_k) / D`: the product waits for `D`, one multiplication
-                    // after it (the inward pass is one long dependency chain).
-                    let uu = g.mul(u[r], u[k]);
-                    let uu = g.mul(uu, inv_d);
-                    i_pass[r][k] = g.sub(i_a[r][k], uu);
-                    i_pass[k][r] = i_pass[r][k];
-                }
-            }
+            let (mut i_rest, mut u_rest) = (i_a, u);
             let revolute = matches!(node.joint, JointKin::Revolute { .. });
             if revolute {
-                // S = e0: row and column 0 vanish exactly (rounding would leave
-                // noise, and work, in the symbolic form).
+                // S = e0: row and column 0 of I^a vanish exactly (they would leave rounding
+                // noise, and work, in the symbolic form); U's first entry goes with them.
                 let z = g.zero();
-                i_pass[0] = [z; 3];
-                for row in &mut i_pass {
+                i_rest[0] = [z; 3];
+                for row in &mut i_rest {
                     row[0] = z;
                 }
+                u_rest[0] = z;
             }
-            let ic = mat_vec(g, &i_pass, c);
-            let ud = g.mul(u_force, inv_d);
-            let uu = scale3(g, u, ud);
-            let p = add3(g, p_a, ic);
-            let mut p_pass = add3(g, p, uu);
+            let uc = g.dot(&u_rest, &c);
+            let e = g.sub(u_force, uc);
+            let ic = mat_vec(g, &i_rest, c);
+            let mut p_rest = add3(g, p_a, ic);
             if revolute {
                 // The joint transmits no moment but its own effort: p^a_0 = tau.
-                p_pass[0] = tau;
+                p_rest[0] = tau;
             }
-            let art = Articulated { u, inv_d, u_force };
-            (i_pass, p_pass, Some(art))
+            // In the parent's frame: X^T I^a X = X^T I X - (X^T U)(X^T U)^T / D and
+            // X^T p^a = X^T p + (X^T U) (e / D).
+            let mut i_up = x.inertia(g, &i_rest);
+            let v = x.force(g, u_rest);
+            for r in 0..3 {
+                for k in r..3 {
+                    let vv = g.mul(v[r], v[k]);
+                    let vvd = g.mul(vv, inv_d);
+                    i_up[r][k] = g.sub(i_up[r][k], vvd);
+                    i_up[k][r] = i_up[r][k];
+                }
+            }
+            let ed = g.mul(e, inv_d);
+            let p_base = x.force(g, p_rest);
+            let v_ed = scale3(g, v, ed);
+            let p_up = add3(g, p_base, v_ed);
+            // Pass 3 uses the whole U (its first entry is D for a revolute joint).
+            let v_full = x.force(g, u);
+            let e_full = {
+                let uc = g.dot(&u, &c);
+                g.sub(u_force, uc)
+            };
+            let art = Articulated {
+                v: v_full,
+                e: e_full,
+                inv_d,
+            };
+            ((i_up, p_up), Some(art))
         }
         JointInput::Driven { qdd } => {
             let sq = scale3(g, si, qdd);
             let acc = add3(g, c, sq);
             let ic = mat_vec(g, &i_a, acc);
-            (i_a, add3(g, p_a, ic), None)
+            let p = add3(g, p_a, ic);
+            ((x.inertia(g, &i_a), x.force(g, p)), None)
         }
-        JointInput::Locked => (i_a, p_a, None),
+        JointInput::Locked => ((x.inertia(g, &i_a), x.force(g, p_a)), None),
     }
 }
 
@@ -379,8 +404,9 @@ fn accelerate(
     };
     let (acc, free) = match (joint, art) {
         (JointInput::Free { .. }, Some(art)) => {
-            let ua = g.dot(&art.u, &a_prime);
-            let num = g.sub(art.u_force, ua);
+            // U . a' = (X^T U) . a_parent + U . c.
+            let va = g.dot(&art.v, &parent);
+            let num = g.sub(art.e, va);
             (g.mul(num, art.inv_d), true)
         }
         (JointInput::Driven { qdd }, _) => (qdd, false),
@@ -454,9 +480,10 @@ impl<'n> Unrolled<'n> {
         }
         let mut arts: Vec<Option<Articulated>> = vec![None; nodes.len()];
         for i in (0..nodes.len()).rev() {
-            let (i_pass, p_pass, art) = inward(
+            let (up, art) = inward(
                 g,
                 &nodes[i],
+                &xs[i],
                 out[i].s,
                 self.joints[i],
                 (ia[i], pa[i]),
@@ -464,7 +491,6 @@ impl<'n> Unrolled<'n> {
             );
             arts[i] = art;
             if let Some(p) = nodes[i].parent {
-                let up = (xs[i].inertia(g, &i_pass), xs[i].force(g, p_pass));
                 hand_on(g, (&mut ia[p], &mut pa[p]), up);
             }
         }
@@ -661,13 +687,12 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     }
     let p_a = add3(g, p_k, f_in);
     let s_link = subspace(g, &link, &xt);
-    let (i_pass, p_pass, art) = inward(g, &link, s_link, tau, (i_a, p_a), c_k);
+    let ((i_up, p_up), art) = inward(g, &link, &xt, s_link, tau, (i_a, p_a), c_k);
     let art = art?;
-    let (i_up, p_up) = (xt.inertia(g, &i_pass), xt.force(g, p_pass));
     let mut stored2 = Vec::new();
-    let u = [0, 1, 2].map(|i| keep(g, &format!("u{i}"), art.u[i], &mut stored2));
+    let v = [0, 1, 2].map(|i| keep(g, &format!("v{i}"), art.v[i], &mut stored2));
+    let e = keep(g, "e", art.e, &mut stored2);
     let inv_d = keep(g, "inv_d", art.inv_d, &mut stored2);
-    let u_force = keep(g, "u_force", art.u_force, &mut stored2);
     let up_entries = [
         i_up[0][0], i_up[0][1], i_up[0][2], i_up[1][1], i_up[1][2], i_up[2][2],
     ];
@@ -686,7 +711,7 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     let (a, qdd) = rest.finish(g, inp, Some((parent, (k_full, f_in))));
 
     // Loop 3: accelerations.
-    let art = Articulated { u, inv_d, u_force };
+    let art = Articulated { v, e, inv_d };
     let (a_link, acc) = accelerate(g, &xt, s_link, tau, a_in, c_k, Some(art));
     let loop3 = Loop {
         reverse: false,
