@@ -77,7 +77,7 @@
 //! A joint tree (`body`, `chain`) without constraints, friction or free-standing bodies
 //! gets its accelerations from Featherstone's articulated-body algorithm, unrolled at
 //! compile time into straight-line code (part `articulated_body`): O(n) in the bodies,
-//! against the O(n^3) of forming and factoring the mass matrix. A run of 9 or more
+//! against the O(n^3) of forming and factoring the mass matrix. A run of 6 or more
 //! identical links at the end of the tree (a `chain`'s) is generated once, as loops over the
 //! links (part `rolled_chain`), so the code stays small however long the chain. Its mass
 //! matrix and forces are still generated (analyses and the exact Jacobian use them).

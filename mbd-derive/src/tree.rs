@@ -524,10 +524,10 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
 }
 
 /// The shortest run of identical links that is rolled into loops. Measured with the
-/// `scaling` report (generated against hand-written, one process): an 8-link chain runs at
-/// 0.92 unrolled and 0.96 rolled, a 10-link chain at 1.13 unrolled and 1.06 rolled (its
-/// first link is not part of the run).
-pub const ROLL_FROM: usize = 9;
+/// `scaling` report (generated against hand-written, one process, a chain's first link is
+/// not part of its run): an 8-link chain runs at 0.83-0.87 unrolled and 0.78 rolled, a
+/// 12-link one at 1.13 unrolled and 0.85 rolled; 6 links (unrolled either way) 0.73-0.94.
+pub const ROLL_FROM: usize = 6;
 
 /// One loop over the links of a run (see [`Rolled`]).
 pub struct Loop {
