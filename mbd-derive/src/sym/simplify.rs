@@ -17,6 +17,9 @@
 //! - one product associated two ways cancels: `(x y) z - x (y z) = 0`;
 //! - Pythagoras: `k (A sin u)^2 + k (A cos u)^2 = k A^2` and `k sin(u)^2 + k cos(u)^2 = k`
 //!   (when the two terms meet in one `add`);
+//! - a shared operand comes out: `k p x ± k r x = k (p ± r) x`;
+//! - a difference whose negation is in the graph already is that node negated: `y - x`
+//!   after `x - y` is `-(x - y)`;
 //! - commutative operands (`Add`, `Mul`, `Min`, `Max`) are put in a canonical order
 //!   (constant first, then by id), so `a + b` and `b + a` are one node.
 //!

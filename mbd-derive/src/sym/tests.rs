@@ -746,3 +746,44 @@ fn reassociated_products_cancel() {
     let d = g.sub(other, wl);
     assert!(g.as_const(d).is_none());
 }
+
+/// A shared operand comes out of a sum (`p x + r x = (p + r) x`, and `p x - r x`); products
+/// without one stay apart.
+#[test]
+fn shared_operand_is_factored_out() {
+    let mut g = Graph::new();
+    let (p, r, x, y) = (g.symbol("p"), g.symbol("r"), g.symbol("x"), g.symbol("y"));
+    let (px, rx, xr) = (g.mul(p, x), g.mul(r, x), g.mul(x, r));
+    let sum = g.add(px, rx);
+    let p_plus_r = g.add(p, r);
+    assert_eq!(sum, g.mul(p_plus_r, x));
+    assert_eq!(g.add(px, xr), sum);
+    let diff = g.sub(px, rx);
+    let p_minus_r = g.sub(p, r);
+    assert_eq!(diff, g.mul(p_minus_r, x));
+    let ry = g.mul(r, y);
+    let apart = g.add(px, ry);
+    assert!(matches!(g.node(apart), super::Node::Add(..)));
+    // Values: 2 * 5 + 3 * 5 at p = 2, r = 3, x = 5.
+    let vals = |s: Sym| match g.sym_name(s) {
+        "p" => 2.0,
+        "r" => 3.0,
+        _ => 5.0,
+    };
+    assert_eq!(g.eval(sum, &vals), 25.0);
+}
+
+/// `y - x` after `x - y` is the first difference negated (one node shared); a sum of two
+/// positive terms, or a difference not yet in the graph, is built as it is.
+#[test]
+fn difference_reuses_its_negation() {
+    let mut g = Graph::new();
+    let (x, y, z) = (g.symbol("x"), g.symbol("y"), g.symbol("z"));
+    let x_minus_y = g.sub(x, y);
+    let y_minus_x = g.sub(y, x);
+    assert_eq!(g.node(y_minus_x), super::Node::Neg(x_minus_y));
+    let z_minus_x = g.sub(z, x);
+    assert!(matches!(g.node(z_minus_x), super::Node::Add(..)));
+    let x_plus_y = g.add(x, y);
+    assert!(matches!(g.node(x_plus_y), super::Node::Add(..)));
+}
