@@ -6,20 +6,26 @@ use std::time::Instant;
 use syn::DeriveInput;
 
 /// With `MBD_EXPAND_DUMP=<dir>` set at build time, every derive writes its generated code to
-/// `<dir>/<Struct>.rs` and its expansion time in seconds to `<dir>/<Struct>.time`: how the
-/// `scaling` report measures the macro apart from the rest of the build.
+/// `<dir>/<file>.<Struct>.rs` and its expansion time in seconds to `<dir>/<file>.<Struct>.time`
+/// (`<file>`: the stem of the source file that derives it, so that two structs of one name in
+/// different modules do not overwrite each other): how the `scaling` report measures the
+/// macro apart from the rest of the build.
 const DUMP_VAR: &str = "MBD_EXPAND_DUMP";
 
-pub fn derive(input: &DeriveInput) -> TokenStream {
+/// `source`: the path of the file the derive is in (for the dump's name).
+pub fn derive(input: &DeriveInput, source: &str) -> TokenStream {
     let start = Instant::now();
     let out = match try_expand(input) {
         Ok(ts) => ts,
         Err(err) => err.to_compile_error(),
     };
     if let Some(dir) = std::env::var_os(DUMP_VAR) {
+        let stem = std::path::Path::new(source)
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
         dump(
             std::path::Path::new(&dir),
-            &input.ident.to_string(),
+            &format!("{stem}.{}", input.ident),
             &out,
             start.elapsed().as_secs_f64(),
         );

@@ -50,5 +50,6 @@ use syn::{DeriveInput, parse_macro_input};
 )]
 pub fn derive_mechanism(input: TokenStream) -> TokenStream {
     let input = parse_macro_input!(input as DeriveInput);
-    expand::derive(&input).into()
+    let source = proc_macro::Span::call_site().file();
+    expand::derive(&input, &source).into()
 }

@@ -5,7 +5,7 @@
 //!
 //! Per N the report gives
 //! - `expand_s`: the derive's own expansion time, written by the macro itself when the build
-//!   runs with `MBD_EXPAND_DUMP=<dir>` (`<dir>/<Struct>.time`);
+//!   runs with `MBD_EXPAND_DUMP=<dir>` (`<dir>/main.<Struct>.time`);
 //! - `build_s`: the wall time of `cargo build --release` of the throw-away crate, expansion
 //!   included, with every dependency already built by a warm-up build into the same shared
 //!   target directory (so only the chain crate compiles);
@@ -270,10 +270,10 @@ impl Ctx {
         }
         let name = struct_name(n);
         let dump = self.dump_dir(n);
-        row.expand_s = fs::read_to_string(dump.join(format!("{name}.time")))
+        row.expand_s = fs::read_to_string(dump.join(format!("main.{name}.time")))
             .ok()
             .and_then(|s| s.trim().parse().ok());
-        match fs::read_to_string(dump.join(format!("{name}.rs"))) {
+        match fs::read_to_string(dump.join(format!("main.{name}.rs"))) {
             Ok(code) => match syn::parse_file(&code) {
                 Ok(file) => row.generated_lines = Some(code_lines(&prettyplease::unparse(&file))),
                 Err(e) => eprintln!("[N={n}] the generated code does not parse as a file: {e}"),
