@@ -530,13 +530,18 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     // Joint-tree bodies: each frame is its parent's, moved by the joint.
     let mut nodes: Vec<tree::Node> = Vec::new();
     let mut node_of: HashMap<String, usize> = HashMap::new();
-    if !ast.tree.is_empty() && dim == Dim::Spatial {
-        errors.at(
-            ast.tree[0].name.span(),
-            "joint trees (`body`, `chain`) are planar",
-        );
-    }
     for tb in ast.tree.iter().filter(|_| dim == Dim::Planar) {
+        match &tb.joint {
+            parse::Joint::Revolute { axis: Some(a), .. } => {
+                errors.at(a.span(), "a planar revolute joint turns about the plane's normal: write `revolute(q)` without an axis");
+                continue;
+            }
+            parse::Joint::Universal(..) | parse::Joint::Spherical(..) => {
+                errors.at(tb.joint_span, "a `universal` or `spherical` joint needs a spatial mechanism: `#[mechanism(spatial)]`");
+                continue;
+            }
+            _ => {}
+        }
         let parent = match &tb.parent {
             None => None,
             Some(p) => match node_of.get(&p.to_string()) {
@@ -579,8 +584,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         };
         let coord = tb
             .joint
-            .coord()
-            .map(|c| coords.iter().position(|k| k.name == *c));
+            .coords()
+            .first()
+            .map(|c| coords.iter().position(|k| k.name == **c));
         let axis = match &tb.joint {
             parse::Joint::Prismatic { axis, .. } => lw
                 .vector(axis, Context::Constant, 2)
@@ -599,7 +605,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         let mut local = at;
         let mut relative = offset;
         let joint = match (&tb.joint, coord.flatten(), axis) {
-            (parse::Joint::Revolute(_), Some(j), _) => {
+            (parse::Joint::Revolute { .. }, Some(j), _) => {
                 relative = g.add(relative, coords[j].z);
                 tree::JointKin::Revolute { coord: j }
             }
@@ -652,6 +658,151 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             mass,
             inertia,
         });
+    }
+    // Spatial joint trees: composed the same way with rotation matrices; evaluated through
+    // the mass matrix (the articulated-body recursion is planar).
+    let mut frames: Vec<([Expr; 3], [[Expr; 3]; 3])> = Vec::new();
+    let mut frame_of: HashMap<String, usize> = HashMap::new();
+    for tb in ast.tree.iter().filter(|_| dim == Dim::Spatial) {
+        if let Some((rx, _)) = &tb.reaction {
+            errors.at(rx.span(), "joint reactions are planar: in a spatial tree, relax the joint with coordinates and `constraint`s instead");
+        }
+        if let Some(e) = &tb.angle {
+            errors.over(
+                e,
+                "`angle` is planar: a spatial tree body's orientation comes from its joints",
+            );
+        }
+        let parent = match &tb.parent {
+            None => None,
+            Some(p) => match frame_of.get(&p.to_string()) {
+                Some(&i) => Some(i),
+                None => {
+                    errors.at(p.span(), format!("unknown parent `{p}`: a tree body's parent is `ground` or a `body` declared before it"));
+                    continue;
+                }
+            },
+        };
+        let z: Vec<Expr> = tb
+            .joint
+            .coords()
+            .iter()
+            .filter_map(|c| coords.iter().find(|k| k.name == **c).map(|k| k.z))
+            .collect();
+        let mut lw = Lowerer {
+            g: &mut g,
+            names: &names,
+            struct_name: &struct_name,
+            model: None,
+            errors: &mut errors,
+        };
+        let vec3 = |lw: &mut Lowerer<'_>, e: &Option<syn::Expr>| match e {
+            Some(e) => lw.vector(e, Context::Constant, 3),
+            None => Some(vec![lw.g.zero(); 3]),
+        };
+        let (at, com) = (vec3(&mut lw, &tb.at), vec3(&mut lw, &tb.com));
+        let mass = tb
+            .mass
+            .as_ref()
+            .and_then(|m| lw.scalar(m, Context::Constant));
+        if let (Some(m), Some(e)) = (mass, &tb.mass)
+            && lw.g.as_const(m).is_some_and(|v| v <= 0.0)
+        {
+            lw.errors
+                .over(e, format!("body `{}` has no positive mass", tb.name));
+        }
+        let inertia = match &tb.inertia {
+            Some(e) => match lw.lower(e, Context::Constant) {
+                Some(Value::Matrix(m)) => Some(Some(m)),
+                Some(_) => {
+                    lw.errors
+                        .over(e, "a spatial inertia is `diag(a, b, c)` or a 3x3 matrix");
+                    None
+                }
+                None => None,
+            },
+            None => Some(None),
+        };
+        let prismatic_axis = match &tb.joint {
+            parse::Joint::Prismatic { axis, .. } => lw.vector(axis, Context::Constant, 3),
+            _ => Some(Vec::new()),
+        };
+        let (Some(mut at), Some(com), Some(mass), Some(inertia), Some(axis)) =
+            (at, com, mass, inertia, prismatic_axis)
+        else {
+            continue;
+        };
+        let (o, zero) = (g.one(), g.zero());
+        let identity = [[o, zero, zero], [zero, o, zero], [zero, zero, o]];
+        let relative = match (&tb.joint, z.as_slice()) {
+            (parse::Joint::Revolute { axis: None, .. }, _) => {
+                errors.at(
+                    tb.joint_span,
+                    "a spatial revolute joint names its axis: `revolute(q, x | y | z)`",
+                );
+                continue;
+            }
+            (parse::Joint::Revolute { axis: Some(a), .. }, &[q]) => {
+                lower::rotation(&mut g, &format!("rot_{a}"), q)
+            }
+            (parse::Joint::Universal(..), &[a, b]) => {
+                let (ra, rb) = (
+                    lower::rotation(&mut g, "rot_x", a),
+                    lower::rotation(&mut g, "rot_y", b),
+                );
+                lower::matmul(&mut g, &ra, &rb)
+            }
+            (parse::Joint::Spherical(..), &[a, b, c]) => {
+                let ra = lower::rotation(&mut g, "rot_z", a);
+                let rb = lower::rotation(&mut g, "rot_y", b);
+                let rc = lower::rotation(&mut g, "rot_x", c);
+                let rab = lower::matmul(&mut g, &ra, &rb);
+                lower::matmul(&mut g, &rab, &rc)
+            }
+            (parse::Joint::Prismatic { .. }, &[s]) => {
+                for (l, a) in at.iter_mut().zip(&axis) {
+                    let d = g.mul(*a, s);
+                    *l = g.add(*l, d);
+                }
+                identity
+            }
+            _ => identity,
+        };
+        let (p_origin, p_rot) = match parent {
+            Some(p) => frames[p],
+            None => ([zero; 3], identity),
+        };
+        let rot = lower::matmul(&mut g, &p_rot, &relative);
+        let origin: [Expr; 3] = std::array::from_fn(|i| {
+            let moved = g.dot(&p_rot[i], &at);
+            g.add(p_origin[i], moved)
+        });
+        let r: Vec<Expr> = (0..3)
+            .map(|i| {
+                let arm = g.dot(&rot[i], &com);
+                g.add(origin[i], arm)
+            })
+            .collect();
+        bodies.push(BodyKin {
+            mass,
+            rot: inertia.is_some().then_some(rot),
+            inertia,
+            r,
+            angle: None,
+        });
+        declare(
+            &mut names,
+            &mut errors,
+            &tb.name,
+            Binding::Body(bodies.len() - 1),
+        );
+        frame_of.insert(tb.name.to_string(), frames.len());
+        frames.push((origin, rot));
+    }
+    if dim == Dim::Spatial
+        && let Some(cl) = ast.closures.first()
+    {
+        errors.at(cl.name.span(), "loop closures (`close`) join planar tree bodies: close a spatial loop with `constraint`s");
     }
     // Springs and dampers are named too; their names must not clash with anything else.
     let mut element_names = std::collections::HashSet::new();

@@ -125,33 +125,42 @@ pub struct Constraint {
     pub span: Span,
 }
 
-/// What moves a tree body relative to its parent; each joint brings its own coordinate.
+/// What moves a tree body relative to its parent; each joint brings its own coordinates.
 pub enum Joint {
-    /// Rotation about the joint origin: the body's angle is the parent's plus `coord`.
-    Revolute(Ident),
+    /// Rotation about the joint origin by `coord`: planar (`axis: None`, the body's angle is
+    /// the parent's plus `coord`), or spatial about the parent's `x`, `y` or `z` axis.
+    Revolute { coord: Ident, axis: Option<Ident> },
     /// Translation along `axis` (in the parent's frame) by `coord`.
     Prismatic { coord: Ident, axis: Expr },
+    /// Spatial: `rot_x(a) rot_y(b)` (a Cardan joint, crossed axes `x` then `y`).
+    Universal(Ident, Ident),
+    /// Spatial: `rot_z(a) rot_y(b) rot_x(c)` (yaw, pitch, roll; singular at `b = ±π/2`).
+    Spherical(Ident, Ident, Ident),
     /// Welded to the parent.
     Fixed,
 }
 
 impl Joint {
-    pub fn coord(&self) -> Option<&Ident> {
+    /// The joint's coordinates, in order.
+    pub fn coords(&self) -> Vec<&Ident> {
         match self {
-            Joint::Revolute(c) | Joint::Prismatic { coord: c, .. } => Some(c),
-            Joint::Fixed => None,
+            Joint::Revolute { coord, .. } | Joint::Prismatic { coord, .. } => vec![coord],
+            Joint::Universal(a, b) => vec![a, b],
+            Joint::Spherical(a, b, c) => vec![a, b, c],
+            Joint::Fixed => Vec::new(),
         }
     }
 }
 
-/// A planar body of the joint tree: its frame is its parent's frame moved by its joint.
-/// `at` (the joint origin, in the parent's frame), `angle` (a fixed offset) and `com`
-/// (the mass centre, in the body's frame) default to zero.
+/// A body of the joint tree: its frame is its parent's frame moved by its joint. `at` (the
+/// joint origin, in the parent's frame), `angle` (a fixed offset, planar) and `com` (the mass
+/// centre, in the body's frame) default to zero.
 pub struct TreeBody {
     pub name: Ident,
     /// `None`: the ground.
     pub parent: Option<Ident>,
     pub joint: Joint,
+    pub joint_span: Span,
     pub at: Option<Expr>,
     pub angle: Option<Expr>,
     pub com: Option<Expr>,
@@ -531,14 +540,16 @@ impl Mechanism {
                             m.relaxed.extend([rx.clone(), ry.clone()]);
                             (rx, ry)
                         });
-                        let joint = item
-                            .require("joint", &mut errors, "body")
-                            .and_then(|j| joint(j, &mut errors));
+                        let joint_expr = item.require("joint", &mut errors, "body");
+                        let joint_span =
+                            joint_expr.as_ref().map_or(item.name.span(), Spanned::span);
+                        let joint = joint_expr.and_then(|j| joint(j, &mut errors));
                         let parent = item.take("parent").and_then(|p| parent(p, &mut errors));
                         if let Some(joint) = joint {
                             m.tree.push(TreeBody {
                                 parent,
                                 joint,
+                                joint_span,
                                 at: item.take("at"),
                                 angle: item.take("angle"),
                                 com: item.take("com"),
@@ -738,8 +749,7 @@ impl Mechanism {
         }
         // Each joint brings its coordinate: free, unless a `drive` gives its law.
         let mut moved = std::collections::HashSet::new();
-        for b in &m.tree {
-            let Some(c) = b.joint.coord() else { continue };
+        for c in m.tree.iter().flat_map(|b| b.joint.coords()) {
             if !moved.insert(c.to_string()) {
                 errors.at(
                     c.span(),
@@ -776,10 +786,13 @@ impl Mechanism {
     }
 }
 
-/// `revolute(q)`, `prismatic(s, [ax, ay])` or `fixed`.
+/// `revolute(q)` (planar), `revolute(q, x | y | z)` (spatial), `prismatic(s, axis)`,
+/// `universal(a, b)`, `spherical(a, b, c)` or `fixed`. Which joints suit the mechanism's
+/// dimension is checked with the mechanics.
 fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
-    const EXPECTED: &str =
-        "expected a joint: `revolute(coordinate)`, `prismatic(coordinate, [ax, ay])` or `fixed`";
+    const EXPECTED: &str = "expected a joint: `revolute(coordinate)` (planar), \
+        `revolute(coordinate, x | y | z)` (spatial), `prismatic(coordinate, axis)`, \
+        `universal(a, b)`, `spherical(a, b, c)` or `fixed`";
     match &e {
         Expr::Path(p) if p.path.is_ident("fixed") => Some(Joint::Fixed),
         Expr::Call(c) => {
@@ -788,16 +801,36 @@ fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
                 _ => None,
             };
             let args: Vec<&Expr> = c.args.iter().collect();
-            let coord = match args.first().map(|a| classify((*a).clone())) {
+            let name = |i: usize| match args.get(i).map(|a| classify((**a).clone())) {
                 Some(Arg::Flag(id)) => Some(id),
                 _ => None,
             };
-            match (kind.as_deref(), coord, args.len()) {
-                (Some("revolute"), Some(q), 1) => Some(Joint::Revolute(q)),
+            let elementary = |id: Ident| {
+                ["x", "y", "z"]
+                    .contains(&id.to_string().as_str())
+                    .then_some(id)
+            };
+            match (kind.as_deref(), name(0), args.len()) {
+                (Some("revolute"), Some(q), 1) => Some(Joint::Revolute {
+                    coord: q,
+                    axis: None,
+                }),
+                (Some("revolute"), Some(q), 2) if name(1).and_then(elementary).is_some() => {
+                    Some(Joint::Revolute {
+                        coord: q,
+                        axis: name(1),
+                    })
+                }
                 (Some("prismatic"), Some(s), 2) => Some(Joint::Prismatic {
                     coord: s,
                     axis: args[1].clone(),
                 }),
+                (Some("universal"), Some(a), 2) if name(1).is_some() => {
+                    Some(Joint::Universal(a, name(1)?))
+                }
+                (Some("spherical"), Some(a), 3) if name(1).is_some() && name(2).is_some() => {
+                    Some(Joint::Spherical(a, name(1)?, name(2)?))
+                }
                 _ => {
                     errors.over(&e, EXPECTED);
                     None
@@ -870,7 +903,8 @@ fn chain(mut item: Item, tree: &mut Vec<TreeBody>, errors: &mut Errors) {
         tree.push(TreeBody {
             name: body.clone(),
             parent: parent_name.replace(body),
-            joint: Joint::Revolute(coord),
+            joint: Joint::Revolute { coord, axis: None },
+            joint_span: span,
             at: if k == 1 {
                 at.clone()
             } else {
