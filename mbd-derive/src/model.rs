@@ -738,7 +738,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             (parse::Joint::Revolute { axis: None, .. }, _) => {
                 errors.at(
                     tb.joint_span,
-                    "a spatial revolute joint names its axis: `revolute(q, x | y | z)`",
+                    "a spatial revolute joint names its axis: `revolute(q, x | y | z)` (`chain` is planar)",
                 );
                 continue;
             }
