@@ -799,11 +799,6 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         frame_of.insert(tb.name.to_string(), frames.len());
         frames.push((origin, rot));
     }
-    if dim == Dim::Spatial
-        && let Some(cl) = ast.closures.first()
-    {
-        errors.at(cl.name.span(), "loop closures (`close`) join planar tree bodies: close a spatial loop with `constraint`s");
-    }
     // Springs and dampers are named too; their names must not clash with anything else.
     let mut element_names = std::collections::HashSet::new();
     for id in ast
@@ -843,21 +838,13 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             phi_tokens.push(&c.tokens);
         }
     }
-    // Loop-closing joints: two coincident points, two equations.
+    // Loop-closing joints: two coincident points; two equations (planar: a revolute joint),
+    // three (spatial: a spherical joint).
     let point = |g: &mut Graph,
                  errors: &mut Errors,
                  body: &Option<Ident>,
-                 at: &Option<syn::Expr>| {
-        let (origin, angle) = match body {
-            None => ([g.zero(), g.zero()], g.zero()),
-            Some(b) => match node_of.get(&b.to_string()) {
-                Some(&i) => (nodes[i].origin, nodes[i].angle),
-                None => {
-                    errors.at(b.span(), format!("unknown tree body `{b}`: a closure joins `body`/`chain` bodies or `ground`"));
-                    return None;
-                }
-            },
-        };
+                 at: &Option<syn::Expr>|
+     -> Option<Vec<Expr>> {
         let local = match at {
             Some(e) => Lowerer {
                 g,
@@ -866,19 +853,51 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 model: None,
                 errors,
             }
-            .vector(e, Context::Constant, 2)
-            .map(|v| [v[0], v[1]])?,
-            None => [g.zero(), g.zero()],
+            .vector(e, Context::Constant, dim.len())?,
+            None => vec![g.zero(); dim.len()],
         };
-        let arm = tree::rotate(g, angle, local);
-        Some([g.add(origin[0], arm[0]), g.add(origin[1], arm[1])])
+        let unknown = |errors: &mut Errors, b: &Ident| {
+            errors.at(
+                b.span(),
+                format!(
+                    "unknown tree body `{b}`: a closure joins `body`/`chain` bodies or `ground`"
+                ),
+            );
+        };
+        match (body, dim) {
+            (None, _) => Some(local),
+            (Some(b), Dim::Planar) => {
+                let Some(&i) = node_of.get(&b.to_string()) else {
+                    unknown(errors, b);
+                    return None;
+                };
+                let arm = tree::rotate(g, nodes[i].angle, [local[0], local[1]]);
+                let origin = nodes[i].origin;
+                Some(vec![g.add(origin[0], arm[0]), g.add(origin[1], arm[1])])
+            }
+            (Some(b), Dim::Spatial) => {
+                let Some(&i) = frame_of.get(&b.to_string()) else {
+                    unknown(errors, b);
+                    return None;
+                };
+                let (origin, rot) = frames[i];
+                Some(
+                    (0..3)
+                        .map(|k| {
+                            let arm = g.dot(&rot[k], &local);
+                            g.add(origin[k], arm)
+                        })
+                        .collect(),
+                )
+            }
+        }
     };
     for cl in &ast.closures {
         let pa = point(&mut g, &mut errors, &cl.a, &cl.at_a);
         let pb = point(&mut g, &mut errors, &cl.b, &cl.at_b);
         if let (Some(pa), Some(pb)) = (pa, pb) {
-            for k in 0..2 {
-                phi_full.push(g.sub(pa[k], pb[k]));
+            for (a, b) in pa.into_iter().zip(pb) {
+                phi_full.push(g.sub(a, b));
                 phi_spans.push(cl.name.span());
                 phi_tokens.push(&cl.tokens);
             }
