@@ -621,9 +621,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         let angle = g.add(p_angle, relative);
         let moved = tree::rotate(&mut g, p_angle, local);
         let mut origin = [g.add(p_origin[0], moved[0]), g.add(p_origin[1], moved[1])];
-        if let Some((rx, ry)) = &tb.reaction {
+        if let Some(relaxed) = &tb.reaction {
             // The freed joint: zero in the motion, its multipliers are the joint force.
-            for (o, r) in origin.iter_mut().zip([rx, ry]) {
+            for (o, r) in origin.iter_mut().zip(relaxed) {
                 if let Some(c) = coords.iter().find(|c| c.name == *r) {
                     *o = g.add(*o, c.z);
                 }
@@ -664,9 +664,6 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let mut frames: Vec<([Expr; 3], [[Expr; 3]; 3])> = Vec::new();
     let mut frame_of: HashMap<String, usize> = HashMap::new();
     for tb in ast.tree.iter().filter(|_| dim == Dim::Spatial) {
-        if let Some((rx, _)) = &tb.reaction {
-            errors.at(rx.span(), "joint reactions are planar: in a spatial tree, relax the joint with coordinates and `constraint`s instead");
-        }
         if let Some(e) = &tb.angle {
             errors.over(
                 e,
@@ -773,10 +770,18 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             None => ([zero; 3], identity),
         };
         let rot = lower::matmul(&mut g, &p_rot, &relative);
-        let origin: [Expr; 3] = std::array::from_fn(|i| {
+        let mut origin: [Expr; 3] = std::array::from_fn(|i| {
             let moved = g.dot(&p_rot[i], &at);
             g.add(p_origin[i], moved)
         });
+        if let Some(relaxed) = &tb.reaction {
+            // The freed joint: zero in the motion, its multipliers are the joint force.
+            for (o, r) in origin.iter_mut().zip(relaxed) {
+                if let Some(c) = coords.iter().find(|c| c.name == *r) {
+                    *o = g.add(*o, c.z);
+                }
+            }
+        }
         let r: Vec<Expr> = (0..3)
             .map(|i| {
                 let arm = g.dot(&rot[i], &com);

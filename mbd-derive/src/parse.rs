@@ -164,9 +164,10 @@ pub struct TreeBody {
     pub at: Option<Expr>,
     pub angle: Option<Expr>,
     pub com: Option<Expr>,
-    /// Relaxed coordinates `(name_rx, name_ry)` that free the joint origin, so that
-    /// `reaction(name_rx)`, `reaction(name_ry)` are the joint's force on the body.
-    pub reaction: Option<(Ident, Ident)>,
+    /// Relaxed coordinates `name_rx`, `name_ry` (and `name_rz` in space) that free the joint
+    /// origin along the ground's axes, so that `reaction(name_rx)`, ... are the joint's force
+    /// on the body.
+    pub reaction: Option<Vec<Ident>>,
     pub mass: Option<Expr>,
     pub inertia: Option<Expr>,
 }
@@ -533,12 +534,13 @@ impl Mechanism {
                 "body" => {
                     let keys = &["parent", "joint", "at", "angle", "com", "mass", "inertia"];
                     if let Some(mut item) = Item::read(attr, &mut errors, keys, &["reaction"]) {
+                        // `_rz` joins in a spatial mechanism, once the dimension is known.
                         let reaction = (!item.flags.is_empty()).then(|| {
                             let n = &item.name;
                             let rx = format_ident!("{}_rx", n, span = n.span());
                             let ry = format_ident!("{}_ry", n, span = n.span());
                             m.relaxed.extend([rx.clone(), ry.clone()]);
-                            (rx, ry)
+                            vec![rx, ry]
                         });
                         let joint_expr = item.require("joint", &mut errors, "body");
                         let joint_span =
@@ -745,6 +747,16 @@ impl Mechanism {
                     }
                 }
                 _ => {}
+            }
+        }
+        if m.dim == Dim::Spatial {
+            for b in &mut m.tree {
+                if let Some(reaction) = &mut b.reaction {
+                    let n = &b.name;
+                    let rz = format_ident!("{}_rz", n, span = n.span());
+                    m.relaxed.push(rz.clone());
+                    reaction.push(rz);
+                }
             }
         }
         // Each joint brings its coordinate: free, unless a `drive` gives its law.

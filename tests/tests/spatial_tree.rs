@@ -386,3 +386,58 @@ fn heavy_body_on_a_spherical_joint_conserves_energy_and_vertical_momentum() {
     // The motion is not trivial: the body turned and the roll moved.
     assert!((y1[0] - y0[0]).abs() > 0.1 && (y1[2] - y0[2]).abs() > 0.1);
 }
+
+/// [`HeavyBody`] with its joint's force asked for: `reaction` frees the joint origin along
+/// the ground's `x`, `y`, `z`.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -g)]
+#[body(top, joint = spherical(psi, theta, phi), com = [e, 0.0, -h], mass = m,
+       inertia = [[ia, 0.01, 0.0], [0.01, ib, 0.02], [0.0, 0.02, ic]], reaction)]
+#[output(fx = reaction(top_rx))]
+#[output(fy = reaction(top_ry))]
+#[output(fz = reaction(top_rz))]
+#[output(ax = acceleration(top)[0])]
+#[output(ay = acceleration(top)[1])]
+#[output(az = acceleration(top)[2])]
+pub struct HeavyBodyForce {
+    pub m: f64,
+    pub e: f64,
+    pub h: f64,
+    pub ia: f64,
+    pub ib: f64,
+    pub ic: f64,
+    pub g: f64,
+}
+
+/// Newton for the whole body: the joint's force plus its weight is mass times the
+/// acceleration of its mass centre, `F = m (a + g e_z)`, at any state.
+#[test]
+fn spherical_joint_reaction_is_newtons_force_on_the_body() {
+    let p = HeavyBodyForce {
+        m: 2.0,
+        e: 0.05,
+        h: 0.4,
+        ia: 0.12,
+        ib: 0.1,
+        ic: 0.03,
+        g: 9.81,
+    };
+    for y in [
+        [0.1, 0.35, -0.2, 1.5, -0.4, 3.0],
+        [-1.0, -0.6, 2.0, -0.3, 2.2, 0.8],
+        [0.0; 6],
+    ] {
+        let o = p.outputs(0.0, &Vector::<6>::from(y)).unwrap();
+        let newton = [p.m * o.ax, p.m * o.ay, p.m * (o.az + p.g)];
+        for (f, n) in [o.fx, o.fy, o.fz].into_iter().zip(newton) {
+            assert_relative_eq!(f, n, epsilon = 1e-12, max_relative = 1e-12);
+        }
+    }
+    // At rest with the mass centre under the joint (pitched by atan(e / h)): the joint
+    // carries the weight, and nothing else.
+    let hanging = Vector::<6>::new(0.0, p.e.atan2(p.h), 0.0, 0.0, 0.0, 0.0);
+    let o = p.outputs(0.0, &hanging).unwrap();
+    assert_relative_eq!(o.fz, p.m * p.g, max_relative = 1e-14);
+    assert!(o.fx.abs() < 1e-14 && o.fy.abs() < 1e-14);
+}
