@@ -542,15 +542,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             }
             _ => {}
         }
-        let parent = match &tb.parent {
-            None => None,
-            Some(p) => match node_of.get(&p.to_string()) {
-                Some(&i) => Some(i),
-                None => {
-                    errors.at(p.span(), format!("unknown parent `{p}`: a tree body's parent is `ground` or a `body` declared before it"));
-                    continue;
-                }
-            },
+        let Ok(parent) = tree_parent(tb, &node_of, &mut errors) else {
+            continue;
         };
         let mut lw = Lowerer {
             g: &mut g,
@@ -559,25 +552,15 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             model: None,
             errors: &mut errors,
         };
-        let vec2 = |lw: &mut Lowerer<'_>, e: &Option<syn::Expr>| match e {
-            Some(e) => lw.vector(e, Context::Constant, 2).map(|v| [v[0], v[1]]),
-            None => Some([lw.g.zero(), lw.g.zero()]),
+        let vec2 = |lw: &mut Lowerer<'_>, e: &Option<syn::Expr>| {
+            tree_vector(lw, e, 2).map(|v| [v[0], v[1]])
         };
         let (at, com) = (vec2(&mut lw, &tb.at), vec2(&mut lw, &tb.com));
         let offset = match &tb.angle {
             Some(e) => lw.scalar(e, Context::Constant),
             None => Some(lw.g.zero()),
         };
-        let mass = tb
-            .mass
-            .as_ref()
-            .and_then(|m| lw.scalar(m, Context::Constant));
-        if let (Some(m), Some(e)) = (mass, &tb.mass)
-            && lw.g.as_const(m).is_some_and(|v| v <= 0.0)
-        {
-            lw.errors
-                .over(e, format!("body `{}` has no positive mass", tb.name));
-        }
+        let mass = tree_mass(&mut lw, tb);
         let inertia = match &tb.inertia {
             Some(e) => lw.scalar(e, Context::Constant),
             None => Some(lw.g.zero()),
@@ -670,15 +653,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 "`angle` is planar: a spatial tree body's orientation comes from its joints",
             );
         }
-        let parent = match &tb.parent {
-            None => None,
-            Some(p) => match frame_of.get(&p.to_string()) {
-                Some(&i) => Some(i),
-                None => {
-                    errors.at(p.span(), format!("unknown parent `{p}`: a tree body's parent is `ground` or a `body` declared before it"));
-                    continue;
-                }
-            },
+        let Ok(parent) = tree_parent(tb, &frame_of, &mut errors) else {
+            continue;
         };
         let z: Vec<Expr> = tb
             .joint
@@ -693,21 +669,11 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             model: None,
             errors: &mut errors,
         };
-        let vec3 = |lw: &mut Lowerer<'_>, e: &Option<syn::Expr>| match e {
-            Some(e) => lw.vector(e, Context::Constant, 3),
-            None => Some(vec![lw.g.zero(); 3]),
-        };
-        let (at, com) = (vec3(&mut lw, &tb.at), vec3(&mut lw, &tb.com));
-        let mass = tb
-            .mass
-            .as_ref()
-            .and_then(|m| lw.scalar(m, Context::Constant));
-        if let (Some(m), Some(e)) = (mass, &tb.mass)
-            && lw.g.as_const(m).is_some_and(|v| v <= 0.0)
-        {
-            lw.errors
-                .over(e, format!("body `{}` has no positive mass", tb.name));
-        }
+        let (at, com) = (
+            tree_vector(&mut lw, &tb.at, 3),
+            tree_vector(&mut lw, &tb.com, 3),
+        );
+        let mass = tree_mass(&mut lw, tb);
         let inertia = match &tb.inertia {
             Some(e) => match lw.lower(e, Context::Constant) {
                 Some(Value::Matrix(m)) => Some(Some(m)),
@@ -1717,6 +1683,44 @@ impl Equations {
 
 fn g_half(g: &mut Graph) -> Expr {
     g.constant(0.5)
+}
+
+/// A tree body's parent (`None`: the ground) among the bodies declared before it, or a
+/// spanned error.
+fn tree_parent(
+    tb: &parse::TreeBody,
+    declared: &HashMap<String, usize>,
+    errors: &mut Errors,
+) -> Result<Option<usize>, ()> {
+    let Some(p) = &tb.parent else {
+        return Ok(None);
+    };
+    match declared.get(&p.to_string()) {
+        Some(&i) => Ok(Some(i)),
+        None => {
+            errors.at(p.span(), format!("unknown parent `{p}`: a tree body's parent is `ground` or a `body` declared before it"));
+            Err(())
+        }
+    }
+}
+
+/// A tree body's `at` or `com`: a constant vector of `len` entries, zero when not given.
+fn tree_vector(lw: &mut Lowerer<'_>, e: &Option<syn::Expr>, len: usize) -> Option<Vec<Expr>> {
+    match e {
+        Some(e) => lw.vector(e, Context::Constant, len),
+        None => Some(vec![lw.g.zero(); len]),
+    }
+}
+
+/// A tree body's mass, with a spanned error when it is a constant that is not positive.
+fn tree_mass(lw: &mut Lowerer<'_>, tb: &parse::TreeBody) -> Option<Expr> {
+    let e = tb.mass.as_ref()?;
+    let m = lw.scalar(e, Context::Constant)?;
+    if lw.g.as_const(m).is_some_and(|v| v <= 0.0) {
+        lw.errors
+            .over(e, format!("body `{}` has no positive mass", tb.name));
+    }
+    Some(m)
 }
 
 /// Lagrange's form of the forces of a scleronomic system (kinetic energy `zd^T M zd / 2`):
