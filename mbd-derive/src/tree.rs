@@ -5,8 +5,9 @@
 //! spatial vectors: a motion `(w, vx, vy)` (angular rate, velocity of the frame origin) and a
 //! force `(n, fx, fy)` (moment about the frame origin, resultant), both in the body's frame.
 //! Each body's inertia is then a constant of the parameters, and a joint's transform is one
-//! rotation by its relative angle and one shift by its offset: the same operations a careful
-//! hand-written implementation does, unrolled over the tree at compile time.
+//! rotation by its relative angle and one shift by its offset: the operations a careful
+//! hand-written implementation does, unrolled over the tree at compile time, and ordered for
+//! the latency of the inward pass's dependency chain (see [`inward`]).
 
 use crate::sym::{Expr, Func, Graph};
 
