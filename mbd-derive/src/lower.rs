@@ -80,7 +80,7 @@ pub const FUNCTIONS: &[(&str, usize)] = &[
     ("angular_acceleration", 1),
 ];
 
-/// Body queries answered by [`BodyQueries`] (outputs only).
+/// Body queries answered by [`Model::body`] (outputs only).
 const BODY_QUERIES: &[&str] = &[
     "position",
     "velocity",
