@@ -106,6 +106,33 @@
 //! assert!((energy(sol.y.last().unwrap()) - energy(&y)).abs() < 1e-8);
 //! # Ok::<(), mbd::Error>(())
 //! ```
+//!
+//! In a spatial mechanism the same `body` attribute composes rotation matrices, with
+//! revolute joints about a named axis, universal and spherical joints; such a tree is
+//! evaluated through its mass matrix.
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! /// A bar on a universal joint, a second bar on a hinge about its `x` axis below it.
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial)]
+//! #[gravity(0.0, 0.0, -g)]
+//! #[body(upper, joint = universal(a, b), com = [0.0, 0.0, -l / 2.0], mass = m,
+//!        inertia = diag(m * l * l / 12.0, m * l * l / 12.0, 1e-4))]
+//! #[body(lower, parent = upper, joint = revolute(c, x), at = [0.0, 0.0, -l],
+//!        com = [0.0, 0.0, -l / 2.0], mass = m, inertia = diag(m * l * l / 12.0, m * l * l / 12.0, 1e-4))]
+//! #[output(depth = position(lower)[2])]
+//! pub struct Cardan { pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! let p = Cardan { m: 1.0, l: 0.5, g: 9.81 };
+//! assert!(!Cardan::GENERATED.parts.contains(&"articulated_body"));
+//! // Hanging straight down: the lower bar's centre is 1.5 l below the joint, and it stays.
+//! let rest = mbd::Vector::<6>::zeros();
+//! assert!((p.outputs(0.0, &rest)?.depth + 0.75).abs() < 1e-15);
+//! assert_eq!(p.rhs(0.0, &rest)?, rest);
+//! # Ok::<(), mbd::Error>(())
+//! ```
 
 pub use mbd_core::*;
 pub use mbd_derive::Mechanism;
