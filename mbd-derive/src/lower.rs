@@ -95,9 +95,15 @@ const BODY_QUERIES: &[&str] = &[
 pub trait Model {
     /// Total time derivative `de/dt` (positions -> velocities -> accelerations).
     fn der(&mut self, g: &mut Graph, v: &Value) -> Value;
-    /// A body query (`velocity(rod)`, `position(rod, [0.1, 0.0])`, ...).
-    fn body(&mut self, g: &mut Graph, query: &str, body: usize, offset: Option<Vec<Expr>>)
-    -> Value;
+    /// A body query (`velocity(rod)`, `position(rod, [0.1, 0.0])`, ...), or why the body
+    /// cannot answer it.
+    fn body(
+        &mut self,
+        g: &mut Graph,
+        query: &str,
+        body: usize,
+        offset: Option<Vec<Expr>>,
+    ) -> Result<Value, String>;
     /// The symbol standing for the reaction along relaxed or driven coordinate `coord`.
     fn reaction(&mut self, g: &mut Graph, coord: Expr) -> Option<Expr>;
 }
@@ -420,7 +426,10 @@ impl Lowerer<'_> {
             let Some(model) = self.model.as_deref_mut() else {
                 return self.fail(name.span(), format!("`{fname}` is not available here"));
             };
-            return Ok(model.body(self.g, &fname, body, offset));
+            return match model.body(self.g, &fname, body, offset) {
+                Ok(v) => Ok(v),
+                Err(why) => self.fail(name.span(), why),
+            };
         }
         if fname == "reaction" {
             let coord = match args[0] {

@@ -216,7 +216,7 @@ impl lower::Model for Kin<'_> {
         query: &str,
         body: usize,
         offset: Option<Vec<Expr>>,
-    ) -> Value {
+    ) -> Result<Value, String> {
         let b = &self.bodies[body];
         match query {
             "position" | "velocity" | "acceleration" => {
@@ -228,14 +228,18 @@ impl lower::Model for Kin<'_> {
                 {
                     v = self.tder_value(g, &v);
                 }
-                v
+                Ok(v)
             }
+            "angle" if b.rot.is_some() => Err(
+                "`angle` is planar: a spatial body has `angular_velocity` and `angular_acceleration`"
+                    .to_string(),
+            ),
             _ => {
                 let order = ["angle", "angular_velocity", "angular_acceleration"]
                     .iter()
                     .position(|q| *q == query)
                     .unwrap_or(0);
-                match (b.angle, b.rot) {
+                Ok(match (b.angle, b.rot) {
                     (Some(phi), _) => {
                         let mut v = Value::Scalar(phi);
                         for _ in 0..order {
@@ -253,8 +257,12 @@ impl lower::Model for Kin<'_> {
                         };
                         Value::Vector((0..3).map(|i| g.dot(&rot[i], &w)).collect())
                     }
-                    _ => Value::Scalar(g.zero()),
-                }
+                    (None, None) => {
+                        return Err(format!(
+                            "`{query}` needs a rigid body: a particle has no orientation"
+                        ));
+                    }
+                })
             }
         }
     }
