@@ -65,6 +65,18 @@ struct BodyKin {
     angle: Option<Expr>,
     /// Spatial rotation (world from body).
     rot: Option<[[Expr; 3]; 3]>,
+    /// Spatial angular velocity in the body's frame, when a joint tree composed it (else it
+    /// is derived from `rot`).
+    omega: Option<[Expr; 3]>,
+}
+
+/// A spatial tree body's frame: origin and rotation (ground from body), and its angular
+/// velocity in its own axes.
+#[derive(Clone, Copy)]
+struct Frame {
+    origin: [Expr; 3],
+    rot: [[Expr; 3]; 3],
+    omega: [Expr; 3],
 }
 
 /// Coulomb friction along free coordinate `coord` with the (reduced) normal force `normal`.
@@ -191,7 +203,12 @@ impl Kin<'_> {
     }
 
     /// Body-frame angular velocity `vee(R^T dR/dt)` of a spatial body.
-    fn omega_body(&self, g: &mut Graph, rot: &[[Expr; 3]; 3]) -> Vec<Expr> {
+    /// A spatial body's angular velocity in its own frame: the tree's, or `vee(R^T R')`.
+    fn omega_body(&self, g: &mut Graph, b: &BodyKin) -> Vec<Expr> {
+        if let Some(w) = b.omega {
+            return w.to_vec();
+        }
+        let rot = b.rot.expect("a spatial body");
         let rdot = rot.map(|row| row.map(|x| self.tder(g, x)));
         let mut s = [[g.zero(); 3]; 3];
         for (i, row) in s.iter_mut().enumerate() {
@@ -249,7 +266,7 @@ impl lower::Model for Kin<'_> {
                     }
                     (None, Some(rot)) => {
                         // World-frame angular velocity R w_b; its derivative is R dw_b/dt.
-                        let w_b = self.omega_body(g, &rot);
+                        let w_b = self.omega_body(g, b);
                         let w = if order == 2 {
                             w_b.iter().map(|x| self.tder(g, *x)).collect()
                         } else {
@@ -531,6 +548,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 r,
                 angle,
                 rot,
+                omega: None,
             });
             declare(&mut names, &mut errors, &b.name, Binding::Body(idx));
         }
@@ -630,6 +648,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             r: com_world.to_vec(),
             angle: rigid.then_some(angle),
             rot: None,
+            omega: None,
         });
         declare(
             &mut names,
@@ -652,7 +671,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     }
     // Spatial joint trees: composed the same way with rotation matrices; evaluated through
     // the mass matrix (the articulated-body recursion is planar).
-    let mut frames: Vec<([Expr; 3], [[Expr; 3]; 3])> = Vec::new();
+    let mut frames: Vec<Frame> = Vec::new();
     let mut frame_of: HashMap<String, usize> = HashMap::new();
     for tb in ast.tree.iter().filter(|_| dim == Dim::Spatial) {
         if let Some(e) = &tb.angle {
@@ -664,11 +683,11 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         let Ok(parent) = tree_parent(tb, &frame_of, &mut errors) else {
             continue;
         };
-        let z: Vec<Expr> = tb
+        let z: Vec<(Expr, Expr)> = tb
             .joint
             .coords()
             .iter()
-            .filter_map(|c| coords.iter().find(|k| k.name == **c).map(|k| k.z))
+            .filter_map(|c| coords.iter().find(|k| k.name == **c).map(|k| (k.z, k.zd)))
             .collect();
         let mut lw = Lowerer {
             g: &mut g,
@@ -705,7 +724,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         };
         let (o, zero) = (g.one(), g.zero());
         let identity = [[o, zero, zero], [zero, o, zero], [zero, zero, o]];
-        let relative = match (&tb.joint, z.as_slice()) {
+        // The joint as elementary rotations `R_1(q_1) R_2(q_2) ..` (axis, angle, rate).
+        let turns: Vec<(&str, Expr, Expr)> = match (&tb.joint, z.as_slice()) {
             (parse::Joint::Revolute { axis: None, .. }, _) => {
                 errors.at(
                     tb.joint_span,
@@ -714,35 +734,59 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 continue;
             }
             (parse::Joint::Revolute { axis: Some(a), .. }, &[q]) => {
-                lower::rotation(&mut g, &format!("rot_{a}"), q)
+                let axis = match a.to_string().as_str() {
+                    "x" => "x",
+                    "y" => "y",
+                    _ => "z",
+                };
+                vec![(axis, q.0, q.1)]
             }
-            (parse::Joint::Universal(..), &[a, b]) => {
-                let (ra, rb) = (
-                    lower::rotation(&mut g, "rot_x", a),
-                    lower::rotation(&mut g, "rot_y", b),
-                );
-                lower::matmul(&mut g, &ra, &rb)
-            }
+            (parse::Joint::Universal(..), &[a, b]) => vec![("x", a.0, a.1), ("y", b.0, b.1)],
             (parse::Joint::Spherical(..), &[a, b, c]) => {
-                let ra = lower::rotation(&mut g, "rot_z", a);
-                let rb = lower::rotation(&mut g, "rot_y", b);
-                let rc = lower::rotation(&mut g, "rot_x", c);
-                let rab = lower::matmul(&mut g, &ra, &rb);
-                lower::matmul(&mut g, &rab, &rc)
+                vec![("z", a.0, a.1), ("y", b.0, b.1), ("x", c.0, c.1)]
             }
             (parse::Joint::Prismatic { .. }, &[s]) => {
                 for (l, a) in at.iter_mut().zip(&axis) {
-                    let d = g.mul(*a, s);
+                    let d = g.mul(*a, s.0);
                     *l = g.add(*l, d);
                 }
-                identity
+                Vec::new()
             }
-            _ => identity,
+            _ => Vec::new(),
         };
-        let (p_origin, p_rot) = match parent {
+        // R_joint, and the joint's angular velocity in the child's frame,
+        // sum_i (R_{i+1} .. R_k)^T e_i q_i' (built from the last rotation back).
+        let mut relative = identity;
+        let mut omega_joint = [zero; 3];
+        for &(axis, angle, rate) in turns.iter().rev() {
+            let e = ["x", "y", "z"]
+                .iter()
+                .position(|&n| n == axis)
+                .expect("an elementary axis");
+            for (k, w) in omega_joint.iter_mut().enumerate() {
+                // (P^T e)_k = P[e][k] for P = R_{i+1} .. R_k.
+                let term = g.mul(relative[e][k], rate);
+                *w = g.add(*w, term);
+            }
+            let r = lower::rotation(&mut g, &format!("rot_{axis}"), angle);
+            relative = lower::matmul(&mut g, &r, &relative);
+        }
+        let parent = match parent {
             Some(p) => frames[p],
-            None => ([zero; 3], identity),
+            None => Frame {
+                origin: [zero; 3],
+                rot: identity,
+                omega: [zero; 3],
+            },
         };
+        let (p_origin, p_rot, p_omega) = (parent.origin, parent.rot, parent.omega);
+        // omega = R_joint^T omega_parent + omega_joint, in the body's frame: O(1) per body
+        // over its parent's, where vee(R^T R') would differentiate the whole product.
+        let omega: [Expr; 3] = std::array::from_fn(|k| {
+            let col = [relative[0][k], relative[1][k], relative[2][k]];
+            let carried = g.dot(&col, &p_omega);
+            g.add(carried, omega_joint[k])
+        });
         let rot = lower::matmul(&mut g, &p_rot, &relative);
         let mut origin: [Expr; 3] = std::array::from_fn(|i| {
             let moved = g.dot(&p_rot[i], &at);
@@ -765,6 +809,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         bodies.push(BodyKin {
             mass,
             rot: inertia.is_some().then_some(rot),
+            omega: inertia.is_some().then_some(omega),
             inertia,
             r,
             angle: None,
@@ -776,7 +821,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             Binding::Body(bodies.len() - 1),
         );
         frame_of.insert(tb.name.to_string(), frames.len());
-        frames.push((origin, rot));
+        frames.push(Frame { origin, rot, omega });
     }
     // Springs and dampers are named too; their names must not clash with anything else.
     let mut element_names = std::collections::HashSet::new();
@@ -859,7 +904,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                     unknown(errors, b);
                     return None;
                 };
-                let (origin, rot) = frames[i];
+                let Frame { origin, rot, .. } = frames[i];
                 Some(
                     (0..3)
                         .map(|k| {
@@ -1059,7 +1104,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                     (None, Some(rot)) => {
                         if let Some(tau) = lw.vector(value, Context::Force, 3) {
                             // World torque . d(w_world)/dzd_j.
-                            let w_b = kin.omega_body(&mut g, &rot);
+                            let w_b = kin.omega_body(&mut g, b);
                             let w: Vec<Expr> = (0..3).map(|i| g.dot(&rot[i], &w_b)).collect();
                             for (j, zds) in zdsyms.iter().enumerate() {
                                 let col: Vec<Expr> = w.iter().map(|x| g.diff(*x, *zds)).collect();
@@ -1141,7 +1186,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 let w = kin.tder(&mut g, phi);
                 (vec![w], [[i[0][0], z, z], [z, z, z], [z, z, z]])
             }
-            (None, Some(rot), Some(i)) => (kin.omega_body(&mut g, &rot), i),
+            (None, Some(_), Some(i)) => (kin.omega_body(&mut g, b), i),
             _ => continue,
         };
         let nw = w.len();
