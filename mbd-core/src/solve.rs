@@ -173,6 +173,20 @@ mod tests {
         assert_eq!(err.unwrap_err(), Error::NonFinite { t: 1.0 });
     }
 
+    /// A tree's in-place `y'`: passed on when its accelerations are finite, refused when one
+    /// is not; its velocity half is the caller's state and is not judged here.
+    #[test]
+    fn finite_accelerations_checks_the_lower_half() {
+        let dy = Vector::<4>::new(1.0, 2.0, -3.0, 4.0);
+        assert_eq!(finite_accelerations::<2, 4>(0.5, dy).unwrap(), dy);
+        for bad in [f64::NAN, f64::INFINITY] {
+            let mut dy = dy;
+            dy[3] = bad;
+            let err = finite_accelerations::<2, 4>(0.5, dy).unwrap_err();
+            assert_eq!(err, Error::NonFinite { t: 0.5 });
+        }
+    }
+
     /// The generated one-coordinate form: the acceleration passes when the mass is usable.
     #[test]
     fn one_coordinate_checks_the_mass_and_the_result() {

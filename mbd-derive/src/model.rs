@@ -630,14 +630,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         let angle = g.add(p_angle, relative);
         let moved = tree::rotate(&mut g, p_angle, local);
         let mut origin = [g.add(p_origin[0], moved[0]), g.add(p_origin[1], moved[1])];
-        if let Some(relaxed) = &tb.reaction {
-            // The freed joint: zero in the motion, its multipliers are the joint force.
-            for (o, r) in origin.iter_mut().zip(relaxed) {
-                if let Some(c) = coords.iter().find(|c| c.name == *r) {
-                    *o = g.add(*o, c.z);
-                }
-            }
-        }
+        free_joint(&mut g, &mut origin, tb, &coords);
         let arm = tree::rotate(&mut g, angle, com);
         let com_world = [g.add(origin[0], arm[0]), g.add(origin[1], arm[1])];
         let z = g.zero();
@@ -724,8 +717,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         };
         let (o, zero) = (g.one(), g.zero());
         let identity = [[o, zero, zero], [zero, o, zero], [zero, zero, o]];
-        // The joint as elementary rotations `R_1(q_1) R_2(q_2) ..` (axis, angle, rate).
-        let turns: Vec<(&str, Expr, Expr)> = match (&tb.joint, z.as_slice()) {
+        // The joint as elementary rotations `R_1(q_1) R_2(q_2) ..` (axis 0/1/2 for x/y/z,
+        // angle, rate).
+        let turns: Vec<(usize, Expr, Expr)> = match (&tb.joint, z.as_slice()) {
             (parse::Joint::Revolute { axis: None, .. }, _) => {
                 errors.at(
                     tb.joint_span,
@@ -734,16 +728,15 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 continue;
             }
             (parse::Joint::Revolute { axis: Some(a), .. }, &[q]) => {
-                let axis = match a.to_string().as_str() {
-                    "x" => "x",
-                    "y" => "y",
-                    _ => "z",
-                };
+                let axis = ["x", "y", "z"]
+                    .iter()
+                    .position(|n| a == n)
+                    .expect("parse admits x, y, z");
                 vec![(axis, q.0, q.1)]
             }
-            (parse::Joint::Universal(..), &[a, b]) => vec![("x", a.0, a.1), ("y", b.0, b.1)],
+            (parse::Joint::Universal(..), &[a, b]) => vec![(0, a.0, a.1), (1, b.0, b.1)],
             (parse::Joint::Spherical(..), &[a, b, c]) => {
-                vec![("z", a.0, a.1), ("y", b.0, b.1), ("x", c.0, c.1)]
+                vec![(2, a.0, a.1), (1, b.0, b.1), (0, c.0, c.1)]
             }
             (parse::Joint::Prismatic { .. }, &[s]) => {
                 for (l, a) in at.iter_mut().zip(&axis) {
@@ -758,17 +751,13 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         // sum_i (R_{i+1} .. R_k)^T e_i q_i' (built from the last rotation back).
         let mut relative = identity;
         let mut omega_joint = [zero; 3];
-        for &(axis, angle, rate) in turns.iter().rev() {
-            let e = ["x", "y", "z"]
-                .iter()
-                .position(|&n| n == axis)
-                .expect("an elementary axis");
+        for &(e, angle, rate) in turns.iter().rev() {
             for (k, w) in omega_joint.iter_mut().enumerate() {
                 // (P^T e)_k = P[e][k] for P = R_{i+1} .. R_k.
                 let term = g.mul(relative[e][k], rate);
                 *w = g.add(*w, term);
             }
-            let r = lower::rotation(&mut g, &format!("rot_{axis}"), angle);
+            let r = lower::rotation(&mut g, ["rot_x", "rot_y", "rot_z"][e], angle);
             relative = lower::matmul(&mut g, &r, &relative);
         }
         let parent = match parent {
@@ -779,27 +768,19 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 omega: [zero; 3],
             },
         };
-        let (p_origin, p_rot, p_omega) = (parent.origin, parent.rot, parent.omega);
         // omega = R_joint^T omega_parent + omega_joint, in the body's frame: O(1) per body
         // over its parent's, where vee(R^T R') would differentiate the whole product.
         let omega: [Expr; 3] = std::array::from_fn(|k| {
             let col = [relative[0][k], relative[1][k], relative[2][k]];
-            let carried = g.dot(&col, &p_omega);
+            let carried = g.dot(&col, &parent.omega);
             g.add(carried, omega_joint[k])
         });
-        let rot = lower::matmul(&mut g, &p_rot, &relative);
+        let rot = lower::matmul(&mut g, &parent.rot, &relative);
         let mut origin: [Expr; 3] = std::array::from_fn(|i| {
-            let moved = g.dot(&p_rot[i], &at);
-            g.add(p_origin[i], moved)
+            let moved = g.dot(&parent.rot[i], &at);
+            g.add(parent.origin[i], moved)
         });
-        if let Some(relaxed) = &tb.reaction {
-            // The freed joint: zero in the motion, its multipliers are the joint force.
-            for (o, r) in origin.iter_mut().zip(relaxed) {
-                if let Some(c) = coords.iter().find(|c| c.name == *r) {
-                    *o = g.add(*o, c.z);
-                }
-            }
-        }
+        free_joint(&mut g, &mut origin, tb, &coords);
         let r: Vec<Expr> = (0..3)
             .map(|i| {
                 let arm = g.dot(&rot[i], &com);
@@ -1753,6 +1734,16 @@ fn tree_parent(
         None => {
             errors.at(p.span(), format!("unknown parent `{p}`: a tree body's parent is `ground` or a `body` declared before it"));
             Err(())
+        }
+    }
+}
+
+/// A joint freed by `reaction`: its origin moves by the relaxed coordinates along the
+/// ground's axes (zero in the motion; their multipliers are the joint's force).
+fn free_joint(g: &mut Graph, origin: &mut [Expr], tb: &parse::TreeBody, coords: &[Coord]) {
+    for (o, r) in origin.iter_mut().zip(tb.reaction.iter().flatten()) {
+        if let Some(c) = coords.iter().find(|c| c.name == *r) {
+            *o = g.add(*o, c.z);
         }
     }
 }

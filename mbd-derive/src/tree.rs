@@ -363,15 +363,11 @@ fn inward(
             let p_base = x.force(g, p_rest);
             let v_ed = scale3(g, v, ed);
             let p_up = add3(g, p_base, v_ed);
-            // Pass 3 uses the whole U (its first entry is D for a revolute joint).
-            let v_full = x.force(g, u);
-            let e_full = {
-                let uc = g.dot(&u, &c);
-                g.sub(u_force, uc)
-            };
+            // Pass 3 uses the whole U (its first entry is D for a revolute joint); `e` is the
+            // same with it, `c`'s angular entry being zero.
             let art = Articulated {
-                v: v_full,
-                e: e_full,
+                v: x.force(g, u),
+                e,
                 inv_d,
             };
             ((i_up, p_up), Some(art))
