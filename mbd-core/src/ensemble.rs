@@ -1,4 +1,5 @@
-//! Ensembles: many runs of one model at once, one run per thread at a time (rayon).
+//! Ensembles: many runs of one model at once, one run per thread at a time (rayon, behind
+//! the default feature `parallel`; without it the same functions run the members in turn).
 //!
 //! A parameter study or a Monte-Carlo set of initial conditions is a list of independent
 //! problems. Each is integrated exactly as a serial run would integrate it, on one thread,
@@ -23,6 +24,7 @@
 use crate::error::Result;
 use crate::integrate::{Integrator, Solution};
 use crate::model::{OdeSystem, Vector};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 /// `f` applied to every input, in parallel; the results are in input order.
@@ -35,13 +37,19 @@ where
     R: Send,
     F: Fn(&I) -> R + Sync,
 {
-    inputs.par_iter().map(&f).collect()
+    #[cfg(feature = "parallel")]
+    return inputs.par_iter().map(&f).collect();
+    #[cfg(not(feature = "parallel"))]
+    return inputs.iter().map(&f).collect();
 }
 
 /// The number of threads [`map`] runs on here: the size of the current rayon pool (the
-/// global one unless called inside `pool.install`).
+/// global one unless called inside `pool.install`); 1 without the feature `parallel`.
 pub fn threads() -> usize {
-    rayon::current_num_threads()
+    #[cfg(feature = "parallel")]
+    return rayon::current_num_threads();
+    #[cfg(not(feature = "parallel"))]
+    return 1;
 }
 
 /// One member of an ensemble: a model (its parameters) and its initial state.

@@ -35,15 +35,24 @@ pub struct TriplePendulum {
 #[derive(Debug, Parser)]
 #[command(about = "Serial vs parallel (rayon) ensemble of one generated model")]
 struct Args {
-    /// Number of members (parameter and initial-condition variations).
-    #[arg(long, default_value_t = 64)]
-    members: usize,
-    /// End time of every run, in seconds.
-    #[arg(long, default_value_t = 10.0)]
+    /// Number of members (parameter and initial-condition variations), at least 1.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u64).range(1..))]
+    members: u64,
+    /// End time of every run, in seconds (positive and finite).
+    #[arg(long, default_value_t = 10.0, value_parser = positive_seconds)]
     t_end: f64,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+}
+
+/// A positive, finite number of seconds.
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+        Ok(v) => Err(format!("{v} is not a positive, finite time")),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -53,9 +62,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let args = Args::parse();
-    let members: Vec<Member<TriplePendulum, 6>> = (0..args.members)
+    let members: Vec<Member<TriplePendulum, 6>> = (0..args.members as usize)
         .map(|k| {
-            let x = k as f64 / args.members.max(1) as f64;
+            let x = k as f64 / args.members as f64;
             Member::new(
                 TriplePendulum {
                     m: 1.0,

@@ -18,7 +18,7 @@ struct Args {
     #[arg(long)]
     json: bool,
     /// Run one case only (1..30).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=30))]
     case: Option<u32>,
     /// Write a Markdown report and one SVG plot per case into this directory.
     #[arg(long)]
@@ -43,13 +43,20 @@ struct ReportRow {
 
 fn main() -> ExitCode {
     let args = Args::parse();
+    // An unwritable `--out` is a usage error, found before any case runs.
+    if let Some(dir) = &args.out
+        && let Err(e) = writable(dir)
+    {
+        eprintln!("error: cannot write the report to {}: {e}", dir.display());
+        return ExitCode::from(2);
+    }
     let manual = manual_rows();
     let selected: Vec<Case> = cases()
         .into_iter()
         .filter(|c| args.case.is_none_or(|n| c.id.parse::<u32>() == Ok(n)))
         .collect();
     if selected.is_empty() {
-        eprintln!("no such case: {:?} (cases are 1..30)", args.case);
+        eprintln!("no case selected (cases are 1..30)");
         return ExitCode::FAILURE;
     }
     let mut rows = Vec::new();
@@ -101,6 +108,14 @@ fn main() -> ExitCode {
     }
 }
 
+/// Creates `dir` and checks that a file can be written in it.
+fn writable(dir: &PathBuf) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let probe = dir.join(".mbd-write-probe");
+    std::fs::write(&probe, b"")?;
+    std::fs::remove_file(probe)
+}
+
 fn report_rows(
     case: &Case,
     outcome: &Outcome,
@@ -150,12 +165,12 @@ fn table(rows: &[ReportRow]) -> String {
         "mbd",
         "mbd err %",
         "reference",
-        "time [s]"
+        "time [us]"
     );
     for r in rows {
         let _ = writeln!(
             s,
-            "{:<4} {:<20} {:<8} {:>12} {:>12} {:>10} {:>18.12} {:>11.2e} {:>18.12} {:>10.4}  {}",
+            "{:<4} {:<20} {:<8} {:>12} {:>12} {:>10} {:>18.12} {:>11.2e} {:>18.12} {:>10.1}  {}",
             r.case,
             r.quantity,
             r.unit,
@@ -166,7 +181,7 @@ fn table(rows: &[ReportRow]) -> String {
             r.value,
             r.error_pct,
             r.reference,
-            r.runtime_s,
+            r.runtime_s * 1e6,
             r.method
         );
     }
@@ -181,12 +196,12 @@ fn write_report(
     std::fs::create_dir_all(dir)?;
     let mut md = String::from("# mbd validation report\n\n");
     md.push_str("Errors are relative to the reference (the exact value; see each case's docs for corrections to the manual).\n\n");
-    md.push_str("| case | quantity | unit | theory | RecurDyn | RecurDyn err % | mbd | mbd err % | reference | method | run time [s] |\n");
+    md.push_str("| case | quantity | unit | theory | RecurDyn | RecurDyn err % | mbd | mbd err % | reference | method | run time [us] |\n");
     md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for r in rows {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {:.12} | {:.2e} | {:.12} | {} | {:.4} |",
+            "| {} | {} | {} | {} | {} | {} | {:.12} | {:.2e} | {:.12} | {} | {:.1} |",
             r.case,
             r.quantity,
             r.unit,
@@ -198,7 +213,7 @@ fn write_report(
             r.error_pct,
             r.reference,
             r.method,
-            r.runtime_s
+            r.runtime_s * 1e6
         );
     }
     md.push_str("\n## Generated code per case\n\n| case | statements | parts |\n|---|---|---|\n");
