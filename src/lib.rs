@@ -143,7 +143,8 @@ pub mod prelude {
     pub use crate::Mechanism;
     pub use mbd_core::ensemble::{self, Member};
     pub use mbd_core::{
-        Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Vector,
+        Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Solution,
+        Vector,
     };
 }
 
