@@ -5,6 +5,7 @@
 //! `#[derive(Mechanism)]`.
 
 pub mod analysis;
+pub mod augmented;
 pub mod ensemble;
 pub mod error;
 pub mod integrate;

@@ -1,6 +1,7 @@
 //! The linear solves behind accelerations: `M qdd = f` and the augmented constrained system.
 
 use crate::error::{Error, Result};
+use crate::augmented::AugmentedLagrangian;
 use crate::linalg::Lu;
 use crate::model::{Matrix, Vector};
 
@@ -36,9 +37,11 @@ pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
     finite(t, Vector::<1>::new(a))
 }
 
-/// `(qdd, lambda)` from `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` (`A = N + M`),
-/// by LU with partial pivoting of the whole augmented matrix, which stays regular when
-/// `M` alone is singular (massless coordinates fixed by constraints).
+/// `(qdd, lambda)` from `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` (`A = N + M`), by
+/// the augmented Lagrangian of [`crate::augmented`]: it stays regular where `Phi_q` loses rank
+/// (singular positions, redundant constraints; `lambda` is then the minimum-norm one) and
+/// where `M` alone is singular (massless coordinates fixed by constraints), and costs the
+/// profile of `M + Phi_q^T Phi_q`, not `(N + M)^3`.
 pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     t: f64,
     mass: &Matrix<N, N>,
@@ -47,21 +50,8 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     gamma: &Vector<M>,
 ) -> Result<(Vector<N>, Vector<M>)> {
     const { assert!(A == N + M, "augmented size must be N + M") };
-    let mut k = Matrix::<A, A>::zeros();
-    k.fixed_view_mut::<N, N>(0, 0).copy_from(mass);
-    k.fixed_view_mut::<M, N>(N, 0).copy_from(phi_q);
-    k.fixed_view_mut::<N, M>(0, N).copy_from(&phi_q.transpose());
-    let mut rhs = Vector::<A>::zeros();
-    rhs.fixed_rows_mut::<N>(0).copy_from(f);
-    rhs.fixed_rows_mut::<M>(N).copy_from(gamma);
-    let x = Lu::factor(k)
-        .ok_or(Error::SingularConstraintJacobian { t })?
-        .solve(&rhs);
-    let x = finite(t, x)?;
-    Ok((
-        x.fixed_rows::<N>(0).into_owned(),
-        x.fixed_rows::<M>(N).into_owned(),
-    ))
+    let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve(f, gamma)?;
+    Ok((finite(t, s.x)?, finite(t, s.lambda)?))
 }
 
 /// `x`, or [`Error::NonFinite`] if any entry is NaN or infinite: no NaN reaches the user.
@@ -132,22 +122,16 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
     c_qd: &Matrix<M, N>,
 ) -> Result<(Matrix<N, N>, Matrix<N, N>)> {
     const { assert!(A == N + M, "augmented size must be N + M") };
-    let mut k = Matrix::<A, A>::zeros();
-    k.fixed_view_mut::<N, N>(0, 0).copy_from(mass);
-    k.fixed_view_mut::<M, N>(N, 0).copy_from(phi_q);
-    k.fixed_view_mut::<N, M>(0, N).copy_from(&phi_q.transpose());
-    let lu = Lu::factor(k).ok_or(Error::SingularConstraintJacobian { t })?;
-    let solve = |r: &Matrix<N, N>, c: &Matrix<M, N>| {
+    let al = AugmentedLagrangian::new(t, mass, phi_q)?;
+    let solve = |r: &Matrix<N, N>, c: &Matrix<M, N>| -> Result<Matrix<N, N>> {
         let mut out = Matrix::<N, N>::zeros();
         for j in 0..N {
-            let mut rhs = Vector::<A>::zeros();
-            rhs.fixed_rows_mut::<N>(0).copy_from(&(-r.column(j)));
-            rhs.fixed_rows_mut::<M>(N).copy_from(&(-c.column(j)));
-            out.set_column(j, &lu.solve(&rhs).fixed_rows::<N>(0));
+            let s = al.solve(&(-r.column(j)), &(-c.column(j)))?;
+            out.set_column(j, &s.x);
         }
-        out
+        Ok(out)
     };
-    let (a_q, a_qd) = (solve(r_q, c_q), solve(r_qd, c_qd));
+    let (a_q, a_qd) = (solve(r_q, c_q)?, solve(r_qd, c_qd)?);
     if a_q.iter().chain(a_qd.iter()).all(|v| v.is_finite()) {
         Ok((a_q, a_qd))
     } else {

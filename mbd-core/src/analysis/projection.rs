@@ -11,9 +11,8 @@
 
 use super::{NewtonOptions, max_norm, negligible};
 use crate::error::{Error, Result};
-use crate::linalg::Lu;
+use crate::augmented::AugmentedLagrangian;
 use crate::model::{Constrained, Matrix, Vector};
-use crate::solve::solve_mass;
 
 /// `(max |Phi_i(q, t)|, max |(Phi_q qd + Phi_t)_i|)`: how far a state is from the position
 /// and velocity constraint manifolds.
@@ -28,7 +27,9 @@ pub fn constraint_drift<S: Constrained<N, M>, const N: usize, const M: usize>(
     (position, velocity)
 }
 
-/// The `M`-orthogonal correction `dx = -M^-1 J^T (J M^-1 J^T)^-1 r` that makes `J (x + dx) = J x - r`.
+/// The `M`-orthogonal correction `dx = -M^-1 J^T (J M^-1 J^T)^-1 r` that makes `J (x + dx) = J x - r`,
+/// as the saddle-point system `[M J^T; J 0] [dx; mu] = [0; -r]` solved by the augmented
+/// Lagrangian: where `J` lost rank, the `M`-weighted least-squares correction.
 fn metric_correction<S: Constrained<N, M>, const N: usize, const M: usize>(
     sys: &S,
     t: f64,
@@ -37,16 +38,7 @@ fn metric_correction<S: Constrained<N, M>, const N: usize, const M: usize>(
     r: &Vector<M>,
 ) -> Result<Vector<N>> {
     let mass = sys.mass_matrix(t, q);
-    let mut minv_jt = Matrix::<N, M>::zeros();
-    for k in 0..M {
-        let column = solve_mass(t, &mass, &jac.row(k).transpose())?;
-        minv_jt.set_column(k, &column);
-    }
-    let schur = jac * minv_jt;
-    let mu = Lu::factor(schur)
-        .ok_or(Error::SingularConstraintJacobian { t })?
-        .solve(r);
-    let dx = -(minv_jt * mu);
+    let dx = AugmentedLagrangian::new(t, &mass, jac)?.solve_least_squares(&Vector::zeros(), &(-r))?;
     if dx.iter().all(|v| v.is_finite()) {
         Ok(dx)
     } else {

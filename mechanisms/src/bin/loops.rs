@@ -1,0 +1,84 @@
+//! Closed loops at scale: the IFToMM A02 assembly of 40 four-bar loops
+//! ([`mechanisms::fourbar_assembly`]) — the cost of one right-hand side and whole runs of
+//! every method, with the error of crank 0's tip against the one-coordinate reference and
+//! how far the cranks drifted from a parallelogram.
+//!
+//! `cargo run --release -p mechanisms --bin loops [-- --quick]`
+
+use mbd::integrate::{GeneralizedAlpha, Integrator, Radau5};
+use mbd::{Dopri5, OdeSystem, Options, Solution};
+use mechanisms::fourbar_assembly::{self as fa, FourBarAssembly};
+use std::time::Instant;
+
+const T1: f64 = 20.0;
+const OUTPUTS: usize = 400;
+
+/// Median over 51 batches of the time per call, in microseconds.
+fn median_us<F: FnMut()>(mut f: F) -> f64 {
+    let mut batch = 1u64;
+    while {
+        let s = Instant::now();
+        (0..batch).for_each(|_| f());
+        s.elapsed().as_secs_f64() < 2e-3
+    } {
+        batch *= 2;
+    }
+    let mut v: Vec<f64> = (0..51)
+        .map(|_| {
+            let s = Instant::now();
+            (0..batch).for_each(|_| f());
+            s.elapsed().as_secs_f64() * 1e6 / batch as f64
+        })
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn row(name: &str, setting: &str, a: &FourBarAssembly, r: &Solution<2>, run: impl FnOnce() -> mbd::Result<Solution<{ fa::D }>>) {
+    let start = Instant::now();
+    let out = run();
+    let secs = start.elapsed().as_secs_f64();
+    match out {
+        Ok(sol) => {
+            let err = fa::tip_error(a, &sol, r, T1, OUTPUTS);
+            let spread = sol.y.iter().map(|y| a.spread(y).0).fold(0.0, f64::max);
+            println!(
+                "{name:<8} {setting:<10} ok   tip error {err:9.2e}  max crank spread {spread:9.2e}  {:8.1} ms  steps {:7}  rhs {:8}",
+                secs * 1e3,
+                sol.stats.n_accepted,
+                sol.stats.n_rhs
+            );
+        }
+        Err(e) => println!("{name:<8} {setting:<10} FAIL {e}  ({:.1} ms)", secs * 1e3),
+    }
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let a = FourBarAssembly::benchmark();
+    let y0 = a.benchmark_state(1.0);
+    let reference = fa::reference(&a, 1.0, T1).expect("reference");
+    let mut y = y0;
+    y[0] += 0.3;
+    println!("rhs: {:.2} us", median_us(|| {
+        std::hint::black_box(a.rhs(0.1, std::hint::black_box(&y)).unwrap());
+    }));
+    let dopri: &[f64] = if quick { &[1e-6, 1e-8] } else { &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] };
+    for &tol in dopri {
+        let opts = Options { rtol: tol, atol: tol, ..Default::default() };
+        row("DOPRI5", &format!("{tol:.0e}"), &a, &reference, || Dopri5::new(opts).solve(&a, 0.0, y0, T1, &[]));
+    }
+    let radau: &[f64] = if quick { &[1e-6] } else { &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10] };
+    for &tol in radau {
+        let opts = Options { rtol: tol, atol: tol, ..Default::default() };
+        row("Radau5", &format!("{tol:.0e}"), &a, &reference, || Radau5::new(opts).solve(&a, 0.0, y0, T1, &[]));
+    }
+    let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };
+    for &h in alpha {
+        let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
+        let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
+        row("gen-a", &format!("h={h:.0e}"), &a, &reference, || {
+            GeneralizedAlpha::new(0.9, h).solve_constrained::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
+        });
+    }
+}
