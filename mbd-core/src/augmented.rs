@@ -389,3 +389,46 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
 fn max_abs<const K: usize>(v: &Vector<K>) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit mass in the plane held on `x = 1` by two equal constraints (one redundant):
+    /// `x'' = 1 - ...` is fixed, `y'' = f_y`, and the multipliers are the minimum-norm split
+    /// `lambda_1 = lambda_2 = f_x / 2` of the one reaction.
+    #[test]
+    fn redundant_constraints_get_minimum_norm_multipliers() {
+        let mass = Matrix::<2, 2>::identity();
+        let p = Matrix::<2, 2>::new(1.0, 0.0, 1.0, 0.0);
+        let al = AugmentedLagrangian::new(0.0, &mass, &p).unwrap();
+        let s = al.solve(&Vector::<2>::new(3.0, -2.0), &Vector::<2>::zeros()).unwrap();
+        assert!((s.x - Vector::<2>::new(0.0, -2.0)).norm() < 1e-14, "{}", s.x);
+        assert!((s.lambda - Vector::<2>::new(1.5, 1.5)).norm() < 1e-10, "{}", s.lambda);
+        // Contradictory accelerations of the same two rows: inconsistent, a typed error.
+        let err = al.solve(&Vector::<2>::zeros(), &Vector::<2>::new(0.0, 1.0)).unwrap_err();
+        assert_eq!(err, Error::SingularConstraintJacobian { t: 0.0 });
+    }
+
+    /// A banded system against the dense LU of the whole saddle-point matrix.
+    #[test]
+    fn matches_the_dense_saddle_point_solve() {
+        const N: usize = 5;
+        let mass = Matrix::<N, N>::from_fn(|i, j| match i.abs_diff(j) {
+            0 => 2.0 + i as f64,
+            1 => 0.3,
+            _ => 0.0,
+        });
+        let p = Matrix::<2, N>::from_fn(|k, j| if j == k + 1 || j == k + 2 { 1.0 + (k + j) as f64 * 0.1 } else { 0.0 });
+        let (u, b) = (Vector::<N>::from_fn(|i, _| (i as f64).sin()), Vector::<2>::new(0.5, -1.0));
+        let s = AugmentedLagrangian::new(0.0, &mass, &p).unwrap().solve(&u, &b).unwrap();
+        let mut k = Matrix::<7, 7>::zeros();
+        k.fixed_view_mut::<N, N>(0, 0).copy_from(&mass);
+        k.fixed_view_mut::<2, N>(N, 0).copy_from(&p);
+        k.fixed_view_mut::<N, 2>(0, N).copy_from(&p.transpose());
+        let rhs = Vector::<7>::from_fn(|i, _| if i < N { u[i] } else { b[i - N] });
+        let z = crate::linalg::Lu::factor(k).unwrap().solve(&rhs);
+        assert!((s.x - z.fixed_rows::<N>(0)).norm() < 1e-14, "{} vs {}", s.x, z);
+        assert!((s.lambda - z.fixed_rows::<2>(N)).norm() < 1e-12);
+    }
+}
