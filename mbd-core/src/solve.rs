@@ -1,7 +1,7 @@
 //! The linear solves behind accelerations: `M qdd = f` and the augmented constrained system.
 
-use crate::error::{Error, Result};
 use crate::augmented::AugmentedLagrangian;
+use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, Vector};
 

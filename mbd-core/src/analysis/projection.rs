@@ -10,8 +10,8 @@
 //! velocity: `qd <- qd - M^-1 Phi_q^T (Phi_q M^-1 Phi_q^T)^-1 (Phi_q qd + Phi_t)`.
 
 use super::{NewtonOptions, max_norm, negligible};
-use crate::error::{Error, Result};
 use crate::augmented::AugmentedLagrangian;
+use crate::error::{Error, Result};
 use crate::model::{Constrained, Matrix, Vector};
 
 /// `(max |Phi_i(q, t)|, max |(Phi_q qd + Phi_t)_i|)`: how far a state is from the position
@@ -38,7 +38,8 @@ fn metric_correction<S: Constrained<N, M>, const N: usize, const M: usize>(
     r: &Vector<M>,
 ) -> Result<Vector<N>> {
     let mass = sys.mass_matrix(t, q);
-    let dx = AugmentedLagrangian::new(t, &mass, jac)?.solve_least_squares(&Vector::zeros(), &(-r))?;
+    let dx =
+        AugmentedLagrangian::new(t, &mass, jac)?.solve_least_squares(&Vector::zeros(), &(-r))?;
     if dx.iter().all(|v| v.is_finite()) {
         Ok(dx)
     } else {

@@ -34,7 +34,13 @@ fn median_us<F: FnMut()>(mut f: F) -> f64 {
     v[v.len() / 2]
 }
 
-fn row(name: &str, setting: &str, a: &FourBarAssembly, r: &Solution<2>, run: impl FnOnce() -> mbd::Result<Solution<{ fa::D }>>) {
+fn row(
+    name: &str,
+    setting: &str,
+    a: &FourBarAssembly,
+    r: &Solution<2>,
+    run: impl FnOnce() -> mbd::Result<Solution<{ fa::D }>>,
+) {
     let start = Instant::now();
     let out = run();
     let secs = start.elapsed().as_secs_f64();
@@ -60,25 +66,56 @@ fn main() {
     let reference = fa::reference(&a, 1.0, T1).expect("reference");
     let mut y = y0;
     y[0] += 0.3;
-    println!("rhs: {:.2} us", median_us(|| {
-        std::hint::black_box(a.rhs(0.1, std::hint::black_box(&y)).unwrap());
-    }));
-    let dopri: &[f64] = if quick { &[1e-6, 1e-8] } else { &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] };
+    println!(
+        "rhs: {:.2} us",
+        median_us(|| {
+            std::hint::black_box(a.rhs(0.1, std::hint::black_box(&y)).unwrap());
+        })
+    );
+    let dopri: &[f64] = if quick {
+        &[1e-6, 1e-8]
+    } else {
+        &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]
+    };
     for &tol in dopri {
-        let opts = Options { rtol: tol, atol: tol, ..Default::default() };
-        row("DOPRI5", &format!("{tol:.0e}"), &a, &reference, || Dopri5::new(opts).solve(&a, 0.0, y0, T1, &[]));
+        let opts = Options {
+            rtol: tol,
+            atol: tol,
+            ..Default::default()
+        };
+        row("DOPRI5", &format!("{tol:.0e}"), &a, &reference, || {
+            Dopri5::new(opts).solve(&a, 0.0, y0, T1, &[])
+        });
     }
-    let radau: &[f64] = if quick { &[1e-6] } else { &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10] };
+    let radau: &[f64] = if quick {
+        &[1e-6]
+    } else {
+        &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10]
+    };
     for &tol in radau {
-        let opts = Options { rtol: tol, atol: tol, ..Default::default() };
-        row("Radau5", &format!("{tol:.0e}"), &a, &reference, || Radau5::new(opts).solve(&a, 0.0, y0, T1, &[]));
+        let opts = Options {
+            rtol: tol,
+            atol: tol,
+            ..Default::default()
+        };
+        row("Radau5", &format!("{tol:.0e}"), &a, &reference, || {
+            Radau5::new(opts).solve(&a, 0.0, y0, T1, &[])
+        });
     }
     let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };
     for &h in alpha {
         let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
         let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
         row("gen-a", &format!("h={h:.0e}"), &a, &reference, || {
-            GeneralizedAlpha::new(0.9, h).solve_constrained::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
+            GeneralizedAlpha::new(0.9, h)
+                .solve_constrained::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
+                    &a,
+                    0.0,
+                    q0,
+                    qd0,
+                    T1,
+                    &[],
+                )
         });
     }
 }
