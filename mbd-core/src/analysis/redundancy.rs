@@ -24,7 +24,7 @@ pub fn rank_and_redundant<const M: usize, const N: usize>(
             .enumerate()
             .map(|(p, &k)| (p, rows[k].norm()))
             .fold((0, -1.0), |b, c| if c.1 > b.1 { c } else { b });
-        if !(norm > RANK_TOL * scale) {
+        if norm.is_nan() || norm <= RANK_TOL * scale {
             break;
         }
         let k = left.swap_remove(pos);
