@@ -8,6 +8,8 @@ pub mod analysis;
 pub mod augmented;
 pub mod ensemble;
 pub mod error;
+pub mod friction;
+pub mod hybrid;
 pub mod integrate;
 pub mod jacobian;
 pub mod linalg;
@@ -18,4 +20,7 @@ pub use error::{Error, Result};
 pub use integrate::{
     Direction, Dopri5, Event, EventHit, Integrator, Options, Rk4, Segment, Solution, Stats,
 };
-pub use model::{Constrained, Generated, Matrix, Mechanism, OdeSystem, Vector};
+pub use model::{
+    Constrained, Contacts, Frictional, Generated, Hybrid, Matrix, Mechanism, OdeSystem, Slip,
+    Vector,
+};

@@ -96,3 +96,82 @@ pub struct Generated {
     /// Constraint equations.
     pub constraints: usize,
 }
+
+/// A system with discrete modes: smooth dynamics `y' = f_mode(t, y)` within a mode, and
+/// switching functions whose zero crossings end it. [`crate::hybrid::solve`] integrates one
+/// mode at a time with any [`crate::integrate::Integrator`], locates the switch on the dense
+/// output, asks [`Self::switch`] for the next mode and restarts there, so that no step ever
+/// integrates across a discontinuity. Coulomb friction is one such system
+/// ([`crate::friction`]); the derive implements this trait for every model with friction.
+pub trait Hybrid<const D: usize> {
+    /// The discrete state (for friction: slip forward, slip backward or stick, per contact).
+    type Mode: Copy + PartialEq + std::fmt::Debug;
+
+    /// The number of switching functions (the same in every mode).
+    const SWITCHES: usize;
+
+    /// `y' = f(t, y)` in `mode`.
+    fn rhs_in(&self, t: f64, y: &Vector<D>, mode: &Self::Mode) -> Result<Vector<D>>;
+
+    /// Switching function `k` of `mode`: positive (or zero at the switch that entered the
+    /// mode) while the mode holds; its falling crossing of zero ends the mode. NaN when it
+    /// cannot be evaluated.
+    fn switching(&self, t: f64, y: &Vector<D>, mode: &Self::Mode, k: usize) -> f64;
+
+    /// The mode at `(t, y)` from the state alone: where a run starts, and what the plain
+    /// right-hand side uses.
+    fn mode_at(&self, t: f64, y: &Vector<D>) -> Result<Self::Mode>;
+
+    /// The mode after switching function `k` of `mode` crossed zero at `(t, y)`; `y` may be
+    /// set onto the switching surface (a sliding velocity that reached zero becomes exactly 0).
+    fn switch(&self, t: f64, y: &mut Vector<D>, mode: &Self::Mode, k: usize) -> Result<Self::Mode>;
+
+    /// [`OdeSystem::project`] in `mode`; the default does nothing.
+    fn project_in(&self, _t: f64, _y: &mut Vector<D>, _mode: &Self::Mode) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// Coulomb friction at one contact: sliding forward (`qd_s > 0`), backward, or stuck.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Slip {
+    /// Sliding with `qd_s > 0`: friction `-mu_k |N|` along `s`.
+    Forward,
+    /// Sliding with `qd_s < 0`: friction `+mu_k |N|`.
+    Backward,
+    /// Stuck: `qdd_s = 0`, the friction force is whatever holds it, up to `mu_s |N|`.
+    Stick,
+}
+
+/// What the mode logic of Coulomb friction needs at `(t, q, qd)`: the equations of motion
+/// without friction, and per contact the normal force and the two coefficients.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contacts<const N: usize, const M: usize, const F: usize> {
+    /// `M(q, t)`.
+    pub mass: Matrix<N, N>,
+    /// `f(q, qd, t)` without friction.
+    pub forces: Vector<N>,
+    /// `Phi_q` (no rows without constraints).
+    pub phi_q: Matrix<M, N>,
+    /// `gamma`, so that `Phi_q qdd = gamma`.
+    pub gamma: Vector<M>,
+    /// The normal force of each contact (its magnitude counts).
+    pub normal: [f64; F],
+    /// Kinetic coefficients.
+    pub mu_k: [f64; F],
+    /// Static coefficients, `mu_s >= mu_k`.
+    pub mu_s: [f64; F],
+}
+
+/// A mechanism with `F` Coulomb friction contacts, each along one free coordinate
+/// (`A = N + M + F`, the size of the solve with every contact stuck). The friction forces
+/// are `-mu_k |N| sign(qd_s)` while sliding; at `qd_s = 0` they are reactions found with
+/// the accelerations ([`crate::friction`]).
+pub trait Frictional<const N: usize, const M: usize, const F: usize, const A: usize>:
+    Mechanism<N>
+{
+    /// The free coordinate each contact slides along, in declaration order.
+    const ALONG: [usize; F];
+    /// The equations without friction and the contacts' data at `(t, q, qd)`.
+    fn contacts(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Contacts<N, M, F>;
+}

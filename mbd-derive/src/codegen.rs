@@ -18,7 +18,7 @@ const FLAT_LIMIT: usize = 1024;
 const GROUP: usize = 1024;
 
 /// One function body under construction.
-struct Block<'a> {
+pub(crate) struct Block<'a> {
     eq: &'a Equations,
     names: HashMap<Expr, TokenStream>,
     stmts: Vec<TokenStream>,
@@ -35,7 +35,7 @@ impl<'a> Block<'a> {
     /// profile. So a body of more than [`FLAT_LIMIT`] temporaries declares them first, a
     /// [`GROUP`] per `let (t0, t1, ..): (f64, f64, ..);`, then assigns each once: the
     /// nesting depth is the number of groups, and the optimised code is the same.
-    fn new(eq: &'a Equations, roots: &[Expr]) -> Self {
+    pub(crate) fn new(eq: &'a Equations, roots: &[Expr]) -> Self {
         Self::after(eq, roots, &HashMap::new(), 0)
     }
 
@@ -80,11 +80,11 @@ impl<'a> Block<'a> {
     }
 
     /// The number of temporaries (scheduled nodes).
-    fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.len
     }
 
-    fn leaf(&self, e: Expr) -> TokenStream {
+    pub(crate) fn leaf(&self, e: Expr) -> TokenStream {
         if let Some(n) = self.names.get(&e) {
             return n.clone();
         }
@@ -172,13 +172,13 @@ impl<'a> Block<'a> {
         }
     }
 
-    fn stmts(&self) -> TokenStream {
+    pub(crate) fn stmts(&self) -> TokenStream {
         let s = &self.stmts;
         quote!(#(#s)*)
     }
 
     /// `let mut name = Vector::<N>::zeros(); name[i] = ..;` for the non-zero entries.
-    fn vector(&self, name: &str, n: usize, entries: &[Expr]) -> TokenStream {
+    pub(crate) fn vector(&self, name: &str, n: usize, entries: &[Expr]) -> TokenStream {
         let id = format_ident!("{}", name);
         let sets = self.sets(name, entries);
         quote!(let mut #id = ::mbd::__private::Vector::<#n>::zeros(); #sets)
@@ -198,7 +198,13 @@ impl<'a> Block<'a> {
         quote!(#(#sets)*)
     }
 
-    fn matrix(&self, name: &str, r: usize, c: usize, entries: &[Vec<Expr>]) -> TokenStream {
+    pub(crate) fn matrix(
+        &self,
+        name: &str,
+        r: usize,
+        c: usize,
+        entries: &[Vec<Expr>],
+    ) -> TokenStream {
         let id = format_ident!("{}", name);
         let mut sets = Vec::new();
         for (i, row) in entries.iter().enumerate() {
@@ -395,8 +401,11 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     // Friction directions: the sign of the sliding velocities (sliding view: given).
     let friction_coords: Vec<usize> = eq.frictions.iter().map(|f| f.coord).collect();
     let nf = friction_coords.len();
-    let direction =
-        (nf > 0).then(|| quote!(let direction: [f64; #nf] = [#(qd[#friction_coords].signum()),*];));
+    // At rest (`+0.0` or `-0.0`) the direction is 0: the friction force there is a reaction,
+    // found with the accelerations (`mbd_core::friction`), not a sign bit's guess.
+    let direction = (nf > 0).then(|| {
+        quote!(let direction: [f64; #nf] = [#(::mbd::__private::friction::direction(qd[#friction_coords])),*];)
+    });
     let split = quote! {
         let q = y.fixed_rows::<#n>(0).into_owned();
         let qd = y.fixed_rows::<#n>(#n).into_owned();
@@ -442,7 +451,10 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     } else {
         None
     };
-    let acceleration = if constrained {
+    let friction_acceleration = (nf > 0).then(|| crate::friction::acceleration(eq));
+    let acceleration = if let Some(solve) = &friction_acceleration {
+        quote!(#solve.map(|(qdd, _)| qdd))
+    } else if constrained {
         quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
     } else if let Some(code) = &recursion {
         quote! {
@@ -470,6 +482,10 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     // A one-coordinate acceleration is a few operations: called out of line from another
     // crate (where integrators and `rhs` are instantiated), the call costs as much as the body.
     let inline_acceleration = eq.single_qdd.is_some().then(|| quote!(#[inline]));
+    let forces_body = match nf {
+        0 => quote!(#fo_stmts #fo_fill f),
+        _ => crate::friction::forces(eq),
+    };
     let mechanism_impl = quote! {
         impl ::mbd::__private::Mechanism<#n> for #ident {
             const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
@@ -479,10 +495,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 mass
             }
             fn forces(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
-                #direction
-                #fo_stmts
-                #fo_fill
-                f
+                #forces_body
             }
             #inline_acceleration
             fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
@@ -519,6 +532,13 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             full.matrix("phi_q", m, n, &eq.phi_q),
             full.vector("gamma", m, &eq.gamma),
         );
+        let solve_full = match &friction_acceleration {
+            Some(solve) => solve.clone(),
+            None => quote! {
+                #f_s #f_m #f_f #f_pq #f_g
+                ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma)
+            },
+        };
         quote! {
             impl ::mbd::__private::Constrained<#n, #m> for #ident {
                 fn phi(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#m> { #p_s #p_f phi }
@@ -527,9 +547,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 fn gamma(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#m> { #g_s #g_f gamma }
                 fn acceleration_and_multipliers(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                     -> ::mbd::__private::Result<(::mbd::__private::Vector<#n>, ::mbd::__private::Vector<#m>)> {
-                    #direction
-                    #f_s #f_m #f_f #f_pq #f_g
-                    ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma)
+                    #solve_full
                 }
             }
         }
@@ -758,7 +776,10 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             "[`{ident}`] sliding in fixed directions (`+1`/`-1` per friction, in declaration order): integrate this \
              view from a sliding state to a stop event, then test [`{ident}`]'s `*_sticks`."
         );
+        let (modes, statements) = crate::friction::emit(ident, eq, frictionless);
+        parts.statements += statements;
         quote! {
+            #modes
             #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
             impl #ident {
                 #(#fns)*

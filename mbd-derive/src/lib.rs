@@ -9,6 +9,7 @@
 
 mod codegen;
 mod expand;
+mod friction;
 mod lower;
 mod model;
 mod parse;

@@ -1496,6 +1496,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             };
             let normal = lw.scalar(&f.normal, Context::Output);
             if let (Some(mu), Some(mu_static), Some(normal)) = (mu, mu_static, normal) {
+                crate::friction::check_coefficients(&g, mu, mu_static, f, &mut errors);
                 frictions.push(FrictionEq {
                     coord: a,
                     mu,
@@ -1571,11 +1572,12 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     // One free coordinate without constraints: `qdd = f / m` with the factors the two share
     // cancelled and the parameters' quotient apart (`-m g l sin(theta) / (m l^2)` is
     // `(-g / l) sin(theta)`), as one writes it by hand; generated code checks `m` first.
-    let single_qdd = (n == 1 && phi.is_empty() && recursive_qdd.is_none()).then(|| {
-        let parameters_only =
-            |g: &Graph, e: Expr| !uses_roles(g, &roles, e, |r| !matches!(r, Role::Param(_)));
-        g.quotient_cancelled(forces[0], mass[0][0], parameters_only)
-    });
+    let single_qdd = (n == 1 && phi.is_empty() && recursive_qdd.is_none() && frictions.is_empty())
+        .then(|| {
+            let parameters_only =
+                |g: &Graph, e: Expr| !uses_roles(g, &roles, e, |r| !matches!(r, Role::Param(_)));
+            g.quotient_cancelled(forces[0], mass[0][0], parameters_only)
+        });
 
     // Residual Jacobians for implicit methods.
     let jacobian = ast.jacobian.then(|| {

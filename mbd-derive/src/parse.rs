@@ -681,12 +681,24 @@ impl Mechanism {
                                     Arg::Flag(c) => along = Some(c),
                                     _ => errors.at(k.span(), "`along` names a coordinate"),
                                 },
-                                Arg::Keyed(k, v) if k == "mu" => mu = Some(v),
+                                // `mu` is both coefficients unless `mu_s` is given;
+                                // `mu_k` names the kinetic one alone.
+                                Arg::Keyed(k, v) if k == "mu" || k == "mu_k" => {
+                                    if mu.is_some() {
+                                        errors.at(k.span(), "`friction` takes one of `mu` and `mu_k` (the kinetic coefficient)");
+                                    }
+                                    mu = Some(v)
+                                }
                                 Arg::Keyed(k, v) if k == "normal" => normal = Some(v),
-                                Arg::Keyed(k, v) if k == "mu_static" => mu_static = Some(v),
+                                Arg::Keyed(k, v) if k == "mu_s" || k == "mu_static" => {
+                                    if mu_static.is_some() {
+                                        errors.at(k.span(), "`friction` takes one of `mu_s` and `mu_static` (the static coefficient)");
+                                    }
+                                    mu_static = Some(v)
+                                }
                                 Arg::Keyed(k, _) | Arg::Flag(k) => errors.at(
                                     k.span(),
-                                    format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `mu_static`, `normal`"),
+                                    format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `mu_k`, `mu_s`, `mu_static`, `normal`"),
                                 ),
                                 Arg::Other(e) => errors.at(e.span(), "expected `key = value` in `friction`"),
                             }

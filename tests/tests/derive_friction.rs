@@ -1,7 +1,8 @@
 //! Coulomb friction whose normal force is a reaction, and a terminal event at rest.
 
 use approx::assert_relative_eq;
-use mbd::integrate::{Dopri5, Integrator, Radau5};
+use mbd::Slip;
+use mbd::integrate::{Dopri5, Gauss, GeneralizedAlpha, Integrator, Radau5, Rk4};
 use mbd::nalgebra;
 use mbd::prelude::*;
 
@@ -71,5 +72,196 @@ fn block_stops_where_constant_deceleration_says() {
         !steep
             .s_sticks(0.0, &nalgebra::Vector2::new(0.0, 0.0))
             .unwrap()
+    );
+}
+
+/// A block on a level floor pushed along it by a constant `push`: the normal force is
+/// `m g`, so it stays put while `|push| <= mu_s m g` and otherwise accelerates at
+/// `(push - mu_k m g sign(push)) / m`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(s)]
+#[relaxed(n)]
+#[particle(block, mass = m, at = [s, n])]
+#[friction(along = s, mu_k = mu_k, mu_s = mu_s, normal = reaction(n))]
+#[generalized_force(push, along = s, value = push)]
+pub struct Floor {
+    pub m: f64,
+    pub g: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+    pub push: f64,
+}
+
+const FLOOR: Floor = Floor {
+    m: 2.0,
+    g: 9.81,
+    mu_k: 0.4,
+    mu_s: 0.5,
+    push: 0.0,
+};
+
+#[test]
+fn at_rest_the_load_decides_not_the_sign_of_zero() {
+    let q = nalgebra::Vector1::new(0.0);
+    for zero in [0.0, -0.0] {
+        let qd = nalgebra::Vector1::new(zero);
+        // Unloaded: zero acceleration (the sign bit of the zero velocity plays no part).
+        assert_eq!(FLOOR.acceleration(0.0, &q, &qd).unwrap()[0], 0.0);
+        // Pushed within the static bound mu_s m g = 9.81 N (up to it): still zero.
+        for push in [3.0, -9.0, 9.81, -9.81] {
+            let f = Floor { push, ..FLOOR };
+            assert_eq!(f.acceleration(0.0, &q, &qd).unwrap()[0], 0.0, "push {push}");
+            // M qdd = f holds with the holding force in `forces`.
+            assert_eq!(f.forces(0.0, &q, &qd)[0], 0.0);
+        }
+        // Beyond it: it breaks away in the direction of the push, under kinetic friction.
+        for push in [12.0, -12.0] {
+            let f = Floor { push, ..FLOOR };
+            let a = (push - push.signum() * 0.4 * 2.0 * 9.81) / 2.0;
+            assert_relative_eq!(
+                f.acceleration(0.0, &q, &qd).unwrap()[0],
+                a,
+                max_relative = 1e-15
+            );
+        }
+    }
+    // Sliding, kinetic friction opposes the velocity whatever the load.
+    let f = Floor { push: 3.0, ..FLOOR };
+    let a = f
+        .acceleration(0.0, &q, &nalgebra::Vector1::new(-1e-300))
+        .unwrap()[0];
+    assert_relative_eq!(a, (3.0 + 0.4 * 2.0 * 9.81) / 2.0, max_relative = 1e-15);
+}
+
+#[test]
+fn coefficients_outside_their_domain_are_a_typed_error() {
+    let q = nalgebra::Vector1::new(0.0);
+    for (mu_k, mu_s) in [(0.5, 0.4), (-0.1, 0.4), (0.4, f64::NAN)] {
+        let f = Floor {
+            mu_k,
+            mu_s,
+            ..FLOOR
+        };
+        assert!(matches!(
+            f.acceleration(0.0, &q, &q),
+            Err(mbd::Error::InvalidInput { .. })
+        ));
+    }
+}
+
+const AT_REST: Slope = Slope {
+    m: 50.0,
+    g: 9.81,
+    slope: 0.261_799_387_799_149_4, // 15 degrees
+    mu: 0.4,
+    v0: 0.0,
+};
+
+/// At rest on a 15 degree incline, `tan 15 deg = 0.268 < 0.4`: the block must stay, exactly.
+#[test]
+fn block_at_rest_on_an_incline_stays_with_every_method() {
+    let y0 = AT_REST.initial_state();
+    assert_eq!(y0, nalgebra::Vector2::zeros());
+    for zero in [0.0, -0.0] {
+        let (q, qd) = (nalgebra::Vector1::new(0.0), nalgebra::Vector1::new(zero));
+        assert_eq!(AT_REST.acceleration(0.0, &q, &qd).unwrap()[0], 0.0);
+    }
+    let rest = |y: &nalgebra::Vector2<f64>| assert_eq!(*y, nalgebra::Vector2::zeros());
+    for tol in [1e-3, 1e-6, 1e-10, 1e-13] {
+        let opts = Options {
+            rtol: tol,
+            atol: tol,
+            ..Options::default()
+        };
+        let dopri = Dopri5::new(opts.clone());
+        let radau = Radau5::new(opts);
+        // Mode by mode, and the plain model through the ordinary solve.
+        rest(
+            mbd::hybrid::solve(&dopri, &AT_REST, 0.0, y0, 10.0, &[])
+                .unwrap()
+                .solution
+                .last()
+                .1,
+        );
+        rest(
+            mbd::hybrid::solve(&radau, &AT_REST, 0.0, y0, 10.0, &[])
+                .unwrap()
+                .solution
+                .last()
+                .1,
+        );
+        rest(dopri.solve(&AT_REST, 0.0, y0, 10.0, &[]).unwrap().last().1);
+        rest(radau.solve(&AT_REST, 0.0, y0, 10.0, &[]).unwrap().last().1);
+    }
+    for h in [1.0, 1e-2, 1e-4] {
+        rest(
+            Rk4::new(h)
+                .solve(&AT_REST, 0.0, y0, 10.0, &[])
+                .unwrap()
+                .last()
+                .1,
+        );
+        rest(
+            mbd::hybrid::solve(&Gauss::new(h), &AT_REST, 0.0, y0, 1.0, &[])
+                .unwrap()
+                .solution
+                .last()
+                .1,
+        );
+        let ga = GeneralizedAlpha::new(0.8, h);
+        let (q0, qd0) = (nalgebra::Vector1::new(0.0), nalgebra::Vector1::new(0.0));
+        let sol = ga
+            .solve::<_, 1, 2>(&AT_REST, 0.0, q0, qd0, 1.0, &[])
+            .unwrap();
+        rest(sol.last().1);
+    }
+}
+
+/// Launched down the incline: slides to the exact stop of constant deceleration, sticks
+/// there, and stays, with the ordinary solve of each method driven mode by mode.
+#[test]
+fn block_stops_and_stays_on_the_plain_model() {
+    let b = Slope { v0: 7.0, ..AT_REST };
+    let a = 9.81 * (b.slope.sin() - 0.4 * b.slope.cos());
+    let (t_stop, s_stop) = (-7.0 / a, 49.0 / (-2.0 * a));
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    let check = |run: mbd::hybrid::HybridSolution<2, [Slip; 1]>, what: &str| {
+        assert_eq!(run.switches.len(), 1, "{what}");
+        let sw = &run.switches[0];
+        assert_eq!((sw.from, sw.to), ([Slip::Forward], [Slip::Stick]), "{what}");
+        assert!(
+            (sw.t - t_stop).abs() <= 1e-12,
+            "{what}: {} vs {t_stop}",
+            sw.t
+        );
+        let (t, y) = run.solution.last();
+        assert_eq!(t, 20.0);
+        assert_relative_eq!(y[0], s_stop, max_relative = 1e-12);
+        assert_eq!(y[1], 0.0, "{what}");
+    };
+    check(
+        mbd::hybrid::solve(
+            &Dopri5::new(opts.clone()),
+            &b,
+            0.0,
+            b.initial_state(),
+            20.0,
+            &[],
+        )
+        .unwrap(),
+        "DOPRI5",
+    );
+    check(
+        mbd::hybrid::solve(&Radau5::new(opts), &b, 0.0, b.initial_state(), 20.0, &[]).unwrap(),
+        "Radau5",
+    );
+    check(
+        mbd::hybrid::solve(&Rk4::new(0.01), &b, 0.0, b.initial_state(), 20.0, &[]).unwrap(),
+        "RK4",
     );
 }

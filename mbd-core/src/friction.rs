@@ -1,0 +1,386 @@
+//! Coulomb friction as discrete modes: the accelerations in given modes, the modes
+//! consistent with a state, and the switching functions (see [`crate::model::Hybrid`]).
+//!
+//! Per contact `k` along free coordinate `s_k`: sliding, the friction force is
+//! `-mu_k |N_k| sign(qd_s)`; stuck, `qdd_s = 0` is one more row of the linear solve,
+//! `[M Phi_q^T E^T; Phi_q 0 0; E 0 0] [qdd; lambda; h] = [f; gamma; 0]`, and `h_k`, the
+//! generalised load that friction must cancel (the friction force is `-h_k`), is solved with
+//! the other unknowns. A stuck contact breaks away when `|h_k| > mu_s |N_k|`, in the
+//! direction of `h_k`; a sliding one stops when `qd_s` reaches zero, and then sticks or
+//! reverses as the load decides. At `qd_s = 0` (either signed zero) the mode comes from the
+//! loads, never from the sign bit of the velocity: of the combinations of stick and slip for
+//! the contacts at rest, the first consistent one is taken, most contacts stuck first (a
+//! stuck contact within its bound, a sliding one accelerating the way it slides).
+
+use crate::error::{Error, Result};
+use crate::linalg::Lu;
+use crate::model::{Contacts, Frictional, Matrix, Slip, Vector};
+use crate::solve::{finite, solve_mass};
+
+/// Contacts at rest whose modes are enumerated at most (`3^12` solves would be too many).
+pub const MAX_RESTING: usize = 12;
+
+/// Accelerations, multipliers and friction loads in given modes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InModes<const N: usize, const M: usize, const F: usize> {
+    /// `qdd`; exactly zero along stuck contacts.
+    pub qdd: Vector<N>,
+    /// Constraint multipliers.
+    pub lambda: Vector<M>,
+    /// The load friction must cancel at each stuck contact (the friction force is its
+    /// negative); zero at sliding ones.
+    pub load: [f64; F],
+}
+
+/// The direction of a sliding velocity, `0.0` at rest (`+0.0` and `-0.0` alike).
+#[inline]
+pub fn direction(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// Refuse coefficients outside `0 <= mu_k <= mu_s` (finite) and a non-finite normal force.
+fn check<const N: usize, const M: usize, const F: usize>(
+    t: f64,
+    c: &Contacts<N, M, F>,
+) -> Result<()> {
+    for k in 0..F {
+        let (mk, ms) = (c.mu_k[k], c.mu_s[k]);
+        if !(mk >= 0.0 && ms >= mk && ms.is_finite()) {
+            return Err(Error::InvalidInput {
+                what: "friction coefficients",
+                detail: format!(
+                    "contact {k}: need 0 <= mu_k <= mu_s, got mu_k = {mk}, mu_s = {ms}"
+                ),
+            });
+        }
+        if !c.normal[k].is_finite() {
+            return Err(Error::NonFinite { t });
+        }
+    }
+    Ok(())
+}
+
+/// Solve the equations of motion with the contacts in `modes`.
+pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    c: &Contacts<N, M, F>,
+    along: &[usize; F],
+    modes: &[Slip; F],
+) -> Result<InModes<N, M, F>> {
+    const { assert!(A == N + M + F, "friction solve size must be N + M + F") };
+    check(t, c)?;
+    let mut f = c.forces;
+    for k in 0..F {
+        let d = match modes[k] {
+            Slip::Forward => 1.0,
+            Slip::Backward => -1.0,
+            Slip::Stick => continue,
+        };
+        f[along[k]] -= c.mu_k[k] * c.normal[k].abs() * d;
+    }
+    if M == 0 && modes.iter().all(|m| *m != Slip::Stick) {
+        let qdd = solve_mass(t, &c.mass, &f)?;
+        return Ok(InModes {
+            qdd,
+            lambda: Vector::<M>::zeros(),
+            load: [0.0; F],
+        });
+    }
+    let mut k = Matrix::<A, A>::zeros();
+    k.fixed_view_mut::<N, N>(0, 0).copy_from(&c.mass);
+    k.fixed_view_mut::<M, N>(N, 0).copy_from(&c.phi_q);
+    k.fixed_view_mut::<N, M>(0, N)
+        .copy_from(&c.phi_q.transpose());
+    for (j, mode) in modes.iter().enumerate() {
+        let r = N + M + j;
+        if *mode == Slip::Stick {
+            k[(r, along[j])] = 1.0;
+            k[(along[j], r)] = 1.0;
+        } else {
+            k[(r, r)] = 1.0;
+        }
+    }
+    let mut rhs = Vector::<A>::zeros();
+    rhs.fixed_rows_mut::<N>(0).copy_from(&f);
+    rhs.fixed_rows_mut::<M>(N).copy_from(&c.gamma);
+    let x = Lu::factor(k)
+        .ok_or(Error::SingularConstraintJacobian { t })?
+        .solve(&rhs);
+    let x = finite(t, x)?;
+    let mut qdd = x.fixed_rows::<N>(0).into_owned();
+    let lambda = x.fixed_rows::<M>(N).into_owned();
+    for j in 0..F {
+        if modes[j] == Slip::Stick {
+            // Held exactly: a stuck coordinate must not creep by the solve's rounding.
+            qdd[along[j]] = 0.0;
+        }
+    }
+    // The holding loads as the residuals of their rows, so that `M qdd + Phi_q^T lambda`
+    // equals the forces with friction to the last bit (a body at rest stays at rest under
+    // methods that iterate on that residual).
+    let residual = f - c.mass * qdd - c.phi_q.transpose() * lambda;
+    let load = std::array::from_fn(|j| {
+        if modes[j] == Slip::Stick {
+            residual[along[j]]
+        } else {
+            0.0
+        }
+    });
+    Ok(InModes { qdd, lambda, load })
+}
+
+/// Whether the modes of the contacts marked `free` are consistent with the solution.
+fn consistent<const N: usize, const M: usize, const F: usize>(
+    c: &Contacts<N, M, F>,
+    along: &[usize; F],
+    modes: &[Slip; F],
+    free: &[bool; F],
+    s: &InModes<N, M, F>,
+) -> bool {
+    (0..F).filter(|&k| free[k]).all(|k| match modes[k] {
+        Slip::Stick => s.load[k].abs() <= c.mu_s[k] * c.normal[k].abs(),
+        Slip::Forward => s.qdd[along[k]] > 0.0,
+        Slip::Backward => s.qdd[along[k]] < 0.0,
+    })
+}
+
+/// The modes at a state: `fixed[k]` where given (a sliding contact's direction, or a
+/// forced breakaway), and for the others (at rest) the first consistent combination,
+/// most contacts stuck first. Returns the modes with their solution.
+pub fn choose<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    c: &Contacts<N, M, F>,
+    along: &[usize; F],
+    fixed: &[Option<Slip>; F],
+) -> Result<([Slip; F], InModes<N, M, F>)> {
+    let free: [bool; F] = std::array::from_fn(|k| fixed[k].is_none());
+    let resting: Vec<usize> = (0..F).filter(|&k| free[k]).collect();
+    if resting.len() > MAX_RESTING {
+        return Err(Error::InvalidInput {
+            what: "friction",
+            detail: format!(
+                "{} contacts at rest at once (at most {MAX_RESTING})",
+                resting.len()
+            ),
+        });
+    }
+    let combos = 3usize.pow(resting.len() as u32);
+    for sliding in 0..=resting.len() {
+        for code in 0..combos {
+            let mut modes: [Slip; F] = std::array::from_fn(|k| fixed[k].unwrap_or(Slip::Stick));
+            let (mut rest, mut n_sliding) = (code, 0);
+            for &k in &resting {
+                modes[k] = match rest % 3 {
+                    0 => Slip::Stick,
+                    1 => Slip::Forward,
+                    _ => Slip::Backward,
+                };
+                n_sliding += usize::from(rest % 3 != 0);
+                rest /= 3;
+            }
+            if n_sliding != sliding {
+                continue;
+            }
+            let s = solve_in::<N, M, F, A>(t, c, along, &modes)?;
+            if consistent(c, along, &modes, &free, &s) {
+                return Ok((modes, s));
+            }
+        }
+    }
+    Err(Error::InvalidInput {
+        what: "friction",
+        detail: format!("no consistent stick/slip modes at t = {t} (a frictional paradox?)"),
+    })
+}
+
+/// `q` and `qd` of `y = [q; qd]`.
+fn split<const N: usize, const D: usize>(y: &Vector<D>) -> (Vector<N>, Vector<N>) {
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    (
+        Vector::<N>::from_fn(|i, _| y[i]),
+        Vector::<N>::from_fn(|i, _| y[N + i]),
+    )
+}
+
+/// The sliding contacts' directions from the velocities; `None` at rest.
+fn moving<const N: usize, const F: usize>(along: &[usize; F], qd: &Vector<N>) -> [Option<Slip>; F] {
+    std::array::from_fn(|k| match direction(qd[along[k]]) {
+        d if d > 0.0 => Some(Slip::Forward),
+        d if d < 0.0 => Some(Slip::Backward),
+        _ => None,
+    })
+}
+
+/// The accelerations and multipliers of the plain model at a state: the modes from
+/// [`choose`] (at rest from the loads, never from the sign of a zero velocity).
+pub fn acceleration_and_multipliers<
+    S,
+    const N: usize,
+    const M: usize,
+    const F: usize,
+    const A: usize,
+>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Result<(Vector<N>, Vector<M>)>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let c = sys.contacts(t, q, qd);
+    let (_, s) = choose::<N, M, F, A>(t, &c, &S::ALONG, &moving(&S::ALONG, qd))?;
+    Ok((s.qdd, s.lambda))
+}
+
+/// `y' = [qd; qdd]` with the contacts in `modes` ([`crate::model::Hybrid::rhs_in`]).
+pub fn rhs_in<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    modes: &[Slip; F],
+) -> Result<Vector<D>>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let (q, qd) = split::<N, D>(y);
+    let s = solve_in::<N, M, F, A>(t, &sys.contacts(t, &q, &qd), &S::ALONG, modes)?;
+    Ok(Vector::<D>::from_fn(|i, _| {
+        if i < N { qd[i] } else { s.qdd[i - N] }
+    }))
+}
+
+/// Switching function `k` ([`crate::model::Hybrid::switching`]): the sliding velocity in
+/// the sliding direction, or, stuck, the margin `mu_s |N| - |h|` of the holding force.
+pub fn switching<
+    S,
+    const N: usize,
+    const M: usize,
+    const F: usize,
+    const A: usize,
+    const D: usize,
+>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    modes: &[Slip; F],
+    k: usize,
+) -> f64
+where
+    S: Frictional<N, M, F, A>,
+{
+    let v = y[N + S::ALONG[k]];
+    match modes[k] {
+        Slip::Forward => v,
+        Slip::Backward => -v,
+        Slip::Stick => {
+            let (q, qd) = split::<N, D>(y);
+            let c = sys.contacts(t, &q, &qd);
+            match solve_in::<N, M, F, A>(t, &c, &S::ALONG, modes) {
+                Ok(s) => c.mu_s[k] * c.normal[k].abs() - s.load[k].abs(),
+                Err(_) => f64::NAN,
+            }
+        }
+    }
+}
+
+/// The modes at a state ([`crate::model::Hybrid::mode_at`]).
+pub fn mode_at<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+) -> Result<[Slip; F]>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let (q, qd) = split::<N, D>(y);
+    let c = sys.contacts(t, &q, &qd);
+    Ok(choose::<N, M, F, A>(t, &c, &S::ALONG, &moving(&S::ALONG, &qd))?.0)
+}
+
+/// The modes after switching function `k` of `modes` crossed zero
+/// ([`crate::model::Hybrid::switch`]): a sliding contact that stopped gets exactly zero
+/// velocity and its mode from the loads; a stuck one that lost its hold slides in the
+/// direction of its load. The other contacts at rest are chosen again with them.
+pub fn switch<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &mut Vector<D>,
+    modes: &[Slip; F],
+    k: usize,
+) -> Result<[Slip; F]>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let along = &S::ALONG;
+    let mut forced = None;
+    if modes[k] == Slip::Stick {
+        let (q, qd) = split::<N, D>(y);
+        let held = solve_in::<N, M, F, A>(t, &sys.contacts(t, &q, &qd), along, modes)?;
+        forced = Some(if held.load[k] > 0.0 {
+            Slip::Forward
+        } else {
+            Slip::Backward
+        });
+    } else {
+        y[N + along[k]] = 0.0;
+    }
+    // Stuck contacts keep exactly zero velocity, so they count as at rest here.
+    let (q, qd) = split::<N, D>(y);
+    let mut fixed = moving(along, &qd);
+    if forced.is_some() {
+        fixed[k] = forced;
+    }
+    Ok(choose::<N, M, F, A>(t, &sys.contacts(t, &q, &qd), along, &fixed)?.0)
+}
+
+/// A constrained model's projection in `modes`: the model's own, after which the stuck
+/// contacts' velocities are set back to exactly zero.
+pub fn project_in<const N: usize, const F: usize, const D: usize>(
+    along: &[usize; F],
+    y: &mut Vector<D>,
+    modes: &[Slip; F],
+) {
+    for k in 0..F {
+        if modes[k] == Slip::Stick {
+            y[N + along[k]] = 0.0;
+        }
+    }
+}
+
+/// The generalised forces of the plain model at a state, friction included: kinetic
+/// friction at sliding contacts and, at contacts at rest, the force the chosen mode puts
+/// there (the holding force when stuck), so that `M qdd (+ Phi_q^T lambda) = f` holds with
+/// the accelerations of [`acceleration_and_multipliers`]. Where no mode is consistent (or
+/// the solve fails) the contacts at rest contribute nothing.
+pub fn forces<S, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Vector<N>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let along = &S::ALONG;
+    let c = sys.contacts(t, q, qd);
+    let fixed = moving(along, qd);
+    let chosen = choose::<N, M, F, A>(t, &c, along, &fixed).ok();
+    let mut f = c.forces;
+    for k in 0..F {
+        let mode = chosen.as_ref().map_or(fixed[k], |(m, _)| Some(m[k]));
+        f[along[k]] -= match mode {
+            Some(Slip::Forward) => c.mu_k[k] * c.normal[k].abs(),
+            Some(Slip::Backward) => -c.mu_k[k] * c.normal[k].abs(),
+            Some(Slip::Stick) => chosen.as_ref().map_or(0.0, |(_, s)| s.load[k]),
+            None => 0.0,
+        };
+    }
+    f
+}

@@ -1,0 +1,191 @@
+//! Integrating a [`Hybrid`] system mode by mode with any [`Integrator`].
+//!
+//! Within a mode the right-hand side is smooth, so the integrator runs at its own order
+//! and step sizes; the mode's switching functions are terminal events, located on the
+//! dense output and then refined by bisection on the same polynomial to the last bit of
+//! `t`. At the switch the system picks the next mode ([`Hybrid::switch`]) and the
+//! integrator restarts there. No step crosses a discontinuity, so no step size collapses at
+//! one; the price is the restart (a new initial step) per switch, reported in [`Switch`].
+
+use crate::error::{Error, Result};
+use crate::integrate::{Direction, Event, Integrator, Segment, Solution, Stats};
+use crate::model::{Hybrid, OdeSystem, Vector};
+
+/// Switches allowed before [`Error::TooManySteps`] (an accumulation of switches, say).
+pub const MAX_SWITCHES: usize = 1_000_000;
+
+/// One mode switch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Switch<Mode> {
+    /// Time of the switch.
+    pub t: f64,
+    /// Which switching function crossed zero.
+    pub by: usize,
+    /// The mode before and after.
+    pub from: Mode,
+    pub to: Mode,
+    /// Steps the integrator accepted in the mode that ended here.
+    pub steps: usize,
+}
+
+/// A run of a hybrid system: the whole solution (its segments, events and work across all
+/// modes, as one [`Solution`]), the switches, and the final mode.
+#[derive(Debug, Clone)]
+pub struct HybridSolution<const D: usize, Mode> {
+    pub solution: Solution<D>,
+    pub switches: Vec<Switch<Mode>>,
+    pub mode: Mode,
+}
+
+/// The system frozen in one mode, as an ordinary [`OdeSystem`].
+#[derive(Debug)]
+pub struct InMode<'a, S, Mode> {
+    pub sys: &'a S,
+    pub mode: Mode,
+}
+
+impl<S: Hybrid<D>, const D: usize> OdeSystem<D> for InMode<'_, S, S::Mode> {
+    fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>> {
+        self.sys.rhs_in(t, y, &self.mode)
+    }
+    fn project(&self, t: f64, y: &mut Vector<D>) -> Result<()> {
+        self.sys.project_in(t, y, &self.mode)
+    }
+}
+
+/// Integrate `sys` from `(t0, y0)` to `t1` with `integrator`, switching modes where the
+/// switching functions cross zero. `events` are the user's (indices in the result refer to
+/// this slice); a terminal one ends the run as usual.
+pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
+    integrator: &I,
+    sys: &S,
+    t0: f64,
+    y0: Vector<D>,
+    t1: f64,
+    events: &[Event<'_, D>],
+) -> Result<HybridSolution<D, S::Mode>> {
+    crate::integrate::validate_problem(t0, &y0, t1)?;
+    let mut mode = sys.mode_at(t0, &y0)?;
+    let (mut t, mut y) = (t0, y0);
+    let mut out = Solution {
+        t: vec![t0],
+        y: vec![y0],
+        segments: Vec::new(),
+        events: Vec::new(),
+        stats: Stats::default(),
+        stopped_by: None,
+    };
+    let mut switches = Vec::new();
+    loop {
+        let current = mode;
+        let mut all: Vec<Event<'_, D>> = events
+            .iter()
+            .map(|e| Event {
+                name: e.name.clone(),
+                g: Box::new(move |t: f64, y: &Vector<D>| (e.g)(t, y)),
+                direction: e.direction,
+                terminal: e.terminal,
+            })
+            .collect();
+        all.extend((0..S::SWITCHES).map(|k| {
+            Event::new(
+                format!("switch {k}"),
+                move |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k),
+                Direction::Falling,
+            )
+            .terminal()
+        }));
+        let view = InMode { sys, mode };
+        let part = integrator.solve(&view, t, y, t1, &all)?;
+        let steps = part.t.len() - 1;
+        let stopped = part.stopped_by;
+        append(&mut out, part, events.len());
+        let Some(i) = stopped else { break };
+        if i < events.len() {
+            out.stopped_by = Some(i);
+            break;
+        }
+        let k = i - events.len();
+        // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
+        // segment down to adjacent floating-point times.
+        let g = |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k);
+        if let Some(seg) = out.segments.last_mut() {
+            let ts = refine(&g, seg);
+            if ts < seg.t1() {
+                *seg = seg.truncated(ts);
+                *out.t.last_mut().expect("a step") = ts;
+                *out.y.last_mut().expect("a step") = seg.eval(ts);
+            }
+        }
+        t = *out.t.last().expect("a step");
+        y = *out.y.last().expect("a step");
+        mode = sys.switch(t, &mut y, &current, k)?;
+        switches.push(Switch {
+            t,
+            by: k,
+            from: current,
+            to: mode,
+            steps,
+        });
+        if switches.len() >= MAX_SWITCHES {
+            return Err(Error::TooManySteps {
+                t,
+                steps: out.stats.n_steps,
+            });
+        }
+        if t >= t1 {
+            break;
+        }
+    }
+    Ok(HybridSolution {
+        solution: out,
+        switches,
+        mode,
+    })
+}
+
+/// Add one mode's run to the whole: its steps after the first point, its segments, its
+/// user events (switching events are not user events) and its work.
+fn append<const D: usize>(out: &mut Solution<D>, part: Solution<D>, user: usize) {
+    out.t.extend_from_slice(&part.t[1..]);
+    out.y.extend_from_slice(&part.y[1..]);
+    out.segments.extend(part.segments);
+    out.events
+        .extend(part.events.into_iter().filter(|e| e.event < user));
+    let (s, p) = (&mut out.stats, part.stats);
+    s.n_rhs += p.n_rhs;
+    s.n_jac += p.n_jac;
+    s.n_lu += p.n_lu;
+    s.n_steps += p.n_steps;
+    s.n_accepted += p.n_accepted;
+    s.n_rejected += p.n_rejected;
+}
+
+/// The first time in the segment where `g` is no longer positive, to adjacent doubles:
+/// bisection from a bracket just before the segment's end (the located crossing) or, if
+/// `g` is not positive there, from the segment's start.
+fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>) -> f64 {
+    let b0 = seg.t1();
+    let positive = |t: f64| g(t, &seg.eval(t)) > 0.0;
+    let near = b0 - 4.0 * crate::integrate::events::EVENT_TIME_TOL * (b0.abs() + 1.0);
+    let mut a = if near > seg.t0 && positive(near) {
+        near
+    } else {
+        seg.t0
+    };
+    if !positive(a) {
+        return b0;
+    }
+    let mut b = b0;
+    loop {
+        let c = 0.5 * (a + b);
+        if c <= a || c >= b {
+            return b;
+        }
+        if positive(c) {
+            a = c;
+        } else {
+            b = c;
+        }
+    }
+}
