@@ -14,15 +14,16 @@
 //! **Model.** x horizontal, y up, the incline descending toward +x. Free: s, the distance
 //! down the slope from the start; relaxed: n, the offset normal to the slope, pinned at zero,
 //! so that `reaction(n)` is the normal force N. Coulomb friction along s with the normal force
-//! `reaction(n)`; gravity `(0, −g)`. `s(0) = 0`, `s'(0) = v_0`. The stop is the downward
-//! zero crossing of `s'` (terminal); there the static bound `μ N > m g sin θ`
-//! (`0.4 cos 15° > sin 15°`) holds the crate. The table's `x_stop` is the distance along the
-//! slope (RecurDyn's "displacement on the X axis" of a slope-aligned frame). The run
-//! integrates the generated *sliding view* (`model.sliding([1.0])`: friction fixed against
-//! downhill motion) with the shared settings, so the right-hand side stays smooth through the
-//! stop and the stop is located as an event on the dense output; integrating `sign(s')`
-//! itself would put the friction's reversal inside the steps that cross the stop (true stick,
-//! MATH.md section 3). At the stop the generated `s_sticks` test decides that it stays.
+//! `reaction(n)`; gravity `(0, −g)`. `s(0) = 0`, `s'(0) = v_0`. The run integrates the
+//! plain model mode by mode (`mbd::hybrid::solve` with the shared Radau IIA settings): it
+//! slides forward (friction `−μ N`), the switching function `s'` crosses zero at the stop
+//! (located on the dense output, then bisected to adjacent doubles), and there the friction
+//! mode is chosen from the load: the holding force `m g sin θ` is within `μ N`
+//! (`0.4 cos 15° > sin 15°`), so the crate sticks (`s'' = 0` held exactly) and stays to the
+//! end of the run. No step integrates across the switch. The table's `x_stop` is the
+//! distance along the slope (RecurDyn's "displacement on the X axis" of a slope-aligned
+//! frame). The model also keeps its `stops` event and its sliding view for the
+//! work-precision report.
 //!
 //! **Reference (exact).** `t_stop = v_0/|a|`, `x_stop = v_0^2/(2 |a|)` with
 //! `a = g (sin θ − μ cos θ) = −1.25127810990258 m/s^2`: **`t_stop = 5.59427991635291 s`,
@@ -37,20 +38,39 @@
 
 use crate::sim;
 use crate::validation::{Outcome, Plot, Row};
-use mbd::integrate::Solution;
+use mbd::Slip;
+use mbd::hybrid::HybridSolution;
+use mbd::integrate::Radau5;
 use mbd::prelude::*;
 
 /// How the case is measured.
-const METHOD: &str = sim::METHOD;
+const METHOD: &str = "Radau IIA 5 mode by mode (mbd::hybrid), rtol = atol = 1e-12";
 
-/// Slide down the slope (friction against downhill motion) to the stop, or to 20 s.
-fn slide(model: &CrateOnIncline) -> mbd::Result<Solution<2>> {
-    sim::integrate(
-        &model.sliding([1.0]),
-        model.initial_state(),
-        20.0,
-        &model.events(),
-    )
+/// The crate from its launch to `t1`, mode by mode: it slides, sticks at the stop, stays.
+fn run_modes(model: &CrateOnIncline, t1: f64) -> mbd::Result<HybridSolution<2, [Slip; 1]>> {
+    let opts = Options {
+        rtol: sim::TOL,
+        atol: sim::TOL,
+        ..Options::default()
+    };
+    mbd::hybrid::solve(&Radau5::new(opts), model, 0.0, model.initial_state(), t1, &[])
+}
+
+/// The stop: the switch from sliding forward to stuck, `(t, s)` there.
+fn stop(run: &HybridSolution<2, [Slip; 1]>) -> mbd::Result<(f64, f64)> {
+    let sw = run
+        .switches
+        .iter()
+        .find(|s| s.to == [Slip::Stick])
+        .ok_or(mbd::Error::InvalidInput {
+            what: "case 05",
+            detail: "the crate did not stop".into(),
+        })?;
+    let y = run.solution.at(sw.t).ok_or(mbd::Error::InvalidInput {
+        what: "case 05",
+        detail: "no dense output at the stop".into(),
+    })?;
+    Ok((sw.t, y[0]))
 }
 
 /// A crate launched at `v0` down an incline at `slope`; s runs down the slope, n normal to
@@ -102,27 +122,21 @@ pub fn references() -> [f64; 2] {
 }
 
 pub fn run() -> mbd::Result<Outcome> {
-    let sol = slide(&MODEL)?;
-    let stop = sol
-        .events
-        .iter()
-        .find(|e| e.event == 0)
-        .ok_or(mbd::Error::InvalidInput {
-            what: "case 05",
-            detail: "the crate did not stop".into(),
-        })?;
+    let run = run_modes(&MODEL, 8.0)?;
+    let (t, x) = stop(&run)?;
     let [t_stop, x_stop] = references();
+    let sol = &run.solution;
     Ok(Outcome {
         rows: vec![
             Row {
                 quantity: "t_stop_15",
-                value: stop.t,
+                value: t,
                 reference: t_stop,
                 method: METHOD,
             },
             Row {
                 quantity: "x_stop_15",
-                value: stop.y[0],
+                value: x,
                 reference: x_stop,
                 method: METHOD,
             },
@@ -130,8 +144,8 @@ pub fn run() -> mbd::Result<Outcome> {
         plot: Plot {
             x_label: "t [s]",
             y_label: "distance down the slope s [m]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[0])),
-            mark: Some((stop.t, stop.y[0])),
+            points: sim::sample(sol, 200, |t, y| (t, y[0])),
+            mark: Some((t, x)),
         },
     })
 }
@@ -172,15 +186,35 @@ mod tests {
     }
 
     #[test]
-    fn case05_stops_held_by_friction_and_loses_the_friction_work() {
+    fn case05_stops_at_the_exact_time_and_stays() {
+        let run = run_modes(&MODEL, 20.0).unwrap();
+        let [t_stop, x_stop] = references();
+        // One switch, sliding forward to stuck, located to 1e-12 s.
+        assert_eq!(run.switches.len(), 1);
+        let sw = &run.switches[0];
+        assert_eq!((sw.from, sw.to), ([Slip::Forward], [Slip::Stick]));
+        assert!((sw.t - t_stop).abs() <= 1e-12, "{} vs {t_stop}", sw.t);
+        // Then it stays, exactly: no creep, no velocity.
+        let (t, y) = run.solution.last();
+        assert_eq!(t, 20.0);
+        assert_relative_eq!(y[0], x_stop, max_relative = 1e-12);
+        assert_eq!(y[1], 0.0);
+        assert_eq!(run.mode, [Slip::Stick]);
+        // At rest the plain model's acceleration is zero: static friction holds it.
+        let (q, qd) = (Vector::<1>::new(y[0]), Vector::<1>::new(0.0));
+        assert_eq!(MODEL.acceleration(t, &q, &qd).unwrap()[0], 0.0);
+        assert!(MODEL.s_sticks(t, y).unwrap());
+    }
+
+    #[test]
+    fn case05_loses_the_friction_work() {
         let model = MODEL;
-        let sol = slide(&model).unwrap();
-        let stop = &sol.events[0];
+        let run = run_modes(&model, 20.0).unwrap();
+        let (t, x) = stop(&run).unwrap();
+        let y = run.solution.at(t).unwrap();
         // N = m g cos θ = 473.786617794788 N (case05.py) throughout the slide.
-        let normal = model.outputs(stop.t, &stop.y).unwrap().normal;
+        let normal = model.outputs(t, &y).unwrap().normal;
         assert_relative_eq!(normal, 473.786_617_794_788, max_relative = 1e-12);
-        // At rest static friction holds it (0.4 > tan 15°).
-        assert!(model.s_sticks(stop.t, &stop.y).unwrap());
         // Work-energy: the energy lost is the friction's work μ N x_stop.
         let energy = |y: &Vector<2>| {
             MechanismModel::energy(
@@ -190,8 +224,8 @@ mod tests {
                 &y.fixed_rows::<1>(1).into(),
             )
         };
-        let lost = energy(&model.initial_state()) - energy(&stop.y);
-        assert_relative_eq!(lost, model.mu * normal * stop.y[0], max_relative = 1e-9);
+        let lost = energy(&model.initial_state()) - energy(&y);
+        assert_relative_eq!(lost, model.mu * normal * x, max_relative = 1e-9);
     }
 
     #[test]
@@ -204,13 +238,20 @@ mod tests {
             1.506_716_315_549_86,
             max_relative = 1e-14
         );
-        let sol = slide(&steep).unwrap();
-        assert!(sol.events.is_empty());
-        let (t, y) = sol.last();
+        let run = run_modes(&steep, 20.0).unwrap();
+        assert!(run.switches.is_empty());
+        let (t, y) = run.solution.last();
         assert_relative_eq!(
             y[1],
             steep.v0 + sliding_acceleration(&steep) * t,
             max_relative = 1e-9
+        );
+        // At rest it would slide down at once: the load exceeds mu N.
+        let zero = Vector::<1>::new(0.0);
+        assert_relative_eq!(
+            steep.acceleration(0.0, &zero, &zero).unwrap()[0],
+            sliding_acceleration(&steep),
+            max_relative = 1e-14
         );
         assert!(!steep.s_sticks(0.0, &Vector::<2>::new(0.0, 0.0)).unwrap());
     }
