@@ -53,19 +53,26 @@ fn run_modes(model: &CrateOnIncline, t1: f64) -> mbd::Result<HybridSolution<2, [
         atol: sim::TOL,
         ..Options::default()
     };
-    mbd::hybrid::solve(&Radau5::new(opts), model, 0.0, model.initial_state(), t1, &[])
+    mbd::hybrid::solve(
+        &Radau5::new(opts),
+        model,
+        0.0,
+        model.initial_state(),
+        t1,
+        &[],
+    )
 }
 
 /// The stop: the switch from sliding forward to stuck, `(t, s)` there.
 fn stop(run: &HybridSolution<2, [Slip; 1]>) -> mbd::Result<(f64, f64)> {
-    let sw = run
-        .switches
-        .iter()
-        .find(|s| s.to == [Slip::Stick])
-        .ok_or(mbd::Error::InvalidInput {
-            what: "case 05",
-            detail: "the crate did not stop".into(),
-        })?;
+    let sw =
+        run.switches
+            .iter()
+            .find(|s| s.to == [Slip::Stick])
+            .ok_or(mbd::Error::InvalidInput {
+                what: "case 05",
+                detail: "the crate did not stop".into(),
+            })?;
     let y = run.solution.at(sw.t).ok_or(mbd::Error::InvalidInput {
         what: "case 05",
         detail: "no dense output at the stop".into(),

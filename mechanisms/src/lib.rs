@@ -9,6 +9,7 @@ pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
 pub mod sim;
+pub mod stick_slip;
 pub mod svg;
 pub mod validation;
 pub mod workprecision;
