@@ -162,30 +162,49 @@ fn append<const D: usize>(out: &mut Solution<D>, part: Solution<D>, user: usize)
 }
 
 /// The first time in the segment where `g` is no longer positive, to adjacent doubles:
-/// bisection from a bracket just before the segment's end (the located crossing) or, if
-/// `g` is not positive there, from the segment's start.
+/// regula falsi with the Illinois halving (as [`crate::integrate::events::locate`]) from a
+/// bracket just before the segment's end (the located crossing) or, if `g` is not positive
+/// there, from the segment's start; bisection where the secant leaves the bracket.
 fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>) -> f64 {
     let b0 = seg.t1();
-    let positive = |t: f64| g(t, &seg.eval(t)) > 0.0;
+    let at = |t: f64| g(t, &seg.eval(t));
     let near = b0 - 4.0 * crate::integrate::events::EVENT_TIME_TOL * (b0.abs() + 1.0);
-    let mut a = if near > seg.t0 && positive(near) {
-        near
-    } else {
-        seg.t0
-    };
-    if !positive(a) {
+    let (mut a, mut ga) = (near, if near > seg.t0 { at(near) } else { f64::NAN });
+    if !(ga > 0.0) {
+        (a, ga) = (seg.t0, at(seg.t0));
+    }
+    let (mut b, mut gb) = (b0, at(b0));
+    if !(ga > 0.0 && gb <= 0.0) {
         return b0;
     }
-    let mut b = b0;
-    loop {
-        let c = 0.5 * (a + b);
-        if c <= a || c >= b {
-            return b;
+    let mut kept_a = 0u8;
+    let mut kept_b = 0u8;
+    for _ in 0..200 {
+        let mut c = (a * gb - b * ga) / (gb - ga);
+        if !(c > a && c < b) {
+            c = 0.5 * (a + b);
         }
-        if positive(c) {
-            a = c;
+        if c <= a || c >= b {
+            break;
+        }
+        let gc = at(c);
+        if gc > 0.0 {
+            (a, ga) = (c, gc);
+            kept_a = 0;
+            kept_b += 1;
+            if kept_b >= 2 {
+                gb *= 0.5;
+            }
+        } else if gc <= 0.0 {
+            (b, gb) = (c, gc);
+            kept_b = 0;
+            kept_a += 1;
+            if kept_a >= 2 {
+                ga *= 0.5;
+            }
         } else {
-            b = c;
+            break;
         }
     }
+    b
 }
