@@ -265,3 +265,143 @@ fn block_stops_and_stays_on_the_plain_model() {
         "RK4",
     );
 }
+
+/// Two stacked blocks, both contacts able to stick at once and coupled through the mass
+/// matrix: `lower` (mass `m1`) on the floor (normal `(m1 + m2) g`), `upper` (`m2`) on it at
+/// `x + r` (normal `m2 g`), the lower one pushed by `p0 + c t`. The friction between the
+/// blocks acts on `r` only (an internal pair does virtual work on the relative motion).
+#[derive(Debug, Mechanism)]
+#[coords(x, r)]
+#[particle(lower, mass = m1, at = [x, 0.0])]
+#[particle(upper, mass = m2, at = [x + r, 0.0])]
+#[friction(along = x, mu_k = mu_k1, mu_s = mu_s1, normal = (m1 + m2) * g)]
+#[friction(along = r, mu_k = mu_k2, mu_s = mu_s2, normal = m2 * g)]
+#[generalized_force(push, along = x, value = p0 + c * t)]
+pub struct Stack {
+    pub m1: f64,
+    pub m2: f64,
+    pub g: f64,
+    pub mu_k1: f64,
+    pub mu_s1: f64,
+    pub mu_k2: f64,
+    pub mu_s2: f64,
+    pub p0: f64,
+    pub c: f64,
+}
+
+const STACK: Stack = Stack {
+    m1: 2.0,
+    m2: 1.0,
+    g: 9.81,
+    mu_k1: 0.2,
+    mu_s1: 0.3,
+    mu_k2: 0.15,
+    mu_s2: 0.25,
+    p0: 0.0,
+    c: 0.0,
+};
+
+/// At rest under a constant push `P` (total mass `M = m1 + m2`):
+/// - `P <= mu_s1 M g`: both stick, no acceleration;
+/// - else the lower block slides; the upper rides along at `a = (P - mu_k1 M g) / M` if
+///   that needs at most `mu_s2 m2 g` (`a <= mu_s2 g`);
+/// - else both slide: the upper at `mu_k2 g`, the lower at `(P - mu_k1 M g - mu_k2 m2 g) / m1`.
+#[test]
+fn stacked_blocks_at_rest_take_the_consistent_modes() {
+    let (m, g) = (3.0, 9.81);
+    let zero = nalgebra::Vector2::zeros();
+    for p0 in [0.0, 5.0, 8.8, 8.83, 10.0, 12.0, 16.0, 30.0] {
+        let s = Stack { p0, ..STACK };
+        let qdd = s.acceleration(0.0, &zero, &zero).unwrap();
+        let (a1, a2) = if p0 <= 0.3 * m * g {
+            (0.0, 0.0)
+        } else if (p0 - 0.2 * m * g) / m <= 0.25 * g {
+            let a = (p0 - 0.2 * m * g) / m;
+            (a, a)
+        } else {
+            ((p0 - 0.2 * m * g - 0.15 * g) / 2.0, 0.15 * g)
+        };
+        // qdd = (x'', r''), r'' = a2 - a1.
+        assert!(
+            (qdd[0] - a1).abs() <= 1e-14 * (1.0 + a1.abs()),
+            "P = {p0}: {qdd:?} vs {a1}, {a2}"
+        );
+        assert!(
+            (qdd[1] - (a2 - a1)).abs() <= 1e-14 * (1.0 + a1.abs()),
+            "P = {p0}: {qdd:?}"
+        );
+        if a1 == a2 {
+            assert_eq!(qdd[1], 0.0, "P = {p0}: the upper block is held exactly");
+        }
+    }
+}
+
+/// A push growing at `c`: the lower block breaks away when `c t1 = mu_s1 M g`; the upper
+/// rides with it (`x'' = (c t - mu_k1 M g) / M`) until that needs more than static friction,
+/// `c t2 / M - mu_k1 g = mu_s2 g`; then both slide. Switch times and the velocities after
+/// them against these closed forms.
+#[test]
+fn stacked_blocks_break_away_in_turn_at_the_closed_form_times() {
+    let s = Stack { c: 10.0, ..STACK };
+    let (m, g, c) = (3.0, 9.81, 10.0);
+    let t1 = 0.3 * m * g / c;
+    let t2 = m * (0.25 + 0.2) * g / c;
+    // Phase 2 (both together) and phase 3 (both sliding) velocities.
+    let v2 = |t: f64| c * (t * t - t1 * t1) / (2.0 * m) - 0.2 * g * (t - t1);
+    let v_lower = |t: f64| {
+        v2(t2) + c * (t * t - t2 * t2) / (2.0 * 2.0) - (0.2 * m * g + 0.15 * g) * (t - t2) / 2.0
+    };
+    let v_upper = |t: f64| v2(t2) + 0.15 * g * (t - t2);
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    for (name, run) in [
+        (
+            "DOPRI5",
+            mbd::hybrid::solve(
+                &Dopri5::new(opts.clone()),
+                &s,
+                0.0,
+                s.initial_state(),
+                2.0,
+                &[],
+            ),
+        ),
+        (
+            "Radau5",
+            mbd::hybrid::solve(
+                &Radau5::new(opts.clone()),
+                &s,
+                0.0,
+                s.initial_state(),
+                2.0,
+                &[],
+            ),
+        ),
+    ] {
+        let run = run.unwrap();
+        let sw: Vec<_> = run.switches.iter().map(|w| (w.t, w.from, w.to)).collect();
+        assert_eq!(sw.len(), 2, "{name}: {sw:?}");
+        assert_eq!(
+            (sw[0].1, sw[0].2),
+            ([Slip::Stick; 2], [Slip::Forward, Slip::Stick])
+        );
+        assert_eq!(
+            (sw[1].1, sw[1].2),
+            (
+                [Slip::Forward, Slip::Stick],
+                [Slip::Forward, Slip::Backward]
+            )
+        );
+        assert!((sw[0].0 - t1).abs() <= 1e-12, "{name}: {} vs {t1}", sw[0].0);
+        assert!((sw[1].0 - t2).abs() <= 1e-12, "{name}: {} vs {t2}", sw[1].0);
+        let y = run.solution.at(1.2).unwrap();
+        assert_relative_eq!(y[2], v2(1.2), max_relative = 1e-10);
+        assert_eq!(y[3], 0.0, "{name}: the upper block rides exactly");
+        let (t, y) = run.solution.last();
+        assert_relative_eq!(y[2], v_lower(t), max_relative = 1e-10);
+        assert_relative_eq!(y[2] + y[3], v_upper(t), max_relative = 1e-10);
+    }
+}
