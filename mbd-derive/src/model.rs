@@ -1495,6 +1495,13 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 None => mu,
             };
             let normal = lw.scalar(&f.normal, Context::Output);
+            if frictions.iter().any(|e: &FrictionEq| e.coord == a) {
+                errors.at(
+                    f.along.span(),
+                    format!("a second `friction` along `{}`: one contact per coordinate (its stuck rows would coincide)", f.along),
+                );
+                continue;
+            }
             if let (Some(mu), Some(mu_static), Some(normal)) = (mu, mu_static, normal) {
                 crate::friction::check_coefficients(&g, mu, mu_static, f, &mut errors);
                 frictions.push(FrictionEq {
