@@ -54,7 +54,7 @@
 //! | `#[torque(name, on = body, value = tau)]` | a torque on a body |
 //! | `#[generalized_force(name, along = q, value = f)]` | a generalised force on a coordinate |
 //! | `#[potential(expr)]` | a potential energy term (nonlinear springs) |
-//! | `#[friction(along = s, mu = mu, normal = reaction(n))]` | Coulomb friction; the normal force may be a reaction |
+//! | `#[friction(along = s, mu = mu, normal = reaction(n))]` / `#[friction(along = s, mu_k = a, mu_s = b, normal = ..)]` | Coulomb friction along a free coordinate, exact stick and slip (see [Friction](#friction)); `mu` sets both coefficients, `mu_k`/`mu_s` each; the normal force may be a reaction |
 //! | `#[output(name = expr)]` | an output: any expression, with `der(..)`, `position(b)`, `velocity(b)`, `acceleration(b)`, `angle(b)`, `angular_velocity(b)`, `angular_acceleration(b)` (optionally at a body-fixed offset `velocity(b, [dx, dy])`), `reaction(u)`, `norm`, `dot`, `cross`, `v[i]` |
 //! | `#[event(name = expr, rising \| falling, terminal)]` | a zero crossing of `expr`, located on the dense output |
 //! | `#[init(q = value, der(q) = value)]` | initial conditions |
@@ -65,6 +65,62 @@
 //! names, bodies without mass, a default configuration that violates a constraint, and more
 //! (see `tests/ui/` for the whole list).
 //!
+//! # Friction
+//!
+//! `#[friction(along = s, mu_k = a, mu_s = b, normal = n)]` is a Coulomb contact on the free
+//! coordinate `s`, with the generalised normal force `n` (any expression of the state and
+//! time, a reaction included, but not of the accelerations) and kinetic and static
+//! coefficients `0 <= mu_k <= mu_s` (`mu = c` sets both; literal coefficients with
+//! `mu_s < mu_k` are a compile error, parameters a run-time `InvalidInput`). Exactly:
+//! - sliding (`s' != 0`), the generalised force along `s` is `-mu_k |n| sign(s')`;
+//! - at rest (`s' == 0`, either signed zero), the contact sticks if the force needed to keep
+//!   `s'' = 0` (solved with the other accelerations and the multipliers) is at most
+//!   `mu_s |n|`; otherwise it slides off in the direction of that force, under kinetic
+//!   friction. With several contacts at rest, the first consistent combination of stick and
+//!   slip is taken, most contacts stuck first. A body at rest with no tangential load has
+//!   zero acceleration.
+//!
+//! That is what `acceleration`, `forces` (the friction at rest is the holding force) and
+//! `rhs` of the model compute at any state. Integrating `rhs` straight through a stop would
+//! put the jump of the friction force inside a step, so a model with friction is also a
+//! [`Hybrid`] system: its modes are slip forward, slip backward or stick per contact
+//! (`[Slip; F]`), and [`hybrid::solve`] integrates it with any integrator one mode at a time,
+//! stopping where a sliding velocity reaches zero or a holding force reaches `mu_s |n|`
+//! (located on the dense output to adjacent doubles), choosing the next mode there as above,
+//! and restarting. While stuck, `s'' = 0` exactly. One `friction` per coordinate; the friction
+//! of a joint is written on the joint's coordinate (a prismatic joint's slide, or a revolute
+//! joint's angle with `mu` a friction radius times the coefficient).
+//!
+//! ```
+//! use mbd::prelude::*;
+//! use mbd::{Slip, integrate::Dopri5};
+//!
+//! /// A crate launched down a 15 degree incline; `n` normal to it, relaxed, so that
+//! /// `reaction(n)` is the normal force.
+//! #[derive(Debug, Mechanism)]
+//! #[gravity(0.0, -g)]
+//! #[coords(s)]
+//! #[relaxed(n)]
+//! #[particle(body, mass = m, at = [s * cos(a) + n * sin(a), -s * sin(a) + n * cos(a)])]
+//! #[friction(along = s, mu = mu, normal = reaction(n))]
+//! #[init(der(s) = v0)]
+//! pub struct Incline { pub m: f64, pub g: f64, pub a: f64, pub mu: f64, pub v0: f64 }
+//!
+//! let c = Incline { m: 50.0, g: 9.81, a: 15f64.to_radians(), mu: 0.4, v0: 7.0 };
+//! // At rest it stays: static friction holds the load m g sin a < mu m g cos a.
+//! let zero = mbd::Vector::<1>::zeros();
+//! assert_eq!(c.acceleration(0.0, &zero, &zero)?[0], 0.0);
+//! // Launched, it slides, stops where constant deceleration says, and stays.
+//! let opts = Options { rtol: 1e-12, atol: 1e-12, ..Options::default() };
+//! let run = mbd::hybrid::solve(&Dopri5::new(opts), &c, 0.0, c.initial_state(), 10.0, &[])?;
+//! let a = 9.81 * (c.a.sin() - 0.4 * c.a.cos());
+//! assert_eq!(run.switches.len(), 1);
+//! assert_eq!(run.switches[0].to, [Slip::Stick]);
+//! assert!((run.switches[0].t - 7.0 / -a).abs() < 1e-12);
+//! assert_eq!(run.solution.last().1[1], 0.0);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
 //! # What is generated
 //!
 //! For a model `X` with `N` free coordinates and `M` constraints: `impl Mechanism<N>`
@@ -72,7 +128,8 @@
 //! every integrator advances), and only when the model has them: `impl Constrained<N, M>`
 //! (`Phi`, `Phi_q`, `Phi_t`, `gamma`, multipliers) with projection onto the constraint
 //! manifolds, the exact Jacobian, `X::outputs()` returning an `XOutputs` struct,
-//! `X::events()`, and the friction stick test. `XState` names the state's components.
+//! `X::events()`, and for friction `impl Frictional` and `impl Hybrid` (the modes, above),
+//! the stick test `X::s_sticks` and the sliding view `X::sliding`. `XState` names the state's components.
 //! `X::GENERATED` lists the parts that were generated.
 //!
 //! A joint tree (`body`, `chain`) without constraints, friction or free-standing bodies

@@ -69,6 +69,12 @@ pub fn emit(
             type Mode = [#p::Slip; #nf];
             const SWITCHES: usize = #nf;
             fn rhs_in(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode) -> #p::Result<#p::Vector<#d>> {
+                // Every contact sliding: the straight-line forces with the directions given
+                // (the sliding view's), no stuck rows to solve.
+                if mode.iter().all(|m| *m != #p::Slip::Stick) {
+                    let direction = mode.map(|m| if m == #p::Slip::Forward { 1.0 } else { -1.0 });
+                    return #p::solve::second_order_rhs::<#n, #d>(y, |q, qd| self.acceleration_sliding(t, q, qd, &direction));
+                }
                 #p::friction::rhs_in::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode)
             }
             fn switching(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode, k: usize) -> f64 {
