@@ -170,7 +170,8 @@ fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>)
     let at = |t: f64| g(t, &seg.eval(t));
     let near = b0 - 4.0 * crate::integrate::events::EVENT_TIME_TOL * (b0.abs() + 1.0);
     let (mut a, mut ga) = (near, if near > seg.t0 { at(near) } else { f64::NAN });
-    if !(ga > 0.0) {
+    // NaN counts as not positive.
+    if ga.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         (a, ga) = (seg.t0, at(seg.t0));
     }
     let (mut b, mut gb) = (b0, at(b0));

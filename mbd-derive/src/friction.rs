@@ -124,15 +124,13 @@ pub fn check_coefficients(
             format!("a friction coefficient is not negative, got {k}"),
         );
     }
-    if let (Some(k), Some(s)) = (g.as_const(mu_k), g.as_const(mu_s)) {
-        if s < k {
-            let span = f.mu_static.as_ref().map_or(f.span, |e| e.span());
-            errors.at(
-                span,
-                format!(
-                    "the static coefficient {s} is below the kinetic one {k}: need `mu_s >= mu_k`"
-                ),
-            );
-        }
+    if let (Some(k), Some(s)) = (g.as_const(mu_k), g.as_const(mu_s))
+        && s < k
+    {
+        let span = f.mu_static.as_ref().map_or(f.span, |e| e.span());
+        errors.at(
+            span,
+            format!("the static coefficient {s} is below the kinetic one {k}: need `mu_s >= mu_k`"),
+        );
     }
 }

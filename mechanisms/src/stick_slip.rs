@@ -17,6 +17,7 @@
 //!   sweeps `pi + 2 atan(v / (w D))`, so `T_slip = (pi + 2 atan(v / (w D))) / w`.
 //! - At `x_a` the spring force `k |x_a| <= k x_s` (as `x_k >= 0`): it sticks again.
 //!   `T_stick = (x_s - x_a) / v = 2 D / v`.
+//!
 //! Started at `x(0) = x_a` stuck, the motion is the limit cycle from the first instant:
 //! breakaway at `T_stick + n T`, sticking at `(n + 1) T`, `T = T_stick + T_slip`.
 
@@ -112,7 +113,7 @@ pub fn run<I: Integrator>(
 pub fn exact_switch(b: &Belt, i: usize) -> (f64, [Slip; 1], [Slip; 1]) {
     let (_, t_stick, t_slip) = limit_cycle(b);
     let (n, period) = ((i / 2) as f64, t_stick + t_slip);
-    if i % 2 == 0 {
+    if i.is_multiple_of(2) {
         (t_stick + n * period, [Slip::Stick], [Slip::Backward])
     } else {
         ((n + 1.0) * period, [Slip::Backward], [Slip::Stick])
