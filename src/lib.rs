@@ -87,7 +87,10 @@
 //! (`[Slip; F]`), and [`hybrid::solve`] integrates it with any integrator one mode at a time,
 //! stopping where a sliding velocity reaches zero or a holding force reaches `mu_s |n|`
 //! (located on the dense output to adjacent doubles), choosing the next mode there as above,
-//! and restarting. While stuck, `s'' = 0` exactly. One `friction` per coordinate; the friction
+//! and restarting. While stuck, `s'' = 0` exactly. Stops and breakaways are found where a
+//! switching function changes sign between step ends: when a body is stuck under a load
+//! that varies in time, its state is constant and the steps grow, so bound them
+//! (`Options::h_max`) below the load's time scale. One `friction` per coordinate; the friction
 //! of a joint is written on the joint's coordinate (a prismatic joint's slide, or a revolute
 //! joint's angle with `mu` a friction radius times the coefficient).
 //!

@@ -56,6 +56,12 @@ impl<S: Hybrid<D>, const D: usize> OdeSystem<D> for InMode<'_, S, S::Mode> {
 /// Integrate `sys` from `(t0, y0)` to `t1` with `integrator`, switching modes where the
 /// switching functions cross zero. `events` are the user's (indices in the result refer to
 /// this slice); a terminal one ends the run as usual.
+///
+/// Switching functions, like all events, are checked for a sign change at step ends. In a
+/// mode where the state does not change while a switching function does (a body stuck
+/// under a time-dependent push), the method sees no error and its steps grow without
+/// bound, so it could step over a breakaway: bound the step (`Options::h_max`) below the
+/// time scale of such loads.
 pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
     integrator: &I,
     sys: &S,

@@ -405,3 +405,158 @@ fn stacked_blocks_break_away_in_turn_at_the_closed_form_times() {
         assert_relative_eq!(y[2] + y[3], v_upper(t), max_relative = 1e-10);
     }
 }
+
+/// A block on a frictional table under a periodic push `p sin(w t)` stronger than static
+/// friction (after the periodically forced block of Potra, Anitescu, Gavrea & Trinkle 2006;
+/// parameters ours): it sticks, breaks away, slides, stops, and sticks or reverses.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[relaxed(n)]
+#[particle(block, mass = m, at = [x, n])]
+#[friction(along = x, mu_k = mu_k, mu_s = mu_s, normal = reaction(n))]
+#[generalized_force(push, along = x, value = p * sin(w * t))]
+pub struct Shaken {
+    pub m: f64,
+    pub g: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+    pub p: f64,
+    pub w: f64,
+}
+
+/// The reference, phase by phase in closed form. Stuck from `t0`: it breaks away at the first
+/// `t` where `|p sin(w t)|` rises through `mu_s m g` (`w t = asin(r)` or `pi + asin(r)` mod
+/// `2 pi`, `r = mu_s m g / p`), in the direction of the push. Sliding in direction `d` from
+/// rest at `tb`: `v(t) = (p (cos(w tb) - cos(w t)) / w - d mu_k m g (t - tb)) / m`, which stops
+/// at its first zero after `tb` (found by a scan and bisection); there it sticks if
+/// `|p sin(w t)| <= mu_s m g`, else slides off in the push's direction.
+fn shaken_reference(b: &Shaken, t_end: f64) -> Vec<(f64, Slip)> {
+    let (mg, w, tau) = (b.m * b.g, b.w, 2.0 * std::f64::consts::PI);
+    let r = b.mu_s * mg / b.p;
+    let push = |t: f64| b.p * (w * t).sin();
+    let mut out = Vec::new();
+    let (mut t, mut stuck, mut d) = (0.0, true, 0.0);
+    while t < t_end {
+        if stuck {
+            let base = (w * t / tau).floor() * tau;
+            let tb = (0..3)
+                .flat_map(|k| {
+                    [r.asin(), std::f64::consts::PI + r.asin()]
+                        .map(|a| (base + a + tau * k as f64) / w)
+                })
+                .filter(|&c| c > t)
+                .fold(f64::INFINITY, f64::min);
+            d = push(tb).signum();
+            t = tb;
+            stuck = false;
+            out.push((
+                t,
+                if d > 0.0 {
+                    Slip::Forward
+                } else {
+                    Slip::Backward
+                },
+            ));
+        } else {
+            let tb = t;
+            let v = |s: f64| {
+                (b.p * ((w * tb).cos() - (w * s).cos()) / w - d * b.mu_k * mg * (s - tb)) / b.m
+            };
+            let (mut lo, mut hi) = (tb + 1e-9, tb + 1e-9);
+            while d * v(hi) > 0.0 {
+                lo = hi;
+                hi += 1e-3;
+            }
+            loop {
+                let c = 0.5 * (lo + hi);
+                if c <= lo || c >= hi {
+                    break;
+                }
+                if d * v(c) > 0.0 { lo = c } else { hi = c }
+            }
+            t = hi;
+            if push(t).abs() <= b.mu_s * mg {
+                stuck = true;
+                out.push((t, Slip::Stick));
+            } else {
+                d = push(t).signum();
+                out.push((
+                    t,
+                    if d > 0.0 {
+                        Slip::Forward
+                    } else {
+                        Slip::Backward
+                    },
+                ));
+            }
+        }
+    }
+    out.retain(|(t, _)| *t < t_end);
+    out
+}
+
+#[test]
+fn block_under_a_periodic_push_switches_at_the_closed_form_times() {
+    let b = Shaken {
+        m: 1.0,
+        g: 9.81,
+        mu_k: 0.2,
+        mu_s: 0.3,
+        p: 5.0,
+        w: 3.0,
+    };
+    let t_end = 10.0;
+    let reference = shaken_reference(&b, t_end);
+    assert!(reference.len() >= 6, "{reference:?}");
+    // Stuck, the state is constant while the push varies: the methods see no error and
+    // would step over a breakaway (switching functions are checked at step ends), so the
+    // step is bounded below the push's period 2 pi / w = 2.1 s.
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        h_max: Some(0.1),
+        ..Options::default()
+    };
+    for (name, run) in [
+        (
+            "DOPRI5",
+            mbd::hybrid::solve(
+                &Dopri5::new(opts.clone()),
+                &b,
+                0.0,
+                b.initial_state(),
+                t_end,
+                &[],
+            ),
+        ),
+        (
+            "Radau5",
+            mbd::hybrid::solve(
+                &Radau5::new(opts.clone()),
+                &b,
+                0.0,
+                b.initial_state(),
+                t_end,
+                &[],
+            ),
+        ),
+    ] {
+        let run = run.unwrap();
+        let got: Vec<(f64, Slip)> = run.switches.iter().map(|s| (s.t, s.to[0])).collect();
+        assert_eq!(
+            got.len(),
+            reference.len(),
+            "{name}: {got:?} vs {reference:?}"
+        );
+        for (g, r) in got.iter().zip(&reference) {
+            assert_eq!(g.1, r.1, "{name}: {got:?} vs {reference:?}");
+            assert!(
+                (g.0 - r.0).abs() <= 1e-9 * r.0,
+                "{name}: {} vs {}",
+                g.0,
+                r.0
+            );
+        }
+    }
+}
