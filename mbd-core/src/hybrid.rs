@@ -11,8 +11,31 @@ use crate::error::{Error, Result};
 use crate::integrate::{Direction, Event, Integrator, Segment, Solution, Stats};
 use crate::model::{Hybrid, OdeSystem, Vector};
 
-/// Switches allowed before [`Error::TooManySteps`] (an accumulation of switches, say).
+/// Switches allowed by default before [`Error::TooManySteps`] (an accumulation of
+/// switches, say).
 pub const MAX_SWITCHES: usize = 1_000_000;
+
+/// How [`solve_with`] treats switches.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Re-integrate the step that ended at a switch from its start to the located time and
+    /// take one Newton step on the switching function with that step-end state: switch
+    /// times and restart states as accurate as step ends rather than as the dense output
+    /// (which matters for Radau IIA, whose dense output is of degree 3), for two short
+    /// integrations per switch. Off by default.
+    pub polish: bool,
+    /// Switches allowed before [`Error::TooManySteps`].
+    pub max_switches: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            polish: false,
+            max_switches: MAX_SWITCHES,
+        }
+    }
+}
 
 /// One mode switch.
 #[derive(Debug, Clone, PartialEq)]
@@ -70,6 +93,19 @@ pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
     t1: f64,
     events: &[Event<'_, D>],
 ) -> Result<HybridSolution<D, S::Mode>> {
+    solve_with(integrator, sys, t0, y0, t1, events, &Settings::default())
+}
+
+/// [`solve`] with [`Settings`].
+pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
+    integrator: &I,
+    sys: &S,
+    t0: f64,
+    y0: Vector<D>,
+    t1: f64,
+    events: &[Event<'_, D>],
+    settings: &Settings,
+) -> Result<HybridSolution<D, S::Mode>> {
     crate::integrate::validate_problem(t0, &y0, t1)?;
     let mut mode = sys.mode_at(t0, &y0)?;
     let (mut t, mut y) = (t0, y0);
@@ -122,6 +158,9 @@ pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
                 *out.t.last_mut().expect("a step") = ts;
                 *out.y.last_mut().expect("a step") = seg.eval(ts);
             }
+            if settings.polish {
+                polish(integrator, &view, &mut out, &g)?;
+            }
         }
         t = *out.t.last().expect("a step");
         y = *out.y.last().expect("a step");
@@ -133,7 +172,7 @@ pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
             to: mode,
             steps,
         });
-        if switches.len() >= MAX_SWITCHES {
+        if switches.len() >= settings.max_switches {
             return Err(Error::TooManySteps {
                 t,
                 steps: out.stats.n_steps,
@@ -150,6 +189,55 @@ pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
     })
 }
 
+/// The switch from step ends instead of the dense output (whose degree, 3 for Radau IIA,
+/// limits the located time and the restart state): integrate the last step again from its
+/// start to the located time, take one Newton step on the switching function there (its slope
+/// from the dense output), and integrate to that time. The record's last point becomes
+/// that step-end state; the work is added to the statistics.
+fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
+    integrator: &I,
+    view: &S,
+    out: &mut Solution<D>,
+    g: &impl Fn(f64, &Vector<D>) -> f64,
+) -> Result<()> {
+    let n = out.t.len();
+    let (ta, ya, ts) = (out.t[n - 2], out.y[n - 2], out.t[n - 1]);
+    let seg = out.segments.last().expect("a segment").clone();
+    let dt = 1e-3 * (ts - ta);
+    if !(dt > 0.0) {
+        return Ok(());
+    }
+    let mut work = Stats::default();
+    let mut end = |t: f64| -> Result<Vector<D>> {
+        let run = integrator.solve(view, ta, ya, t, &[])?;
+        add(&mut work, run.stats);
+        Ok(*run.last().1)
+    };
+    let ys = end(ts)?;
+    let slope = (g(ts, &seg.eval(ts)) - g(ts - dt, &seg.eval(ts - dt))) / dt;
+    let tn = ts - g(ts, &ys) / slope;
+    // Newton stays within the last step and a step's length past it; else keep `ts`.
+    let (t, y) = if tn.is_finite() && tn > ta && tn < ts + (ts - ta) && tn != ts {
+        (tn, end(tn)?)
+    } else {
+        (ts, ys)
+    };
+    *out.segments.last_mut().expect("a segment") = seg.truncated(t);
+    out.t[n - 1] = t;
+    out.y[n - 1] = y;
+    add(&mut out.stats, work);
+    Ok(())
+}
+
+fn add(s: &mut Stats, p: Stats) {
+    s.n_rhs += p.n_rhs;
+    s.n_jac += p.n_jac;
+    s.n_lu += p.n_lu;
+    s.n_steps += p.n_steps;
+    s.n_accepted += p.n_accepted;
+    s.n_rejected += p.n_rejected;
+}
+
 /// Add one mode's run to the whole: its steps after the first point, its segments, its
 /// user events (switching events are not user events) and its work.
 fn append<const D: usize>(out: &mut Solution<D>, part: Solution<D>, user: usize) {
@@ -158,13 +246,7 @@ fn append<const D: usize>(out: &mut Solution<D>, part: Solution<D>, user: usize)
     out.segments.extend(part.segments);
     out.events
         .extend(part.events.into_iter().filter(|e| e.event < user));
-    let (s, p) = (&mut out.stats, part.stats);
-    s.n_rhs += p.n_rhs;
-    s.n_jac += p.n_jac;
-    s.n_lu += p.n_lu;
-    s.n_steps += p.n_steps;
-    s.n_accepted += p.n_accepted;
-    s.n_rejected += p.n_rejected;
+    add(&mut out.stats, part.stats);
 }
 
 /// The first time in the segment where `g` is no longer positive, to adjacent doubles:

@@ -31,7 +31,12 @@ fn timed<T>(f: impl Fn() -> T) -> (f64, T) {
     (times[3], out.expect("seven runs"))
 }
 
-fn row<I: Integrator>(name: &str, tol: f64, make: impl Fn(Options) -> I) -> mbd::Result<()> {
+fn row<I: Integrator>(
+    name: &str,
+    tol: f64,
+    polish: bool,
+    make: impl Fn(Options) -> I,
+) -> mbd::Result<()> {
     let opts = Options {
         rtol: tol,
         atol: tol,
@@ -41,7 +46,7 @@ fn row<I: Integrator>(name: &str, tol: f64, make: impl Fn(Options) -> I) -> mbd:
     let b: Belt = stick_slip::belt();
     let free = stick_slip::without_friction(&b);
     let integrator = make(opts);
-    let (t_fric, run) = timed(|| stick_slip::run(&integrator, black_box(&b), PERIODS));
+    let (t_fric, run) = timed(|| stick_slip::run(&integrator, black_box(&b), PERIODS, polish));
     let run: HybridSolution<2, [Slip; 1]> = run?;
     let t1 = run.solution.last().0;
     let (t_free, smooth) =
@@ -92,9 +97,14 @@ fn main() -> mbd::Result<()> {
         "rhs x",
         "time x"
     );
-    for tol in [1e-6, 1e-9, 1e-12] {
-        row("DOPRI5", tol, Dopri5::new)?;
-        row("Radau5", tol, Radau5::new)?;
+    for polish in [false, true] {
+        if polish {
+            println!("polished switches (hybrid::Settings::polish):");
+        }
+        for tol in [1e-6, 1e-9, 1e-12] {
+            row("DOPRI5", tol, polish, Dopri5::new)?;
+            row("Radau5", tol, polish, Radau5::new)?;
+        }
     }
     Ok(())
 }
