@@ -384,3 +384,58 @@ where
     }
     f
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One block on a floor (`m = 2`, `N = 19.62`, `mu_k = 0.4`, `mu_s = 0.5`) pushed by `p`.
+    fn floor(p: f64) -> Contacts<1, 0, 1> {
+        Contacts {
+            mass: Matrix::<1, 1>::new(2.0),
+            forces: Vector::<1>::new(p),
+            phi_q: Matrix::<0, 1>::zeros(),
+            gamma: Vector::<0>::zeros(),
+            normal: [19.62],
+            mu_k: [0.4],
+            mu_s: [0.5],
+        }
+    }
+
+    #[test]
+    fn direction_of_zero_is_zero() {
+        assert_eq!(direction(0.0), 0.0);
+        assert_eq!(direction(-0.0), 0.0);
+        assert_eq!(direction(1e-300), 1.0);
+        assert_eq!(direction(-1e-300), -1.0);
+    }
+
+    #[test]
+    fn modes_at_rest_follow_the_load() {
+        let free = [None];
+        for (p, mode, a) in [
+            (0.0, Slip::Stick, 0.0),
+            (9.81, Slip::Stick, 0.0),
+            (-9.81, Slip::Stick, 0.0),
+            (12.0, Slip::Forward, (12.0 - 0.4 * 19.62) / 2.0),
+            (-12.0, Slip::Backward, (-12.0 + 0.4 * 19.62) / 2.0),
+        ] {
+            let (modes, s) = choose::<1, 0, 1, 2>(0.0, &floor(p), &[0], &free).unwrap();
+            assert_eq!(modes, [mode], "p = {p}");
+            assert!((s.qdd[0] - a).abs() <= 1e-15, "p = {p}");
+            if mode == Slip::Stick {
+                assert_eq!(s.load[0], p);
+            }
+        }
+    }
+
+    #[test]
+    fn static_below_kinetic_is_refused() {
+        let mut c = floor(0.0);
+        c.mu_s = [0.3];
+        assert!(matches!(
+            solve_in::<1, 0, 1, 2>(0.0, &c, &[0], &[Slip::Stick]),
+            Err(Error::InvalidInput { .. })
+        ));
+    }
+}

@@ -297,3 +297,85 @@ fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>)
     }
     b
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{Dopri5, Options, Rk4};
+
+    /// A thermostat: `y' = 1` while on, `-1` while off; off at `y = 1`, on at `y = 0`.
+    /// From `y = 0` on, it switches at `t = 1, 2, 3, ...` exactly.
+    struct Thermostat;
+
+    impl Hybrid<1> for Thermostat {
+        type Mode = bool;
+        const SWITCHES: usize = 1;
+        fn rhs_in(&self, _t: f64, _y: &Vector<1>, on: &bool) -> Result<Vector<1>> {
+            Ok(Vector::<1>::new(if *on { 1.0 } else { -1.0 }))
+        }
+        fn switching(&self, _t: f64, y: &Vector<1>, on: &bool, _k: usize) -> f64 {
+            if *on { 1.0 - y[0] } else { y[0] }
+        }
+        fn mode_at(&self, _t: f64, y: &Vector<1>) -> Result<bool> {
+            Ok(y[0] < 1.0)
+        }
+        fn switch(&self, _t: f64, _y: &mut Vector<1>, on: &bool, _k: usize) -> Result<bool> {
+            Ok(!*on)
+        }
+    }
+
+    #[test]
+    fn switches_at_the_exact_times_with_any_method() {
+        let opts = Options {
+            rtol: 1e-10,
+            atol: 1e-10,
+            ..Options::default()
+        };
+        let y0 = Vector::<1>::zeros();
+        let runs = [
+            solve(&Dopri5::new(opts), &Thermostat, 0.0, y0, 5.5, &[]).unwrap(),
+            solve(&Rk4::new(0.3), &Thermostat, 0.0, y0, 5.5, &[]).unwrap(),
+        ];
+        for run in &runs {
+            assert_eq!(run.switches.len(), 5);
+            for (i, sw) in run.switches.iter().enumerate() {
+                assert!((sw.t - (i + 1) as f64).abs() <= 1e-14, "{}", sw.t);
+                assert_eq!(sw.to, i % 2 == 1);
+            }
+            let (t, y) = run.solution.last();
+            assert_eq!(t, 5.5);
+            assert!((y[0] - 0.5).abs() <= 1e-13);
+            assert!(
+                run.solution
+                    .at(2.5)
+                    .is_some_and(|y| (y[0] - 0.5).abs() <= 1e-13)
+            );
+        }
+    }
+
+    #[test]
+    fn too_many_switches_is_a_typed_error() {
+        let settings = Settings {
+            max_switches: 3,
+            ..Settings::default()
+        };
+        let y0 = Vector::<1>::zeros();
+        let err = solve_with(&Rk4::new(0.3), &Thermostat, 0.0, y0, 10.0, &[], &settings);
+        assert!(matches!(err, Err(Error::TooManySteps { .. })));
+    }
+
+    /// The refinement finds the crossing of `y - 1/3` on `y = t` to adjacent doubles.
+    #[test]
+    fn refine_reaches_adjacent_doubles() {
+        let z = Vector::<1>::zeros();
+        let seg = Segment {
+            t0: 0.0,
+            h: 1.0,
+            coeffs: [z, Vector::<1>::new(1.0), z, z, z, z],
+        };
+        let g = |_t: f64, y: &Vector<1>| 1.0 / 3.0 - y[0];
+        let t = refine(&g, &seg);
+        assert!(g(t, &seg.eval(t)) <= 0.0);
+        assert!(g(t, &seg.eval(t.next_down())) > 0.0);
+    }
+}
