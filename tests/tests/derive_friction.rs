@@ -257,13 +257,37 @@ fn block_stops_and_stays_on_the_plain_model() {
         "DOPRI5",
     );
     check(
-        mbd::hybrid::solve(&Radau5::new(opts), &b, 0.0, b.initial_state(), 20.0, &[]).unwrap(),
+        mbd::hybrid::solve(
+            &Radau5::new(opts.clone()),
+            &b,
+            0.0,
+            b.initial_state(),
+            20.0,
+            &[],
+        )
+        .unwrap(),
         "Radau5",
     );
     check(
         mbd::hybrid::solve(&Rk4::new(0.01), &b, 0.0, b.initial_state(), 20.0, &[]).unwrap(),
         "RK4",
     );
+    // The user's events pass through: the model's terminal `stops` (s' falling through 0)
+    // ends the run at the stop, reported with its own index.
+    let events = b.events();
+    let run = mbd::hybrid::solve(
+        &Dopri5::new(opts.clone()),
+        &b,
+        0.0,
+        b.initial_state(),
+        20.0,
+        &events,
+    )
+    .unwrap();
+    assert_eq!(run.solution.stopped_by, Some(0));
+    assert_eq!(run.solution.events.len(), 1);
+    assert!((run.solution.events[0].t - t_stop).abs() <= 1e-11 * t_stop);
+    assert!((run.solution.last().0 - t_stop).abs() <= 1e-11 * t_stop);
 }
 
 /// Two stacked blocks, both contacts able to stick at once and coupled through the mass
