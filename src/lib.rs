@@ -74,9 +74,10 @@
 //! `mu_s < mu_k` are a compile error, parameters a run-time `InvalidInput`). Exactly:
 //! - sliding (`s' != 0`), the generalised force along `s` is `-mu_k |n| sign(s')`;
 //! - at rest (`s' == 0`, either signed zero), the contact sticks if the force needed to keep
-//!   `s'' = 0` (solved with the other accelerations and the multipliers) is at most
+//!   `s'' = 0` (solved with the other accelerations and the multipliers) is below
 //!   `mu_s |n|`; otherwise it slides off in the direction of that force, under kinetic
-//!   friction. With several contacts at rest, the first consistent combination of stick and
+//!   friction (exactly at `mu_s |n|` it slides when `mu_k < mu_s` and sticks when they are
+//!   equal). With several contacts at rest, the first consistent combination of stick and
 //!   slip is taken, most contacts stuck first. A body at rest with no tangential load has
 //!   zero acceleration.
 //!

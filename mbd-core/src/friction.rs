@@ -10,7 +10,8 @@
 //! reverses as the load decides. At `qd_s = 0` (either signed zero) the mode comes from the
 //! loads, never from the sign bit of the velocity: of the combinations of stick and slip for
 //! the contacts at rest, the first consistent one is taken, most contacts stuck first (a
-//! stuck contact within its bound, a sliding one accelerating the way it slides).
+//! stuck contact strictly within its bound, a sliding one accelerating the way it slides;
+//! only if none is, the same with the boundaries included).
 
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
@@ -135,24 +136,38 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
     Ok(InModes { qdd, lambda, load })
 }
 
-/// Whether the modes of the contacts marked `free` are consistent with the solution.
+/// Whether the modes of the contacts marked `free` are consistent with the solution:
+/// `strict`, a stuck load strictly inside its bound and a slide strictly accelerating (so
+/// that the new mode's switching functions start positive, and a load exactly at the bound
+/// slides when it can); otherwise with the boundaries included.
 fn consistent<const N: usize, const M: usize, const F: usize>(
     c: &Contacts<N, M, F>,
     along: &[usize; F],
     modes: &[Slip; F],
     free: &[bool; F],
     s: &InModes<N, M, F>,
+    strict: bool,
 ) -> bool {
-    (0..F).filter(|&k| free[k]).all(|k| match modes[k] {
-        Slip::Stick => s.load[k].abs() <= c.mu_s[k] * c.normal[k].abs(),
-        Slip::Forward => s.qdd[along[k]] > 0.0,
-        Slip::Backward => s.qdd[along[k]] < 0.0,
+    (0..F).filter(|&k| free[k]).all(|k| {
+        let (margin, a) = (
+            c.mu_s[k] * c.normal[k].abs() - s.load[k].abs(),
+            s.qdd[along[k]],
+        );
+        match (modes[k], strict) {
+            (Slip::Stick, true) => margin > 0.0,
+            (Slip::Stick, false) => margin >= 0.0,
+            (Slip::Forward, true) => a > 0.0,
+            (Slip::Forward, false) => a >= 0.0,
+            (Slip::Backward, true) => a < 0.0,
+            (Slip::Backward, false) => a <= 0.0,
+        }
     })
 }
 
 /// The modes at a state: `fixed[k]` where given (a sliding contact's direction, or a
 /// forced breakaway), and for the others (at rest) the first consistent combination,
-/// most contacts stuck first. Returns the modes with their solution.
+/// most contacts stuck first, strictly consistent ones before those on a boundary. Returns
+/// the modes with their solution.
 pub fn choose<const N: usize, const M: usize, const F: usize, const A: usize>(
     t: f64,
     c: &Contacts<N, M, F>,
@@ -171,7 +186,10 @@ pub fn choose<const N: usize, const M: usize, const F: usize, const A: usize>(
         });
     }
     let combos = 3usize.pow(resting.len() as u32);
-    for sliding in 0..=resting.len() {
+    for (strict, sliding) in [true, false]
+        .into_iter()
+        .flat_map(|strict| (0..=resting.len()).map(move |n| (strict, n)))
+    {
         for code in 0..combos {
             let mut modes: [Slip; F] = std::array::from_fn(|k| fixed[k].unwrap_or(Slip::Stick));
             let (mut rest, mut n_sliding) = (code, 0);
@@ -188,7 +206,7 @@ pub fn choose<const N: usize, const M: usize, const F: usize, const A: usize>(
                 continue;
             }
             let s = solve_in::<N, M, F, A>(t, c, along, &modes)?;
-            if consistent(c, along, &modes, &free, &s) {
+            if consistent(c, along, &modes, &free, &s, strict) {
                 return Ok((modes, s));
             }
         }
@@ -415,8 +433,8 @@ mod tests {
         let free = [None];
         for (p, mode, a) in [
             (0.0, Slip::Stick, 0.0),
-            (9.81, Slip::Stick, 0.0),
-            (-9.81, Slip::Stick, 0.0),
+            (9.8, Slip::Stick, 0.0),
+            (-9.8, Slip::Stick, 0.0),
             (12.0, Slip::Forward, (12.0 - 0.4 * 19.62) / 2.0),
             (-12.0, Slip::Backward, (-12.0 + 0.4 * 19.62) / 2.0),
         ] {
@@ -427,6 +445,21 @@ mod tests {
                 assert_eq!(s.load[0], p);
             }
         }
+    }
+
+    /// A load exactly at the static bound slides when kinetic friction is lower (sticking
+    /// would start its switching function at zero, where no crossing can be seen), and
+    /// sticks when the two coefficients are equal (no slide accelerates).
+    #[test]
+    fn a_load_at_the_bound_slides_if_it_can() {
+        let bound = 0.5 * 19.62;
+        let (modes, _) = choose::<1, 0, 1, 2>(0.0, &floor(bound), &[0], &[None]).unwrap();
+        assert_eq!(modes, [Slip::Forward]);
+        let mut c = floor(bound);
+        c.mu_k = [0.5];
+        let (modes, s) = choose::<1, 0, 1, 2>(0.0, &c, &[0], &[None]).unwrap();
+        assert_eq!(modes, [Slip::Stick]);
+        assert_eq!(s.qdd[0], 0.0);
     }
 
     #[test]

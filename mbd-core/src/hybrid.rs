@@ -204,7 +204,8 @@ fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
     let (ta, ya, ts) = (out.t[n - 2], out.y[n - 2], out.t[n - 1]);
     let seg = out.segments.last().expect("a segment").clone();
     let dt = 1e-3 * (ts - ta);
-    if !(dt > 0.0) {
+    // A step of zero length (or NaN) has nothing to polish.
+    if dt.is_nan() || dt <= 0.0 {
         return Ok(());
     }
     let mut work = Stats::default();
