@@ -134,3 +134,30 @@ pub fn check_coefficients(
         );
     }
 }
+
+/// The normal force without the accelerations and multipliers when it does not depend on
+/// them, although it names them: a reaction projected on the direction its
+/// acceleration-dependent part is orthogonal to (a pin's force along the rod). Every
+/// derivative by an acceleration or multiplier must simplify to zero; then setting them to
+/// zero is exact. `None` when one does not (the friction would be implicit).
+pub fn explicit_normal(
+    g: &mut crate::sym::Graph,
+    roles: &std::collections::HashMap<crate::sym::Sym, crate::model::Role>,
+    normal: crate::sym::Expr,
+) -> Option<crate::sym::Expr> {
+    use crate::model::Role;
+    let implicit: Vec<_> = g
+        .free_symbols(normal)
+        .into_iter()
+        .filter(|s| matches!(roles.get(s), Some(Role::Qdd(_) | Role::Lambda(_))))
+        .collect();
+    for s in &implicit {
+        let d = g.diff(normal, *s);
+        if !g.is_zero(d) {
+            return None;
+        }
+    }
+    let zero = g.zero();
+    let map = implicit.into_iter().map(|s| (s, zero)).collect();
+    Some(g.substitute(normal, &map))
+}

@@ -1560,9 +1560,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let frictionless = (!frictions.is_empty()).then(|| forces.clone());
     for (k, f) in frictions.iter_mut().enumerate() {
         f.normal = finish(&mut g, f.normal);
-        if uses_roles(&g, &roles, f.normal, |r| {
-            matches!(r, Role::Qdd(_) | Role::Lambda(_))
-        }) {
+        if let Some(normal) = crate::friction::explicit_normal(&mut g, &roles, f.normal) {
+            f.normal = normal;
+        } else {
             errors.at(
                 f.span,
                 "this normal force depends on the accelerations (the friction would make the equations implicit): not supported",

@@ -207,3 +207,49 @@ fn the_pendulum_comes_to_rest_at_the_located_time() {
         assert!((y[0] - th_rest).abs() <= 1e-9);
     }
 }
+
+/// The same pendulum written as a joint tree: a massless arm with the bob at its end on a
+/// revolute joint whose pivot force is asked for with `reaction` (ground axes). Its
+/// component along the rod, `rx sin(th) - ry cos(th)` (minus the rod's tension), is the
+/// normal force of the pin friction: the reaction's tangential part, which carries `th''`,
+/// drops out of that projection (the derive checks that its derivatives by the
+/// accelerations vanish), so the friction stays explicit.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(arm, joint = revolute(th), com = [0.0, -l], mass = m, inertia = 0.0, reaction)]
+#[friction(along = th, mu = c, normal = reaction(arm_rx) * sin(th) - reaction(arm_ry) * cos(th))]
+#[init(th = th0)]
+pub struct JointPendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+    pub c: f64,
+    pub th0: f64,
+}
+
+/// Friction on the revolute joint of a joint tree: the same turning points and rest as the
+/// polar model and its reference.
+#[test]
+fn revolute_joint_friction_matches_the_pin_reference() {
+    let j = JointPendulum {
+        m: P.m,
+        l: P.l,
+        g: P.g,
+        c: P.c,
+        th0: P.th0,
+    };
+    let reference = reference(&P);
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    let run = mbd::hybrid::solve(&Dopri5::new(opts), &j, 0.0, j.initial_state(), 6.0, &[]).unwrap();
+    assert_eq!(run.switches.len(), reference.len());
+    for (sw, &(t, th)) in run.switches.iter().zip(&reference) {
+        let y = run.solution.at(sw.t).unwrap();
+        assert!((sw.t - t).abs() <= 1e-9 * t, "{} vs {t}", sw.t);
+        assert!((y[0] - th).abs() <= 1e-9, "{} vs {th}", y[0]);
+    }
+    assert_eq!(run.mode, [Slip::Stick]);
+}
