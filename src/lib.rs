@@ -91,9 +91,15 @@
 //! and restarting. While stuck, `s'' = 0` exactly. Stops and breakaways are found where a
 //! switching function changes sign between step ends: when a body is stuck under a load
 //! that varies in time, its state is constant and the steps grow, so bound them
-//! (`Options::h_max`) below the load's time scale. One `friction` per coordinate; the friction
-//! of a joint is written on the joint's coordinate (a prismatic joint's slide, or a revolute
-//! joint's angle with `mu` a friction radius times the coefficient).
+//! (`Options::h_max`) below the load's time scale. One `friction` per coordinate. The friction
+//! of a joint is written on the joint's coordinate: a prismatic joint's slide, or a revolute
+//! joint's angle with `mu` a friction radius times the coefficient (a torque `mu r |n|`);
+//! with `#[body(.., reaction)]` the normal force can be the joint's force projected across
+//! the axis (`reaction(sled_rx) * sin(a) + reaction(sled_ry) * cos(a)`) or along a
+//! pendulum's rod. A normal force may name accelerations or multipliers only where they
+//! drop out (the derive checks that its derivatives by them vanish); the full magnitude of a
+//! revolute joint's reaction, whose tangential part carries the accelerations the friction
+//! changes, is refused (the equations would be implicit).
 //!
 //! ```
 //! use mbd::prelude::*;

@@ -585,3 +585,57 @@ fn block_under_a_periodic_push_switches_at_the_closed_form_times() {
         }
     }
 }
+
+/// Friction on a prismatic joint: case 05's crate as a sled on a joint along the slope
+/// (`[cos a, -sin a]`, downhill), its joint force asked for with `reaction`; the normal
+/// force is that force across the axis, `rx sin(a) + ry cos(a)` (its part along the axis,
+/// which carries `s''`, drops out).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(sled, joint = prismatic(s, [cos(a), -sin(a)]), mass = m, inertia = 1.0, reaction)]
+#[friction(along = s, mu = mu, normal = reaction(sled_rx) * sin(a) + reaction(sled_ry) * cos(a))]
+#[init(der(s) = v0)]
+pub struct Sled {
+    pub m: f64,
+    pub g: f64,
+    pub a: f64,
+    pub mu: f64,
+    pub v0: f64,
+}
+
+#[test]
+fn prismatic_joint_friction_stops_the_sled_like_the_crate() {
+    let sled = Sled {
+        m: 50.0,
+        g: 9.81,
+        a: 15f64.to_radians(),
+        mu: 0.4,
+        v0: 7.0,
+    };
+    let acc = 9.81 * (sled.a.sin() - 0.4 * sled.a.cos());
+    let (t_stop, s_stop) = (-7.0 / acc, 49.0 / (-2.0 * acc));
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    let run = mbd::hybrid::solve(
+        &Dopri5::new(opts),
+        &sled,
+        0.0,
+        sled.initial_state(),
+        10.0,
+        &[],
+    )
+    .unwrap();
+    assert_eq!(run.switches.len(), 1);
+    assert_eq!(run.switches[0].to, [Slip::Stick]);
+    assert!(
+        (run.switches[0].t - t_stop).abs() <= 1e-12,
+        "{}",
+        run.switches[0].t
+    );
+    let (_, y) = run.solution.last();
+    assert_relative_eq!(y[0], s_stop, max_relative = 1e-12);
+    assert_eq!(y[1], 0.0);
+}
