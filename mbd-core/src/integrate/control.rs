@@ -33,10 +33,18 @@ pub fn error_norm<const D: usize>(
 /// with `err_old = max(err, 1e-4)` of the last accepted step (`1e-4` before the first).
 /// After a rejection `h_new = h / min(1/FAC_MIN, err^ALPHA / SAFETY)`, and the step that
 /// follows a rejection may not grow.
+///
+/// The constants are DOPRI5's by default ([`PiController::new`]); [`PiController::with`]
+/// sets others (DOP853's).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PiController {
     err_old: f64,
     rejected: bool,
+    alpha: f64,
+    beta: f64,
+    safety: f64,
+    fac_min: f64,
+    fac_max: f64,
 }
 
 impl PiController {
@@ -53,11 +61,28 @@ impl PiController {
     /// Floor on the remembered error, and its value before the first accepted step (`FACOLD`).
     pub const ERR_OLD_MIN: f64 = 1e-4;
 
-    /// A controller with no history.
+    /// A controller with no history and DOPRI5's constants.
     pub fn new() -> Self {
+        Self::with(
+            Self::ALPHA,
+            Self::BETA,
+            Self::SAFETY,
+            Self::FAC_MIN,
+            Self::FAC_MAX,
+        )
+    }
+
+    /// A controller with no history: exponents `alpha` on the error and `beta` on the
+    /// last accepted one, `safety`, and `h_new / h` kept in `[fac_min, fac_max]`.
+    pub fn with(alpha: f64, beta: f64, safety: f64, fac_min: f64, fac_max: f64) -> Self {
         PiController {
             err_old: Self::ERR_OLD_MIN,
             rejected: false,
+            alpha,
+            beta,
+            safety,
+            fac_min,
+            fac_max,
         }
     }
 
@@ -65,9 +90,9 @@ impl PiController {
     /// memory. Never larger than `h` right after a rejection.
     #[inline]
     pub fn accept(&mut self, h: f64, err: f64) -> f64 {
-        let fac11 = err.powf(Self::ALPHA);
-        let fac = (fac11 / self.err_old.powf(Self::BETA) / Self::SAFETY)
-            .clamp(1.0 / Self::FAC_MAX, 1.0 / Self::FAC_MIN);
+        let fac11 = err.powf(self.alpha);
+        let fac = (fac11 / self.err_old.powf(self.beta) / self.safety)
+            .clamp(1.0 / self.fac_max, 1.0 / self.fac_min);
         let mut h_new = h / fac;
         self.err_old = err.max(Self::ERR_OLD_MIN);
         if self.rejected {
@@ -81,13 +106,79 @@ impl PiController {
     #[inline]
     pub fn reject(&mut self, h: f64, err: f64) -> f64 {
         self.rejected = true;
-        h / (err.powf(Self::ALPHA) / Self::SAFETY).min(1.0 / Self::FAC_MIN)
+        h / (err.powf(self.alpha) / self.safety).min(1.0 / self.fac_min)
     }
 }
 
 impl Default for PiController {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// Hairer's stiffness test (`dopri5.f`, `dop853.f`; Hairer–Wanner II, Sect. IV.2): every
+/// `every` accepted steps, and on every step while a suspicion lasts, estimate `h |lambda|`
+/// of the dominant eigenvalue from two stages at the same time; [`Self::STIFF_COUNT`]
+/// consecutive estimates above the method's stability limit mean the problem is stiff,
+/// [`Self::NONSTIFF_COUNT`] below clear the suspicion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StiffnessDetector {
+    every: Option<usize>,
+    limit: f64,
+    h_lambda: f64,
+    n_stiff: usize,
+    n_nonstiff: usize,
+}
+
+impl StiffnessDetector {
+    /// Consecutive stiff estimates that stop the integration.
+    pub const STIFF_COUNT: usize = 15;
+    /// Consecutive non-stiff estimates that clear the count.
+    pub const NONSTIFF_COUNT: usize = 6;
+
+    /// A detector testing every `every` accepted steps (`None`: never) against `limit`.
+    pub fn new(every: Option<usize>, limit: f64) -> Self {
+        StiffnessDetector {
+            every,
+            limit,
+            h_lambda: 0.0,
+            n_stiff: 0,
+            n_nonstiff: 0,
+        }
+    }
+
+    /// Whether the `n_accepted`-th accepted step is tested.
+    #[inline]
+    pub fn due(&self, n_accepted: usize) -> bool {
+        self.every
+            .is_some_and(|every| n_accepted.is_multiple_of(every) || self.n_stiff > 0)
+    }
+
+    /// After a step of size `h` that was [`Self::due`]: `h ||fa - fb|| / ||ya - yb||` with
+    /// `fa = f(ya)`, `fb = f(yb)` at one time. `true` once the problem is judged stiff.
+    pub fn stiff_after<const D: usize>(
+        &mut self,
+        h: f64,
+        fa: &Vector<D>,
+        fb: &Vector<D>,
+        ya: &Vector<D>,
+        yb: &Vector<D>,
+    ) -> bool {
+        let den = (ya - yb).norm_squared();
+        if den > 0.0 {
+            self.h_lambda = h * ((fa - fb).norm_squared() / den).sqrt();
+        }
+        if self.h_lambda > self.limit {
+            self.n_nonstiff = 0;
+            self.n_stiff += 1;
+            self.n_stiff == Self::STIFF_COUNT
+        } else {
+            self.n_nonstiff += 1;
+            if self.n_nonstiff == Self::NONSTIFF_COUNT {
+                self.n_stiff = 0;
+            }
+            false
+        }
     }
 }
 

@@ -4,10 +4,10 @@ use crate::model::Vector;
 
 /// The continuous solution over one accepted step `[t0, t0 + h]`:
 /// `y(t0 + theta h) = sum_k coeffs[k] theta^k`, `theta` in `[0, 1]` (monomial basis,
-/// degree at most 5, unused coefficients zero).
+/// degree at most 7, unused coefficients zero).
 ///
 /// Every method converts its own interpolant (Hermite, Hairer's DOPRI5 continuous
-/// extension, Radau's collocation polynomial) into this one basis, so event location and
+/// extension, DOP853's seventh-order one, Radau's collocation polynomial) into this one basis, so event location and
 /// `Solution::at` need to know nothing about the method.
 #[derive(Debug, Clone)]
 pub struct Segment<const D: usize> {
@@ -16,7 +16,7 @@ pub struct Segment<const D: usize> {
     /// Step size (positive).
     pub h: f64,
     /// Monomial coefficients in `theta = (t - t0) / h`, lowest degree first.
-    pub coeffs: [Vector<D>; 6],
+    pub coeffs: [Vector<D>; 8],
 }
 
 impl<const D: usize> Segment<D> {
@@ -33,8 +33,8 @@ impl<const D: usize> Segment<D> {
 
     /// `y(t0 + theta h)` by Horner's rule.
     pub fn eval_theta(&self, theta: f64) -> Vector<D> {
-        let mut y = self.coeffs[5];
-        for c in self.coeffs[..5].iter().rev() {
+        let mut y = self.coeffs[7];
+        for c in self.coeffs[..7].iter().rev() {
             y = y * theta + c;
         }
         y
@@ -66,8 +66,33 @@ impl<const D: usize> Segment<D> {
                 hf0 + hf1 - d * 2.0,
                 zero,
                 zero,
+                zero,
+                zero,
             ],
         }
+    }
+
+    /// The polynomial `r[0] + s (r[1] + s1 (r[2] + s (r[3] + s1 (...))))`, `s = theta`,
+    /// `s1 = 1 - theta`, factors alternating from `s` (Hairer's form of the DOPRI5 and
+    /// DOP853 continuous extensions), expanded into monomials.
+    pub fn from_nested<const N: usize>(t0: f64, h: f64, r: &[Vector<D>; N]) -> Self {
+        const { assert!(N >= 1 && N <= 8) };
+        let zero = Vector::<D>::zeros();
+        let mut c = [zero; 8];
+        c[0] = r[N - 1];
+        for j in (0..N - 1).rev() {
+            // c <- r[j] + factor * c, factor = s when j is even, 1 - s when odd.
+            if j % 2 == 0 {
+                c.rotate_right(1);
+                c[0] = zero;
+            } else {
+                for k in (1..8).rev() {
+                    c[k] -= c[k - 1];
+                }
+            }
+            c[0] += r[j];
+        }
+        Segment { t0, h, coeffs: c }
     }
 
     /// The same polynomial restricted to `[t0, t_end]` (`t_end` inside the step): the
@@ -119,6 +144,8 @@ mod tests {
                 Vector::<1>::new(0.5),
                 Vector::<1>::new(3.0),
                 Vector::<1>::new(-1.0),
+                z,
+                z,
                 z,
             ],
         };

@@ -1,6 +1,6 @@
 //! Dormand–Prince 5(4) with Hairer's step control, dense output and stiffness detection.
 
-use super::control::{PiController, error_norm};
+use super::control::{PiController, StiffnessDetector, error_norm};
 use super::non_finite;
 use super::tableau::{DOPRI5, DOPRI5_DENSE, Erk};
 use super::{
@@ -12,7 +12,8 @@ use crate::model::{OdeSystem, Vector};
 /// The explicit Dormand–Prince 5(4) pair run as Hairer's `dopri5.f` runs it (Hairer–Nørsett–
 /// Wanner I, Sect. II.5 and II.6): FSAL, local extrapolation, the scaled RMS
 /// [`error_norm`], the [`PiController`], Hairer's initial step guess ([`initial_step`]),
-/// Shampine's fourth-order dense output, and stiffness detection ([`Dopri5::NSTIFF`]).
+/// Shampine's fourth-order dense output, and stiffness detection every
+/// [`Options::stiffness_check`] accepted steps ([`StiffnessDetector`]).
 ///
 /// Counters: `n_rhs` is every call of `rhs` (one at `t0`, one more for the initial step
 /// guess when `h0` is `None`, six per attempted step, and one more after a projection that
@@ -25,15 +26,16 @@ pub struct Dopri5 {
 }
 
 impl Dopri5 {
-    /// Accepted steps between stiffness tests while the problem looks non-stiff (`NSTIFF`).
+    /// Hairer's default number of accepted steps between stiffness tests (`NSTIFF`), the
+    /// default of [`Options::stiffness_check`].
     pub const NSTIFF: usize = 1000;
     /// `h |lambda|` above which a step counts as stiff: the boundary of DOPRI5's stability
     /// region on the negative real axis is near `-3.3` (`dopri5.f` uses 3.25).
     pub const STIFF_HLAMBDA: f64 = 3.25;
     /// Consecutive stiff tests that stop the integration with [`Error::Stiff`].
-    pub const STIFF_COUNT: usize = 15;
+    pub const STIFF_COUNT: usize = StiffnessDetector::STIFF_COUNT;
     /// Consecutive non-stiff tests that clear the count.
-    pub const NONSTIFF_COUNT: usize = 6;
+    pub const NONSTIFF_COUNT: usize = StiffnessDetector::NONSTIFF_COUNT;
 
     /// DOPRI5 with the given options.
     pub fn new(opts: Options) -> Self {
@@ -122,6 +124,8 @@ fn dense_segment<const D: usize>(
             -(r4 + r5 * 2.0),
             r5,
             Vector::<D>::zeros(),
+            Vector::<D>::zeros(),
+            Vector::<D>::zeros(),
         ],
     }
 }
@@ -168,8 +172,7 @@ impl Integrator for Dopri5 {
         let mut control = PiController::new();
         let (mut t, mut y) = (t0, y0);
         let mut last = false;
-        // Stiffness detection state (dopri5.f: HLAMB, IASTI, NONSTI).
-        let (mut h_lambda, mut n_stiff, mut n_nonstiff) = (0.0f64, 0usize, 0usize);
+        let mut stiff = StiffnessDetector::new(opts.stiffness_check, Self::STIFF_HLAMBDA);
         loop {
             if stats.n_steps >= opts.max_steps {
                 return Err(Error::TooManySteps {
@@ -202,25 +205,9 @@ impl Integrator for Dopri5 {
             let h_new = control.accept(h, err).min(h_max);
             stats.n_accepted += 1;
 
-            if stats.n_accepted.is_multiple_of(Self::NSTIFF) || n_stiff > 0 {
-                // h |lambda| ~ h ||f(y1) - f(z6)|| / ||y1 - z6||: both are at t + h.
-                let num = (k[6] - k[5]).norm_squared();
-                let den = (y1 - z[5]).norm_squared();
-                if den > 0.0 {
-                    h_lambda = h * (num / den).sqrt();
-                }
-                if h_lambda > Self::STIFF_HLAMBDA {
-                    n_nonstiff = 0;
-                    n_stiff += 1;
-                    if n_stiff == Self::STIFF_COUNT {
-                        return Err(Error::Stiff { t });
-                    }
-                } else {
-                    n_nonstiff += 1;
-                    if n_nonstiff == Self::NONSTIFF_COUNT {
-                        n_stiff = 0;
-                    }
-                }
+            // h |lambda| ~ h ||f(y1) - f(z6)|| / ||y1 - z6||: both are at t + h.
+            if stiff.due(stats.n_accepted) && stiff.stiff_after(h, &k[6], &k[5], &y1, &z[5]) {
+                return Err(Error::Stiff { t });
             }
 
             let mut y_acc = y1;

@@ -171,7 +171,7 @@ mod tests {
         let seg = Segment {
             t0: 0.0,
             h: 2.0,
-            coeffs: [z, Vector::<1>::new(2.0), z, z, z, z],
+            coeffs: [z, Vector::<1>::new(2.0), z, z, z, z, z, z],
         };
         let g = |_t: f64, y: &Vector<1>| y[0].powi(3) - 2.0;
         let t = locate(&g, &seg, -2.0, 6.0);

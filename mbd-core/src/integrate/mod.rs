@@ -6,6 +6,8 @@
 
 pub mod control;
 pub mod dense;
+pub mod dop853;
+pub mod dop853_tableau;
 pub mod dopri5;
 pub mod events;
 pub mod gauss;
@@ -16,6 +18,7 @@ pub mod solution;
 pub mod tableau;
 
 pub use dense::Segment;
+pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use events::{Direction, Event, EventHit};
 pub use gauss::Gauss;
@@ -61,6 +64,11 @@ pub struct Options {
     pub dense: bool,
     /// Call [`OdeSystem::project`] after each accepted step.
     pub project: bool,
+    /// Explicit adaptive methods (DOPRI5, DOP853): test for stiffness every this many
+    /// accepted steps (Hairer's `NSTIFF`, default 1000) and stop with [`Error::Stiff`] when
+    /// 15 tests in a row find it; `None` never tests, so a stiff problem runs on (slowly,
+    /// with the step held at the stability limit) to whatever accuracy it reaches.
+    pub stiffness_check: Option<usize>,
 }
 
 impl Default for Options {
@@ -73,6 +81,7 @@ impl Default for Options {
             max_steps: 100_000,
             dense: true,
             project: true,
+            stiffness_check: Some(1000),
         }
     }
 }
@@ -132,6 +141,12 @@ impl Options {
         }
         if self.max_steps == 0 {
             return bad("max_steps", "must be at least 1".to_string());
+        }
+        if self.stiffness_check == Some(0) {
+            return bad(
+                "stiffness_check",
+                "must be at least 1 (None turns the test off)".to_string(),
+            );
         }
         Ok(())
     }

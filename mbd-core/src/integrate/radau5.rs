@@ -674,7 +674,7 @@ fn collocation_segment<const D: usize>(
     Segment {
         t0,
         h,
-        coeffs: [*y0, a[0] + shift, a[1], a[2], zero, zero],
+        coeffs: [*y0, a[0] + shift, a[1], a[2], zero, zero, zero, zero],
     }
 }
 

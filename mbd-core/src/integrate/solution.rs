@@ -164,6 +164,15 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         }
     }
 
+    /// Record an accepted step ending at `(t1, y1)` when [`Self::needs_segment`] is false
+    /// (nothing kept or located needs the step's polynomial).
+    pub(crate) fn accept_point(&mut self, t1: f64, y1: &Vector<D>) -> Flow {
+        debug_assert!(!self.needs_segment());
+        self.sol.t.push(t1);
+        self.sol.y.push(*y1);
+        Flow::Continue
+    }
+
     #[inline]
     fn push_step(&mut self, seg: Segment<D>, t1: f64, y1: Vector<D>) {
         self.sol.t.push(t1);

@@ -227,12 +227,17 @@ mod tests {
     }
 
     fn check_order<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], p: usize) {
+        check_order_to(a, b, p, 1e-14);
+    }
+
+    /// The order conditions up to order `p`, each to `tol`.
+    fn check_order_to<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], p: usize, tol: f64) {
         for n in 1..=p {
             for t in trees(n) {
                 let phi: f64 = t.weights(a).iter().zip(b).map(|(g, b)| g * b).sum();
                 let want = 1.0 / t.density();
                 assert!(
-                    (phi - want).abs() < 1e-14,
+                    (phi - want).abs() < tol,
                     "order condition for {t:?}: {phi} != {want}"
                 );
             }
@@ -299,5 +304,53 @@ mod tests {
     #[test]
     fn dopri5_dense_weights_sum_to_zero() {
         assert!(DOPRI5_DENSE.iter().sum::<f64>().abs() < 1e-13);
+    }
+
+    /// DOP853 (`dop853.f`'s 30-digit coefficients): rows sum to the nodes, `b` satisfies
+    /// all 200 order conditions of orders 1..=8 and fails one of order 9, `b - e` (the
+    /// fifth-order estimate) those of order 5, `bhh` those of order 3. The tolerance 1e-13
+    /// covers the rounding of sums of coefficients up to ~40 in size (the conditions hold to
+    /// the published digits; a wrong digit in any coefficient past the fourth breaks one).
+    #[test]
+    fn dop853_tableau_has_orders_8_5_3() {
+        use super::super::dop853_tableau::{DOP853, DOP853_BHH};
+        for i in 0..12 {
+            // Rounding of a sum of terms up to 43 in size: a few units of the largest.
+            let row: f64 = DOP853.a[i].iter().sum();
+            let size: f64 = DOP853.a[i].iter().map(|a| a.abs()).sum();
+            assert!(
+                (row - DOP853.c[i]).abs() < 2.0 * f64::EPSILON * size.max(1.0),
+                "row {i}"
+            );
+            assert!(DOP853.a[i][i..].iter().all(|&a| a == 0.0));
+        }
+        assert_eq!(trees(8).len(), 115);
+        check_order_to(&DOP853.a, &DOP853.b, 8, 1e-13);
+        let fails_order_9 = trees(9).iter().any(|t| {
+            let phi: f64 = t
+                .weights(&DOP853.a)
+                .iter()
+                .zip(&DOP853.b)
+                .map(|(g, b)| g * b)
+                .sum();
+            (phi - 1.0 / t.density()).abs() > 1e-8
+        });
+        assert!(fails_order_9);
+        let b5: [f64; 12] = std::array::from_fn(|i| DOP853.b[i] - DOP853.e[i]);
+        check_order_to(&DOP853.a, &b5, 5, 1e-13);
+        check_order_to(&DOP853.a, &DOP853_BHH, 3, 1e-13);
+    }
+
+    /// The dense stages are consistent (rows sum to their nodes) and the dense output's
+    /// weights `d` of each coefficient sum to zero (the polynomial of `y' = 1` is exact).
+    #[test]
+    fn dop853_dense_rows_are_consistent() {
+        use super::super::dop853_tableau::{DOP853_DENSE_A, DOP853_DENSE_C, DOP853_DENSE_D};
+        for (row, c) in DOP853_DENSE_A.iter().zip(DOP853_DENSE_C) {
+            assert!((row.iter().sum::<f64>() - c).abs() < 1e-14, "{c}");
+        }
+        for d in &DOP853_DENSE_D {
+            assert!(d.iter().sum::<f64>().abs() < 1e-12);
+        }
     }
 }

@@ -1,0 +1,240 @@
+//! Dormand–Prince 8(5,3) with Hairer's step control, dense output and stiffness detection.
+
+use super::control::{PiController, StiffnessDetector};
+use super::dop853_tableau::{DOP853, DOP853_BHH, DOP853_DENSE_A, DOP853_DENSE_C, DOP853_DENSE_D};
+use super::dopri5::initial_step;
+use super::non_finite;
+use super::tableau::Erk;
+use super::{
+    Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
+};
+use crate::error::{Error, Result};
+use crate::model::{OdeSystem, Vector};
+
+/// The explicit Dormand–Prince 8(5,3) pair run as Hairer's `dop853.f` runs it
+/// (Hairer–Nørsett–Wanner I, Sect. II.5, II.6 and IV.2): twelve stages, the error of the
+/// fifth-order estimate corrected by the third-order one ([`dop853_error`]), the PI
+/// controller with `dop853.f`'s constants ([`Dop853::controller`]), Hairer's initial step,
+/// stiffness detection every [`Options::stiffness_check`] accepted steps, and a
+/// seventh-order dense output built from three more stages per accepted step (only when
+/// the step's segment is kept or events are located).
+///
+/// Counters: `n_rhs` is every call of `rhs`: one at `t0` (`dop853.f` counts two there even
+/// when the initial step is given), one for the initial step guess when `h0` is `None`,
+/// eleven per attempted step, one per accepted step (`f(t + h, y1)`, the next step's first
+/// stage), three per accepted step when its dense segment is built, and one after a
+/// projection that moved the state.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Dop853 {
+    /// Tolerances and step settings.
+    pub opts: Options,
+}
+
+impl Dop853 {
+    /// `h |lambda|` above which a step counts as stiff (`dop853.f`: 6.1, near the boundary
+    /// of the stability region on the negative real axis).
+    pub const STIFF_HLAMBDA: f64 = 6.1;
+    /// DOP853 with the given options.
+    pub fn new(opts: Options) -> Self {
+        Dop853 { opts }
+    }
+
+    /// `dop853.f`'s controller: exponent `1/8`, no memory of the last error (`BETA = 0`),
+    /// ratio `h_new / h` in `[1/3, 6]`, safety 0.9.
+    pub fn controller() -> PiController {
+        PiController::with(1.0 / 8.0, 0.0, 0.9, 0.333, 6.0)
+    }
+}
+
+/// `dop853.f`'s error of a step (label 41): with `sk = atol + rtol max(|y0|, |y1|)`,
+/// `e5 = sum (sum_i er_i k_i / sk)^2`, `e3 = sum ((sum_i (b_i - bhh_i) k_i) / sk)^2`,
+/// `err = |h| e5 / sqrt(D (e5 + 0.01 e3))`: the fifth-order estimate, damped where the
+/// third-order one shows the step is far from the asymptotic regime.
+pub fn dop853_error<const D: usize>(
+    k: &[Vector<D>; 12],
+    y0: &Vector<D>,
+    y1: &Vector<D>,
+    h: f64,
+    rtol: f64,
+    atol: f64,
+) -> f64 {
+    if D == 0 {
+        return 0.0;
+    }
+    let (mut e5, mut e3) = (0.0, 0.0);
+    for i in 0..D {
+        let sk = atol + rtol * y0[i].abs().max(y1[i].abs());
+        let (mut a5, mut a3) = (0.0, 0.0);
+        for (s, ks) in k.iter().enumerate() {
+            a5 += DOP853.e[s] * ks[i];
+            a3 += (DOP853.b[s] - DOP853_BHH[s]) * ks[i];
+        }
+        e5 += (a5 / sk).powi(2);
+        e3 += (a3 / sk).powi(2);
+    }
+    let mut deno = e5 + 0.01 * e3;
+    if deno <= 0.0 {
+        deno = 1.0;
+    }
+    h.abs() * e5 * (1.0 / (D as f64 * deno)).sqrt()
+}
+
+/// The seventh-order continuous extension (`dop853.f` `CONTD8`): three more stages `k[13..16]`
+/// after `k[12] = f(t + h, y1)`, then
+/// `y0 + s (r1 + s1 (r2 + s (r3 + s1 (r4 + s (r5 + s1 (r6 + s r7))))))` with `s1 = 1 - s`,
+/// `r1 = y1 - y0`, `r2 = h k0 - r1`, `r3 = r1 - h k12 - r2`, `r4..r7 = h sum_i d_i k_i`.
+/// Makes three `rhs` calls.
+fn dense_segment<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t0: f64,
+    h: f64,
+    y0: &Vector<D>,
+    y1: &Vector<D>,
+    k: &mut [Vector<D>; 16],
+) -> Result<Segment<D>> {
+    for (j, (a, c)) in DOP853_DENSE_A.iter().zip(DOP853_DENSE_C).enumerate() {
+        let s = 13 + j;
+        let mut acc = Vector::<D>::zeros();
+        for (aj, kj) in a[..s].iter().zip(k.iter()) {
+            if *aj != 0.0 {
+                acc += kj * *aj;
+            }
+        }
+        let t = t0 + c * h;
+        k[s] = sys.rhs(t, &(y0 + acc * h))?;
+        if non_finite(&k[s]) {
+            return Err(Error::NonFinite { t });
+        }
+    }
+    let r1 = y1 - y0;
+    let r2 = k[0] * h - r1;
+    let r3 = r1 - k[12] * h - r2;
+    let d = DOP853_DENSE_D
+        .each_ref()
+        .map(|w| Erk::<16>::combine(w, k, h));
+    Ok(Segment::from_nested(
+        t0,
+        h,
+        &[*y0, r1, r2, r3, d[0], d[1], d[2], d[3]],
+    ))
+}
+
+impl Integrator for Dop853 {
+    fn name(&self) -> &'static str {
+        "DOP853"
+    }
+
+    fn solve<S: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        y0: Vector<D>,
+        t1: f64,
+        events: &[Event<'_, D>],
+    ) -> Result<Solution<D>> {
+        let opts = &self.opts;
+        opts.validate()?;
+        validate_problem(t0, &y0, t1)?;
+        let mut rec = Recorder::new(events, t0, y0, opts);
+        let mut stats = Stats::default();
+        if t1 == t0 {
+            return Ok(rec.finish(stats));
+        }
+        let (rtol, atol) = (opts.rtol, opts.atol);
+        let h_max = opts.h_max.unwrap_or(t1 - t0);
+
+        // k[0..12] the step's stages, k[12] = f(t + h, y1), k[13..16] the dense stages.
+        let mut k = [Vector::<D>::zeros(); 16];
+        let mut z = [Vector::<D>::zeros(); 12];
+        k[0] = sys.rhs(t0, &y0)?;
+        stats.n_rhs += 1;
+        if non_finite(&k[0]) {
+            return Err(Error::NonFinite { t: t0 });
+        }
+        let mut h = match opts.h0 {
+            Some(h0) => h0.min(h_max),
+            None => {
+                stats.n_rhs += 1;
+                initial_step(sys, t0, &y0, &k[0], 8, h_max, rtol, atol)?
+            }
+        };
+
+        let mut control = Self::controller();
+        let (mut t, mut y) = (t0, y0);
+        let mut last = false;
+        let mut stiff = StiffnessDetector::new(opts.stiffness_check, Self::STIFF_HLAMBDA);
+        loop {
+            if stats.n_steps >= opts.max_steps {
+                return Err(Error::TooManySteps {
+                    t,
+                    steps: stats.n_steps,
+                });
+            }
+            if 0.1 * h <= t.abs() * f64::EPSILON || h.is_nan() {
+                return Err(Error::StepSizeUnderflow { t, h });
+            }
+            if t + 1.01 * h - t1 > 0.0 {
+                h = t1 - t;
+                last = true;
+            }
+            stats.n_steps += 1;
+            let stages: &mut [Vector<D>; 12] = (&mut k[..12]).try_into().expect("12 stages");
+            DOP853.stages(sys, t, &y, h, stages, &mut z)?;
+            stats.n_rhs += 11;
+            let y1 = y + Erk::combine(&DOP853.b, stages, h);
+            let t_new = if last { t1 } else { t + h };
+            let err = dop853_error(stages, &y, &y1, h, rtol, atol);
+            if !err.is_finite() || non_finite(&y1) {
+                return Err(Error::NonFinite { t: t_new });
+            }
+            if err > 1.0 {
+                h = control.reject(h, err);
+                last = false;
+                stats.n_rejected += 1;
+                continue;
+            }
+            let h_new = control.accept(h, err).min(h_max);
+            stats.n_accepted += 1;
+            k[12] = sys.rhs(t + h, &y1)?;
+            stats.n_rhs += 1;
+            if non_finite(&k[12]) {
+                return Err(Error::NonFinite { t: t_new });
+            }
+            // h |lambda| ~ h ||f(y1) - f(z11)|| / ||y1 - z11||: both at t + h.
+            if stiff.due(stats.n_accepted) && stiff.stiff_after(h, &k[12], &k[11], &y1, &z[11]) {
+                return Err(Error::Stiff { t });
+            }
+
+            let mut y_acc = y1;
+            let mut f_acc = k[12];
+            if opts.project {
+                sys.project(t_new, &mut y_acc)?;
+                if non_finite(&y_acc) {
+                    return Err(Error::NonFinite { t: t_new });
+                }
+                if y_acc != y1 {
+                    f_acc = sys.rhs(t_new, &y_acc)?;
+                    stats.n_rhs += 1;
+                    if non_finite(&f_acc) {
+                        return Err(Error::NonFinite { t: t_new });
+                    }
+                }
+            }
+            // The segment interpolates the step as computed (before any projection).
+            let flow = if rec.needs_segment() {
+                stats.n_rhs += 3;
+                let seg = dense_segment(sys, t, h, &y, &y1, &mut k)?;
+                rec.accept(seg, &y_acc)
+            } else {
+                rec.accept_point(t_new, &y_acc)
+            };
+            k[0] = f_acc;
+            (t, y) = (t_new, y_acc);
+            if flow == Flow::Stop || last {
+                break;
+            }
+            h = h_new;
+        }
+        Ok(rec.finish(stats))
+    }
+}
