@@ -6,7 +6,8 @@ use super::dopri5::initial_step;
 use super::non_finite;
 use super::tableau::Erk;
 use super::{
-    Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
+    Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
+    validate_problem,
 };
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
@@ -124,18 +125,19 @@ impl Integrator for Dop853 {
         "DOP853"
     }
 
-    fn solve<S: OdeSystem<D>, const D: usize>(
+    fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
         t0: f64,
         y0: Vector<D>,
         t1: f64,
         events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
         let opts = &self.opts;
         opts.validate()?;
         validate_problem(t0, &y0, t1)?;
-        let mut rec = Recorder::new(events, t0, y0, opts);
+        let mut rec = Recorder::new(events, t0, y0, opts).observed(observer);
         let mut stats = Stats::default();
         if t1 == t0 {
             return Ok(rec.finish(stats));

@@ -30,7 +30,7 @@
 //! symplectic: measured, it drifts the oscillator's energy by 4e-11 over 1e5 periods.
 
 use super::{
-    Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
+    Event, Flow, Integrator, Observer, Record, Recorder, Segment, Solution, Stats, validate_problem,
 };
 use super::{non_finite, positive_finite};
 use crate::error::{Error, Result};
@@ -94,6 +94,8 @@ pub struct Gauss {
     pub project: bool,
     /// Keep one dense-output segment per step in the [`Solution`].
     pub dense: bool,
+    /// Which states the solution keeps.
+    pub record: Record,
 }
 
 impl Gauss {
@@ -107,6 +109,7 @@ impl Gauss {
             max_iterations: 12,
             project: true,
             dense: true,
+            record: Record::Steps,
         }
     }
 
@@ -228,21 +231,20 @@ impl Integrator for Gauss {
         "Gauss4"
     }
 
-    fn solve<S: OdeSystem<D>, const D: usize>(
+    fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
         t0: f64,
         y0: Vector<D>,
         t1: f64,
         events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
         self.validate()?;
         validate_problem(t0, &y0, t1)?;
-        let opts = Options {
-            dense: self.dense,
-            ..Options::default()
-        };
-        let mut rec = Recorder::new(events, t0, y0, &opts);
+        self.record.validate()?;
+        let mut rec =
+            Recorder::with(events, t0, y0, self.dense, self.record.clone()).observed(observer);
         let mut stats = Stats::default();
         if t1 == t0 {
             return Ok(rec.finish(stats));

@@ -24,13 +24,24 @@
 //! constraints hold to the Newton tolerance at every step (no drift).
 
 use super::positive_finite;
-use super::{Options, Recorder, Segment, Solution, Stats, validate_problem};
+use super::{Observer, Record, Recorder, Segment, Solution, Stats, validate_problem};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
 use crate::jacobian::forward_difference;
 use crate::linalg::Lu;
 use crate::model::{Constrained, Mechanism, Vector};
+
+/// The initial state of a run: time, positions, velocities, accelerations, and the first
+/// unknowns `z0 = [q0; extra]`.
+#[derive(Debug, Clone, Copy)]
+struct Start<const N: usize, const K: usize> {
+    t0: f64,
+    q0: Vector<N>,
+    qd0: Vector<N>,
+    qdd0: Vector<N>,
+    z0: Vector<K>,
+}
 
 /// Fixed-step generalized-α integrator.
 #[derive(Debug, Clone, PartialEq)]
@@ -47,6 +58,10 @@ pub struct GeneralizedAlpha {
     pub tol: f64,
     /// Newton iterations per step before [`Error::NewtonFailed`].
     pub max_iterations: usize,
+    /// Keep one Hermite segment per step (`Solution::at` needs it).
+    pub dense: bool,
+    /// Which states the solution keeps.
+    pub record: Record,
 }
 
 /// The four parameters of the method.
@@ -95,6 +110,17 @@ impl GeneralizedAlpha {
             max_steps: 10_000_000,
             tol: 1e-12,
             max_iterations: 20,
+            dense: true,
+            record: Record::Steps,
+        }
+    }
+
+    /// The same method keeping only what `record` asks, with dense output `dense`.
+    pub fn recording(self, record: Record, dense: bool) -> Self {
+        GeneralizedAlpha {
+            record,
+            dense,
+            ..self
         }
     }
 
@@ -109,10 +135,37 @@ impl GeneralizedAlpha {
         t1: f64,
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
+        self.solve_observed(sys, t0, q0, qd0, t1, events, None)
+    }
+
+    /// [`Self::solve`], calling `observer` after every step; it ends the run by returning
+    /// [`Flow::Stop`].
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "solve's arguments and the observer"
+    )]
+    pub fn solve_observed<S: Mechanism<N>, const N: usize, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        q0: Vector<N>,
+        qd0: Vector<N>,
+        t1: f64,
+        events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
+    ) -> Result<Solution<D>> {
         let qdd0 = sys.acceleration(t0, &q0, &qd0)?;
-        self.run::<N, N, D>(t0, q0, qd0, qdd0, q0, t1, events, |_, t, z, qd1, qdd1| {
+        let residual = |_, t, z: &Vector<N>, qd1: &Vector<N>, qdd1: &Vector<N>| {
             sys.mass_matrix(t, z) * qdd1 - sys.forces(t, z, qd1)
-        })
+        };
+        let start = Start {
+            t0,
+            q0,
+            qd0,
+            qdd0,
+            z0: q0,
+        };
+        self.run::<N, N, D>(start, t1, events, observer, residual)
     }
 
     /// Integrate a closed loop in index-3 form (`A = N + M` unknowns `(q1, lambda1)` per
@@ -133,19 +186,47 @@ impl GeneralizedAlpha {
         t1: f64,
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
+        self.solve_constrained_observed::<S, N, M, A, D>(sys, t0, q0, qd0, t1, events, None)
+    }
+
+    /// [`Self::solve_constrained`], calling `observer` after every step.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "solve's arguments and the observer"
+    )]
+    pub fn solve_constrained_observed<
+        S: Constrained<N, M>,
+        const N: usize,
+        const M: usize,
+        const A: usize,
+        const D: usize,
+    >(
+        &self,
+        sys: &S,
+        t0: f64,
+        q0: Vector<N>,
+        qd0: Vector<N>,
+        t1: f64,
+        events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
+    ) -> Result<Solution<D>> {
         const { assert!(A == N + M, "the unknowns are (q, lambda): A = N + M") };
         let (qdd0, lambda0) = sys.acceleration_and_multipliers(t0, &q0, &qd0)?;
         let mut z0 = Vector::<A>::zeros();
         z0.fixed_rows_mut::<N>(0).copy_from(&q0);
         z0.fixed_rows_mut::<M>(N).copy_from(&lambda0);
-        self.run::<N, A, D>(
+        let start = Start {
             t0,
             q0,
             qd0,
             qdd0,
             z0,
+        };
+        self.run::<N, A, D>(
+            start,
             t1,
             events,
+            observer,
             |scale, t, z: &Vector<A>, qd1, qdd1| {
                 let q1 = z.fixed_rows::<N>(0).into_owned();
                 // The unknowns carry beta h^2 lambda (see `run`).
@@ -165,21 +246,21 @@ impl GeneralizedAlpha {
     /// The stepping loop. The unknowns of a step are `z = [q1; extra]` (`K >= N`);
     /// `residual(1 / (beta h^2), t1, z, qd1, qdd1)` gets the velocities and accelerations
     /// that the generalized-α formulas give for `q1`.
-    #[allow(
-        clippy::too_many_arguments,
-        reason = "the initial state of one problem"
-    )]
     fn run<const N: usize, const K: usize, const D: usize>(
         &self,
-        t0: f64,
-        q0: Vector<N>,
-        qd0: Vector<N>,
-        qdd0: Vector<N>,
-        z0: Vector<K>,
+        start: Start<N, K>,
         t1: f64,
         events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
         residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
     ) -> Result<Solution<D>> {
+        let Start {
+            t0,
+            q0,
+            qd0,
+            qdd0,
+            z0,
+        } = start;
         const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
         const { assert!(K >= N, "the unknowns start with q1") };
         let c = Coefficients::from_rho_inf(self.rho_inf)?;
@@ -201,7 +282,9 @@ impl GeneralizedAlpha {
         }
         let steps = steps as usize;
         let h = (t1 - t0) / steps as f64;
-        let mut recorder = Recorder::new(events, t0, y0, &Options::default());
+        self.record.validate()?;
+        let mut recorder =
+            Recorder::with(events, t0, y0, self.dense, self.record.clone()).observed(observer);
         let mut stats = Stats::default();
         if h == 0.0 {
             return Ok(recorder.finish(stats));

@@ -1,8 +1,13 @@
 //! Time integration: shared options, statistics, dense output and the solution record.
 //!
 //! Every method advances an [`OdeSystem`] of fixed dimension `D` and
-//! returns a [`Solution`]: the accepted steps, the dense output between them (one
-//! [`Segment`] per step), the events found, and the work done ([`Stats`]).
+//! returns a [`Solution`]: the states [`Record`] asks for (by default every accepted
+//! step), the dense output between them (one [`Segment`] per step when `dense`), the events
+//! found, the final state, and the work done ([`Stats`]). An [`Observer`] sees every
+//! accepted step as it is taken ([`Integrator::solve_observed`]).
+//!
+//! Memory is bounded by what is kept: `Record::Final` (or `Every(k)`, or `Times`) with
+//! `dense = false` holds a few states whatever the number of steps.
 
 pub mod control;
 pub mod dense;
@@ -25,7 +30,7 @@ pub use gauss::Gauss;
 pub use generalized_alpha::GeneralizedAlpha;
 pub use radau5::Radau5;
 pub use rk4::Rk4;
-pub use solution::{Flow, Recorder, Solution};
+pub use solution::{Flow, Observer, Record, Recorder, Solution, Step};
 
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
@@ -44,10 +49,25 @@ pub trait Integrator {
         y0: Vector<D>,
         t1: f64,
         events: &[Event<'_, D>],
+    ) -> Result<Solution<D>> {
+        self.solve_observed(sys, t0, y0, t1, events, None)
+    }
+
+    /// [`Self::solve`], calling `observer` after every accepted step (after its events
+    /// are located); the run ends where the observer returns [`Flow::Stop`].
+    fn solve_observed<S: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        y0: Vector<D>,
+        t1: f64,
+        events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>>;
 }
 
-/// Step size and tolerance settings shared by all methods. `Default` gives Hairer's defaults.
+/// Step size, tolerance and recording settings shared by the adaptive methods. `Default`
+/// gives Hairer's defaults, and records every step with dense output.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
     /// Relative tolerance (adaptive methods).
@@ -60,8 +80,11 @@ pub struct Options {
     pub h_max: Option<f64>,
     /// Steps allowed before [`Error::TooManySteps`].
     pub max_steps: usize,
-    /// Keep one dense-output [`Segment`] per step in the [`Solution`].
+    /// Keep one dense-output [`Segment`] per accepted step in the [`Solution`] (memory grows
+    /// with the steps; `Solution::at` needs it).
     pub dense: bool,
+    /// Which states the [`Solution`] keeps (default: every accepted step).
+    pub record: Record,
     /// Call [`OdeSystem::project`] after each accepted step.
     pub project: bool,
     /// Explicit adaptive methods (DOPRI5, DOP853): test for stiffness every this many
@@ -80,6 +103,7 @@ impl Default for Options {
             h_max: None,
             max_steps: 100_000,
             dense: true,
+            record: Record::Steps,
             project: true,
             stiffness_check: Some(1000),
         }
@@ -142,6 +166,7 @@ impl Options {
         if self.max_steps == 0 {
             return bad("max_steps", "must be at least 1".to_string());
         }
+        self.record.validate()?;
         if self.stiffness_check == Some(0) {
             return bad(
                 "stiffness_check",

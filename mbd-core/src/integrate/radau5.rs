@@ -20,7 +20,8 @@
 
 use super::control::error_norm;
 use super::{
-    Event, Flow, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem,
+    Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
+    validate_problem,
 };
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
@@ -169,13 +170,14 @@ impl Integrator for Radau5 {
         "Radau5"
     }
 
-    fn solve<S: OdeSystem<D>, const D: usize>(
+    fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
         t0: f64,
         y0: Vector<D>,
         t1: f64,
         events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
         self.opts.validate()?;
         if self.opts.atol <= 0.0 {
@@ -187,7 +189,7 @@ impl Integrator for Radau5 {
             });
         }
         validate_problem(t0, &y0, t1)?;
-        let mut recorder = Recorder::new(events, t0, y0, &self.opts);
+        let mut recorder = Recorder::new(events, t0, y0, &self.opts).observed(observer);
         let mut stats = Stats::default();
         if t1 > t0 {
             Run::new(sys, &self.opts, &mut stats).integrate(t0, y0, t1, &mut recorder)?;

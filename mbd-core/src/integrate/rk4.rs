@@ -1,7 +1,9 @@
 //! The classic fourth-order Runge–Kutta method with fixed steps.
 
 use super::tableau::{Erk, RK4};
-use super::{Event, Integrator, Options, Recorder, Segment, Solution, Stats, validate_problem};
+use super::{
+    Event, Integrator, Observer, Record, Recorder, Segment, Solution, Stats, validate_problem,
+};
 use super::{non_finite, positive_finite};
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
@@ -16,14 +18,29 @@ pub struct Rk4 {
     pub h: f64,
     /// Steps allowed before [`Error::TooManySteps`].
     pub max_steps: usize,
+    /// Keep one Hermite segment per step (`Solution::at` needs it).
+    pub dense: bool,
+    /// Which states the solution keeps.
+    pub record: Record,
 }
 
 impl Rk4 {
-    /// RK4 with step `h` and at most a million steps.
+    /// RK4 with step `h`, at most a million steps, every step and its segment kept.
     pub fn new(h: f64) -> Self {
         Rk4 {
             h,
             max_steps: 1_000_000,
+            dense: true,
+            record: Record::Steps,
+        }
+    }
+
+    /// The same method keeping only what `record` asks, with dense output `dense`.
+    pub fn recording(self, record: Record, dense: bool) -> Self {
+        Rk4 {
+            record,
+            dense,
+            ..self
         }
     }
 }
@@ -33,21 +50,20 @@ impl Integrator for Rk4 {
         "RK4"
     }
 
-    fn solve<S: OdeSystem<D>, const D: usize>(
+    fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
         t0: f64,
         y0: Vector<D>,
         t1: f64,
         events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
         positive_finite("h", self.h)?;
+        self.record.validate()?;
         validate_problem(t0, &y0, t1)?;
-        let opts = Options {
-            dense: true,
-            ..Options::default()
-        };
-        let mut rec = Recorder::new(events, t0, y0, &opts);
+        let mut rec =
+            Recorder::with(events, t0, y0, self.dense, self.record.clone()).observed(observer);
         let mut stats = Stats::default();
         // Number of steps: the last one may be shorter, but not by a rounding sliver.
         let n = ((t1 - t0) / self.h * (1.0 - 1e-12)).ceil() as usize;

@@ -3,18 +3,77 @@
 use super::dense::Segment;
 use super::events::{Event, EventHit, locate};
 use super::{Options, Stats};
+use crate::error::{Error, Result};
 use crate::model::Vector;
 use std::fmt;
+
+/// What a [`Solution`] keeps of the accepted steps (dense segments are
+/// [`Options::dense`]'s business, apart). The first and the final states are always kept.
+///
+/// Memory: [`Record::Steps`] grows with the number of steps; [`Record::Every`] with the
+/// steps divided by `k`; [`Record::Final`] and [`Record::Times`] only with what was asked
+/// (with `dense = false`, a run of a million steps then holds a few states).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub enum Record {
+    /// The end of every accepted step (the default).
+    #[default]
+    Steps,
+    /// The end of every `k`-th accepted step (`k >= 1`).
+    Every(usize),
+    /// Nothing between the first and the final state.
+    Final,
+    /// The states at these times, ascending, from each step's dense output (a time before
+    /// `t0` or after the end of the run is not reached and not recorded).
+    Times(Vec<f64>),
+}
+
+impl Record {
+    /// `Err` for `Every(0)` and for times that are not finite or not ascending.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |detail: String| {
+            Err(Error::InvalidInput {
+                what: "record",
+                detail,
+            })
+        };
+        match self {
+            Record::Every(0) => bad("Every(k) needs k >= 1".to_string()),
+            Record::Times(ts) if !ts.iter().all(|t| t.is_finite()) => {
+                bad("output times must be finite".to_string())
+            }
+            Record::Times(ts) if ts.windows(2).any(|w| w[1] < w[0]) => {
+                bad("output times must be ascending".to_string())
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// One accepted step as an [`Observer`] sees it: its end `(t, y)` (after any projection),
+/// and its dense segment when one was built (dense output, events or output times).
+#[derive(Debug, Clone, Copy)]
+pub struct Step<'s, const D: usize> {
+    /// End of the step.
+    pub t: f64,
+    /// Accepted state at `t`.
+    pub y: &'s Vector<D>,
+    /// The step's polynomial, when built.
+    pub segment: Option<&'s Segment<D>>,
+}
+
+/// A callback over accepted steps (after events are located): return [`Flow::Stop`] to end
+/// the integration there.
+pub type Observer<'o, const D: usize> = dyn FnMut(&Step<'_, D>) -> Flow + 'o;
 
 /// What an integration produced.
 #[derive(Debug, Clone)]
 pub struct Solution<const D: usize> {
-    /// `t0` and the end of every accepted step (the last one is the terminal event's time
+    /// `t0`, the recorded times ([`Record`]), and the final time (the terminal event's
     /// when one fired).
     pub t: Vec<f64>,
     /// The states at `t`.
     pub y: Vec<Vector<D>>,
-    /// One dense-output segment per step when `Options::dense`, else empty.
+    /// One dense-output segment per accepted step when `Options::dense`, else empty.
     pub segments: Vec<Segment<D>>,
     /// The events found, in time order.
     pub events: Vec<EventHit<D>>,
@@ -22,28 +81,36 @@ pub struct Solution<const D: usize> {
     pub stats: Stats,
     /// Index of the terminal event that ended the run, if one did.
     pub stopped_by: Option<usize>,
+    /// The final time, kept apart from the record so that it exists whatever was recorded.
+    pub t_end: f64,
+    /// The final state.
+    pub y_end: Vector<D>,
 }
 
 impl<const D: usize> Solution<D> {
-    /// The final time and state.
+    /// The final time and state. Never fails: every solution has them
+    /// ([`Solution::t_end`], [`Solution::y_end`]), whatever [`Record`] kept.
     pub fn last(&self) -> (f64, &Vector<D>) {
-        let k = self.t.len() - 1;
-        (self.t[k], &self.y[k])
+        (self.t_end, &self.y_end)
     }
 
-    /// The state at `t` from the dense output: `None` outside `[t0, t_end]` or when no
-    /// segments were kept. At a step's end time it returns that step's accepted state exactly
-    /// (after any projection), elsewhere the segment's polynomial.
+    /// The state at `t` from the dense output: `None` outside the segments kept, or when
+    /// none were. At a recorded time it returns that state exactly (after any projection),
+    /// elsewhere the segment's polynomial.
     pub fn at(&self, t: f64) -> Option<Vector<D>> {
-        let (t_first, t_last) = (self.t[0], *self.t.last()?);
-        if self.segments.is_empty() || !(t >= t_first && t <= t_last) {
+        // Kept segments cover every step, from t0 to the end.
+        let first = self.segments.first()?;
+        if !(t >= first.t0 && t <= self.t_end) {
             return None;
+        }
+        if t == self.t_end {
+            return Some(self.y_end);
         }
         if let Ok(k) = self
             .t
             .binary_search_by(|probe| probe.partial_cmp(&t).unwrap_or(std::cmp::Ordering::Less))
         {
-            return Some(self.y[k]);
+            return self.y.get(k).copied();
         }
         // The last segment starting at or before t.
         let k = self.segments.partition_point(|s| s.t0 <= t).max(1) - 1;
@@ -56,32 +123,62 @@ impl<const D: usize> Solution<D> {
 pub enum Flow {
     /// Take the next step.
     Continue,
-    /// A terminal event fired: the solution ends there.
+    /// A terminal event fired, or the observer asked to stop: the solution ends there.
     Stop,
 }
 
-/// Bookkeeping every method shares: records accepted steps, locates events on the step's
-/// dense segment (a sign change of `g` between the segment's ends, refined by
-/// [`locate`] to `|dt| <= 1e-12 (|t| + 1)`), and stops at terminal
-/// events. Event functions are evaluated once per step at the step's end; a step in which
-/// `g` crosses zero twice shows no sign change and reports nothing.
+/// Bookkeeping every method shares: records accepted steps as [`Record`] asks, locates
+/// events on the step's dense segment (a sign change of `g` between the segment's ends,
+/// refined by [`locate`] to `|dt| <= 1e-12 (|t| + 1)`), stops at terminal events, and
+/// calls the observer. Event functions are evaluated once per step at the step's end; a
+/// step in which `g` crosses zero twice shows no sign change and reports nothing.
+///
+/// Nothing here allocates per step unless the record grows ([`Record::Steps`],
+/// [`Record::Every`], dense segments, events found).
 pub struct Recorder<'r, 'e, const D: usize> {
     events: &'r [Event<'e, D>],
     g_prev: Vec<f64>,
     g_next: Vec<f64>,
     dense: bool,
+    record: Record,
+    /// Index of the next [`Record::Times`] entry to produce.
+    next_time: usize,
+    steps: usize,
+    observer: Option<&'r mut Observer<'r, D>>,
     sol: Solution<D>,
 }
 
 impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
-    /// Start a record at `(t0, y0)`; evaluates every event function there.
+    /// Start a record at `(t0, y0)` with `opts.dense` and `opts.record`; evaluates every
+    /// event function there. (`opts.record` is assumed valid: [`Options::validate`].)
     pub fn new(events: &'r [Event<'e, D>], t0: f64, y0: Vector<D>, opts: &Options) -> Self {
+        Self::with(events, t0, y0, opts.dense, opts.record.clone())
+    }
+
+    /// [`Self::new`] with the two recording settings given apart (for methods without
+    /// [`Options`]).
+    pub fn with(
+        events: &'r [Event<'e, D>],
+        t0: f64,
+        y0: Vector<D>,
+        dense: bool,
+        record: Record,
+    ) -> Self {
         let g_prev: Vec<f64> = events.iter().map(|e| (e.g)(t0, &y0)).collect();
+        // Output times at t0 are the initial state, already kept.
+        let next_time = match &record {
+            Record::Times(ts) => ts.partition_point(|&t| t <= t0),
+            _ => 0,
+        };
         Recorder {
             events,
             g_next: vec![0.0; events.len()],
             g_prev,
-            dense: opts.dense,
+            dense,
+            record,
+            next_time,
+            steps: 0,
+            observer: None,
             sol: Solution {
                 t: vec![t0],
                 y: vec![y0],
@@ -89,25 +186,37 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
                 events: Vec::new(),
                 stats: Stats::default(),
                 stopped_by: None,
+                t_end: t0,
+                y_end: y0,
             },
         }
     }
 
+    /// The same record, calling `observer` after every accepted step.
+    pub fn observed<'o: 'r>(self, observer: Option<&'r mut Observer<'o, D>>) -> Self {
+        let observer = observer.map(|o| -> &'r mut Observer<'r, D> { o });
+        Recorder { observer, ..self }
+    }
+
     /// Record an accepted step: `seg` covers it and `y1` is the accepted (projected) state
-    /// at `seg.t1()`. Returns [`Flow::Stop`] when a terminal event fired inside the step;
-    /// the record then ends at that event (its segment truncated there).
+    /// at `seg.t1()`. Returns [`Flow::Stop`] when a terminal event fired inside the step
+    /// (the record then ends at that event, its segment truncated there) or the observer
+    /// asked to stop.
     pub fn accept(&mut self, seg: Segment<D>, y1: &Vector<D>) -> Flow {
         self.accept_with(seg.t1(), y1, || seg)
     }
 
     /// Whether [`Self::accept_with`] will build the step's segment: it is kept
-    /// (`Options::dense`) or needed to locate events.
+    /// (`Options::dense`), needed to locate events or to produce output times.
     pub fn needs_segment(&self) -> bool {
-        self.dense || !self.events.is_empty()
+        self.dense
+            || !self.events.is_empty()
+            || matches!(&self.record, Record::Times(ts) if self.next_time < ts.len())
     }
 
     /// [`Self::accept`] for a step ending at `(t1, y1)` whose segment is built only when
-    /// [`Self::needs_segment`]: a run without dense output and events pays nothing for it.
+    /// [`Self::needs_segment`]: a run without dense output, events and output times pays
+    /// nothing for it.
     pub fn accept_with(
         &mut self,
         t1: f64,
@@ -115,50 +224,17 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         segment: impl FnOnce() -> Segment<D>,
     ) -> Flow {
         if !self.needs_segment() {
-            self.sol.t.push(t1);
-            self.sol.y.push(*y1);
-            return Flow::Continue;
+            return self.accept_point(t1, y1);
         }
         let seg = segment();
-        let mut crossings: Vec<(f64, usize)> = Vec::new();
-        for (i, ev) in self.events.iter().enumerate() {
-            let g1 = (ev.g)(t1, y1);
-            self.g_next[i] = g1;
-            if ev.direction.crossed(self.g_prev[i], g1) {
-                crossings.push((locate(&*ev.g, &seg, self.g_prev[i], g1), i));
-            }
-        }
-        std::mem::swap(&mut self.g_prev, &mut self.g_next);
-        if crossings.is_empty() {
-            self.push_step(seg, t1, *y1);
-            return Flow::Continue;
-        }
-        crossings.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let state_at = |t: f64| if t == t1 { *y1 } else { seg.eval(t) };
-        let stop = crossings
-            .iter()
-            .find(|&&(_, i)| self.events[i].terminal)
-            .copied();
-        for &(t, i) in &crossings {
-            if stop.is_some_and(|(ts, _)| t > ts) {
-                break;
-            }
-            self.sol.events.push(EventHit {
-                event: i,
-                t,
-                y: state_at(t),
-            });
-        }
+        let stop = self.locate_events(&seg, t1, y1);
         match stop {
-            None => {
-                self.push_step(seg, t1, *y1);
-                Flow::Continue
-            }
+            None => self.push_step(Some(seg), t1, *y1),
             Some((ts, i)) => {
-                let ys = state_at(ts);
+                let ys = if ts == t1 { *y1 } else { seg.eval(ts) };
                 let cut = if ts == t1 { seg } else { seg.truncated(ts) };
-                self.push_step(cut, ts, ys);
                 self.sol.stopped_by = Some(i);
+                self.push_step(Some(cut), ts, ys);
                 Flow::Stop
             }
         }
@@ -168,22 +244,92 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
     /// (nothing kept or located needs the step's polynomial).
     pub(crate) fn accept_point(&mut self, t1: f64, y1: &Vector<D>) -> Flow {
         debug_assert!(!self.needs_segment());
-        self.sol.t.push(t1);
-        self.sol.y.push(*y1);
-        Flow::Continue
+        self.push_step(None, t1, *y1)
+    }
+
+    /// Evaluate the event functions at the step's end, record the crossings located on
+    /// `seg` up to the first terminal one, and return that one's time and index.
+    fn locate_events(&mut self, seg: &Segment<D>, t1: f64, y1: &Vector<D>) -> Option<(f64, usize)> {
+        if self.events.is_empty() {
+            return None;
+        }
+        let mut crossings: Vec<(f64, usize)> = Vec::new();
+        for (i, ev) in self.events.iter().enumerate() {
+            let g1 = (ev.g)(t1, y1);
+            self.g_next[i] = g1;
+            if ev.direction.crossed(self.g_prev[i], g1) {
+                crossings.push((locate(&*ev.g, seg, self.g_prev[i], g1), i));
+            }
+        }
+        std::mem::swap(&mut self.g_prev, &mut self.g_next);
+        crossings.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let stop = crossings
+            .iter()
+            .find(|&&(_, i)| self.events[i].terminal)
+            .copied();
+        for &(t, i) in &crossings {
+            if stop.is_some_and(|(ts, _)| t > ts) {
+                break;
+            }
+            let y = if t == t1 { *y1 } else { seg.eval(t) };
+            self.sol.events.push(EventHit { event: i, t, y });
+        }
+        stop
+    }
+
+    /// Keep what the record asks of a step ending at `(t1, y1)`, then call the observer.
+    #[inline]
+    fn push_step(&mut self, seg: Option<Segment<D>>, t1: f64, y1: Vector<D>) -> Flow {
+        self.steps += 1;
+        match &self.record {
+            Record::Steps => self.keep(t1, y1),
+            Record::Every(k) if self.steps.is_multiple_of(*k) => self.keep(t1, y1),
+            Record::Times(ts) => {
+                while let Some(&t) = ts.get(self.next_time) {
+                    if t > t1 {
+                        break;
+                    }
+                    let y = match &seg {
+                        Some(s) if t != t1 => s.eval(t),
+                        _ => y1,
+                    };
+                    self.sol.t.push(t);
+                    self.sol.y.push(y);
+                    self.next_time += 1;
+                }
+            }
+            _ => {}
+        }
+        (self.sol.t_end, self.sol.y_end) = (t1, y1);
+        let mut flow = Flow::Continue;
+        if let Some(observer) = self.observer.as_mut() {
+            flow = observer(&Step {
+                t: t1,
+                y: &y1,
+                segment: seg.as_ref(),
+            });
+        }
+        if self.dense
+            && let Some(seg) = seg
+        {
+            self.sol.segments.push(seg);
+        }
+        flow
     }
 
     #[inline]
-    fn push_step(&mut self, seg: Segment<D>, t1: f64, y1: Vector<D>) {
-        self.sol.t.push(t1);
-        self.sol.y.push(y1);
-        if self.dense {
-            self.sol.segments.push(seg);
-        }
+    fn keep(&mut self, t: f64, y: Vector<D>) {
+        self.sol.t.push(t);
+        self.sol.y.push(y);
     }
 
-    /// The finished record with the method's work counters.
-    pub fn finish(self, stats: Stats) -> Solution<D> {
+    /// The finished record with the method's work counters; the final state closes `t`
+    /// and `y` when the record did not already end there.
+    pub fn finish(mut self, stats: Stats) -> Solution<D> {
+        let (t_end, y_end) = (self.sol.t_end, self.sol.y_end);
+        if self.sol.t.last() != Some(&t_end) {
+            self.keep(t_end, y_end);
+        }
         Solution { stats, ..self.sol }
     }
 }
@@ -192,7 +338,8 @@ impl<const D: usize> fmt::Debug for Recorder<'_, '_, D> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Recorder")
             .field("events", &self.events)
-            .field("steps", &(self.sol.t.len() - 1))
+            .field("record", &self.record)
+            .field("steps", &self.steps)
             .finish_non_exhaustive()
     }
 }
