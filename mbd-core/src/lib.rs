@@ -18,7 +18,8 @@ pub mod solve;
 
 pub use error::{Error, Result};
 pub use integrate::{
-    Direction, Dopri5, Event, EventHit, Integrator, Options, Rk4, Segment, Solution, Stats,
+    Auto, Direction, Dop853, Dopri5, Event, EventHit, Integrator, Options, Record, Rk4, Segment,
+    Solution, Stats,
 };
 pub use model::{
     Constrained, Contacts, Frictional, Generated, Hybrid, Matrix, Mechanism, OdeSystem, Slip,
