@@ -3,8 +3,8 @@
 //! (the pendulum `theta'' = -(g/l) sin theta` as the derive generates it: one `sin`, one
 //! product). Pendulum from rest at 60 deg over 10 s at rtol = atol = 1e-10.
 //!
-//! Prints, for DOPRI5 and DOP853 keeping the final state only, every step, and every step
-//! with dense output, `ns/eval` and the ratios to the bare call (independent calls) and to
+//! Prints, for DOPRI5 and DOP853 keeping the final state only, every step, every step
+//! with dense output, and 101 output times (from the dense output, segments not kept), `ns/eval` and the ratios to the bare call (independent calls) and to
 //! a dependent chain of calls (each input the last output, as in the stages). Timings are the minimum over interleaved batches (the machine is shared).
 
 use mbd_core::integrate::{Dop853, Dopri5, Integrator, Options, Record};
@@ -47,6 +47,7 @@ fn main() {
         record,
         ..Options::default()
     };
+    let times = || Record::Times((0..=100).map(|i| 0.1 * f64::from(i)).collect());
     // Bare calls on states that change (as the stages' do), one call per iteration.
     let bare = move || {
         let mut y = black_box(y0);
@@ -103,6 +104,10 @@ fn main() {
             Box::new(d5(opts(Record::Steps, true))),
         ),
         (
+            "DOPRI5 101 output times",
+            Box::new(d5(opts(times(), false))),
+        ),
+        (
             "DOP853 final state",
             Box::new(d8(opts(Record::Final, false))),
         ),
@@ -113,6 +118,10 @@ fn main() {
         (
             "DOP853 every step + dense",
             Box::new(d8(opts(Record::Steps, true))),
+        ),
+        (
+            "DOP853 101 output times",
+            Box::new(d8(opts(times(), false))),
         ),
     ];
     let mut best = vec![f64::INFINITY; cases.len()];

@@ -5,6 +5,7 @@
 //! solution (the manual's figures were lost), the model, and the exact references with every
 //! discrepancy found in the manual; its tests run with `cargo test -p mechanisms caseNN`.
 
+pub mod accuracy;
 pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;

@@ -34,7 +34,7 @@ use crate::{
 };
 use mbd::analysis::{NewtonOptions, kinematics};
 use mbd::integrate::{
-    Dopri5, Event, EventHit, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution,
+    Dop853, Dopri5, Event, EventHit, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution,
 };
 use mbd::{Constrained, OdeSystem, Options, Stats, Vector};
 use std::cell::Cell;
@@ -50,6 +50,8 @@ pub enum Method {
     Rk4,
     /// mbd's Dormand–Prince 5(4), swept over `rtol = atol`.
     Dopri5,
+    /// mbd's Dormand–Prince 8(5,3), swept over `rtol = atol`.
+    Dop853,
     /// mbd's Dormand–Prince 5(4) without the projection onto the constraint manifolds
     /// (the same algorithm as the peer's, for the comparison on the slider-crank).
     Dopri5NoProjection,
@@ -66,9 +68,10 @@ pub const RHO_INF: f64 = 0.9;
 
 impl Method {
     /// The mbd methods every case is swept with.
-    pub const MBD: [Method; 4] = [
+    pub const MBD: [Method; 5] = [
         Method::Rk4,
         Method::Dopri5,
+        Method::Dop853,
         Method::Radau5,
         Method::GeneralizedAlpha,
     ];
@@ -78,6 +81,7 @@ impl Method {
         match self {
             Method::Rk4 => "RK4",
             Method::Dopri5 => "DOPRI5",
+            Method::Dop853 => "DOP853",
             Method::Dopri5NoProjection => "DOPRI5 (no projection)",
             Method::Radau5 => "Radau5",
             Method::GeneralizedAlpha => "generalized-alpha",
@@ -250,6 +254,7 @@ pub fn solve_ode<S: OdeSystem<D>, const D: usize>(
     let mut sol = match s.method {
         Method::Rk4 => Rk4::new(s.value).solve(sys, t0, y0, t1, events),
         Method::Dopri5 => Dopri5::new(s.adaptive_options(true)).solve(sys, t0, y0, t1, events),
+        Method::Dop853 => Dop853::new(s.adaptive_options(true)).solve(sys, t0, y0, t1, events),
         Method::Dopri5NoProjection => {
             Dopri5::new(s.adaptive_options(false)).solve(sys, t0, y0, t1, events)
         }
@@ -346,16 +351,18 @@ pub struct Problem {
     pub run: fn(&Setting) -> Result<Measured, Failure>,
 }
 
-const PEER_METHODS: [Method; 5] = [
+const PEER_METHODS: [Method; 6] = [
     Method::Rk4,
     Method::Dopri5,
+    Method::Dop853,
     Method::Radau5,
     Method::GeneralizedAlpha,
     Method::PeerDopri5,
 ];
-const PEER_METHODS_LOOP: [Method; 6] = [
+const PEER_METHODS_LOOP: [Method; 7] = [
     Method::Rk4,
     Method::Dopri5,
+    Method::Dop853,
     Method::Dopri5NoProjection,
     Method::Radau5,
     Method::GeneralizedAlpha,

@@ -186,3 +186,29 @@ fn friction_case_is_skipped_by_generalized_alpha_with_a_reason() {
         Err(mechanisms::workprecision::Failure::Unsupported(_))
     ));
 }
+
+/// The time-to-accuracy table's pieces: the pendulum's Jacobi-elliptic reference starts at
+/// the release angle and crosses zero at the quarter period found by quadrature; a DOP853
+/// run at 1e-12 gives the 101 grid states (t0 and 100 more, the last at t1) within 1e-10 of
+/// it; and DOP853 is swept with every model.
+#[test]
+fn time_to_accuracy_reference_and_grid() {
+    use mechanisms::accuracy::{GRID, pendulum_angle, states};
+    let p = PENDULUM;
+    let (theta0, w) = (std::f64::consts::FRAC_PI_3, (p.g / p.l).sqrt());
+    assert!((pendulum_angle(w, theta0, 0.0) - theta0).abs() < 1e-15);
+    let quarter = pendulum_motion(&p, theta0).time_to(0.0, PANELS);
+    assert!(pendulum_angle(w, theta0, quarter).abs() < 1e-12);
+    let y0 = Vector::<2>::new(theta0, 0.0);
+    let (ys, n_rhs) = states("DOP853", &p, y0, 10.0, 1e-12).unwrap();
+    assert_eq!(ys.len(), GRID);
+    assert!(n_rhs > 0);
+    let worst = ys
+        .iter()
+        .enumerate()
+        .map(|(i, y)| (y[0] - pendulum_angle(w, theta0, 0.1 * i as f64)).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-10, "{worst:e}");
+    assert!(Method::MBD.contains(&Method::Dop853));
+    assert!(cases().iter().all(|c| c.methods.contains(&Method::Dop853)));
+}
