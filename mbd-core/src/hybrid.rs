@@ -116,6 +116,8 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
         events: Vec::new(),
         stats: Stats::default(),
         stopped_by: None,
+        t_end: t0,
+        y_end: y0,
     };
     let mut switches = Vec::new();
     loop {
@@ -181,6 +183,10 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
         if t >= t1 {
             break;
         }
+    }
+    // The final state is the record's last point (which a switch may have moved).
+    if let (Some(&t_end), Some(&y_end)) = (out.t.last(), out.y.last()) {
+        (out.t_end, out.y_end) = (t_end, y_end);
     }
     Ok(HybridSolution {
         solution: out,
@@ -372,7 +378,7 @@ mod tests {
         let seg = Segment {
             t0: 0.0,
             h: 1.0,
-            coeffs: [z, Vector::<1>::new(1.0), z, z, z, z],
+            coeffs: [z, Vector::<1>::new(1.0), z, z, z, z, z, z],
         };
         let g = |_t: f64, y: &Vector<1>| 1.0 / 3.0 - y[0];
         let t = refine(&g, &seg);
