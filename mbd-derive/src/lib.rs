@@ -10,6 +10,7 @@
 mod codegen;
 mod expand;
 mod friction;
+mod guard;
 mod lower;
 mod model;
 mod parse;
@@ -17,7 +18,7 @@ mod sym;
 mod tree;
 
 use proc_macro::TokenStream;
-use syn::{DeriveInput, parse_macro_input};
+use syn::DeriveInput;
 
 /// Derive the equations of motion of a mechanism; see the `mbd` crate for the language.
 #[proc_macro_derive(
@@ -50,7 +51,17 @@ use syn::{DeriveInput, parse_macro_input};
     )
 )]
 pub fn derive_mechanism(input: TokenStream) -> TokenStream {
-    let input = parse_macro_input!(input as DeriveInput);
-    let source = proc_macro::Span::call_site().file();
-    expand::derive(&input, &source).into()
+    // Parse, derive and drop on the derive's own stack: big input must not overflow rustc's.
+    guard::on_big_stack(|| {
+        let input = proc_macro2::TokenStream::from(input);
+        if let Err(err) = guard::check_size(input.clone()) {
+            return err.to_compile_error().into();
+        }
+        let input = match syn::parse2::<DeriveInput>(input) {
+            Ok(input) => input,
+            Err(err) => return err.to_compile_error().into(),
+        };
+        let source = proc_macro::Span::call_site().file();
+        expand::derive(&input, &source).into()
+    })
 }

@@ -166,7 +166,13 @@ impl Lowerer<'_> {
         Err(())
     }
 
+    /// One level of the recursion over `e`, on a stack that grows as it deepens (a sum of
+    /// thousands of terms nests once per term).
     fn expr(&mut self, e: &syn::Expr, ctx: Context) -> Res {
+        crate::guard::recurse(|| self.expr_here(e, ctx))
+    }
+
+    fn expr_here(&mut self, e: &syn::Expr, ctx: Context) -> Res {
         use syn::Expr as E;
         match e {
             E::Lit(l) => match &l.lit {
