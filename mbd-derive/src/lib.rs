@@ -14,6 +14,7 @@ mod guard;
 mod lower;
 mod model;
 mod parse;
+mod spatial;
 mod sym;
 mod tree;
 

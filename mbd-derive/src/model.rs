@@ -10,7 +10,7 @@
 use crate::lower::{self, Binding, Context, Lowerer, Value};
 use crate::parse::{self, BodyKind, Dim, End, Errors, Load, Mechanism};
 use crate::sym::{Expr, Func, Graph, Sym, schedule};
-use crate::tree;
+use crate::{spatial, tree};
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;
@@ -666,6 +666,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     // the mass matrix (the articulated-body recursion is planar).
     let mut frames: Vec<Frame> = Vec::new();
     let mut frame_of: HashMap<String, usize> = HashMap::new();
+    // The spatial recursion's frames, and the one of each body (its joint's last step).
+    let mut steps: Vec<spatial::Node> = Vec::new();
+    let mut step_of_frame: Vec<usize> = Vec::new();
     for tb in ast.tree.iter().filter(|_| dim == Dim::Spatial) {
         if let Some(e) = &tb.angle {
             errors.over(
@@ -760,6 +763,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             let r = lower::rotation(&mut g, ["rot_x", "rot_y", "rot_z"][e], angle);
             relative = lower::matmul(&mut g, &r, &relative);
         }
+        let parent_frame = parent;
         let parent = match parent {
             Some(p) => frames[p],
             None => Frame {
@@ -801,6 +805,52 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             &tb.name,
             Binding::Body(bodies.len() - 1),
         );
+        let coord_of: Vec<usize> = tb
+            .joint
+            .coords()
+            .iter()
+            .filter_map(|c| coords.iter().position(|k| k.name == **c))
+            .collect();
+        let joint_steps: Vec<spatial::Step> = match (&tb.joint, coord_of.as_slice()) {
+            (parse::Joint::Prismatic { .. }, &[coord]) if axis.len() == 3 => {
+                vec![spatial::Step::Prismatic {
+                    coord,
+                    axis: [axis[0], axis[1], axis[2]],
+                }]
+            }
+            _ if turns.len() == coord_of.len() && !turns.is_empty() => turns
+                .iter()
+                .zip(&coord_of)
+                .map(|(&(axis, angle, _), &coord)| spatial::Step::Revolute { coord, angle, axis })
+                .collect(),
+            _ => vec![spatial::Step::Fixed],
+        };
+        let mut step_parent = parent_frame.map(|p| step_of_frame[p]);
+        let last = joint_steps.len() - 1;
+        for (k, step) in joint_steps.into_iter().enumerate() {
+            let body = k == last;
+            steps.push(spatial::Node {
+                parent: step_parent,
+                step,
+                at: if k == 0 {
+                    std::array::from_fn(|i| at[i])
+                } else {
+                    [zero; 3]
+                },
+                com: if body {
+                    std::array::from_fn(|i| com[i])
+                } else {
+                    [zero; 3]
+                },
+                mass: if body { mass } else { zero },
+                inertia: match inertia {
+                    Some(i) if body => i,
+                    _ => [[zero; 3]; 3],
+                },
+            });
+            step_parent = Some(steps.len() - 1);
+        }
+        step_of_frame.push(steps.len() - 1);
         frame_of.insert(tb.name.to_string(), frames.len());
         frames.push(Frame { origin, rot, omega });
     }
@@ -1239,18 +1289,18 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let energy_full = g.add(kinetic, potential_all);
 
     // The articulated-body recursion, for a pure joint tree when it pays or is asked for.
-    let eligible = !nodes.is_empty()
+    let eligible = !(nodes.is_empty() && steps.is_empty())
         && ast.bodies.is_empty()
         && phi_full.is_empty()
         && ast.frictions.is_empty();
     let recursive = match ast.evaluation {
         parse::Evaluation::MassMatrix => false,
         parse::Evaluation::Recursive if !eligible => {
-            errors.at(ast.evaluation_span, "`recursive` evaluation needs a planar joint tree (`body`, `chain`) without constraints, friction or free-standing `particle`/`rigid` bodies");
+            errors.at(ast.evaluation_span, "`recursive` evaluation needs a joint tree (`body`, `chain`) without constraints, friction or free-standing `particle`/`rigid` bodies");
             false
         }
         parse::Evaluation::Recursive => true,
-        parse::Evaluation::Auto => eligible && nodes.len() >= RECURSIVE_FROM_BODIES,
+        parse::Evaluation::Auto => eligible && nodes.len() + frames.len() >= RECURSIVE_FROM_BODIES,
     };
     let mut rolled: Option<tree::Rolled> = None;
     let qdd_recursive: Vec<Option<Expr>> = if recursive {
@@ -1259,23 +1309,36 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             .iter()
             .map(|c| (!matches!(c.kind, CoordKind::Free)).then_some(c.zdd))
             .collect();
-        let gravity = match &gravity {
-            Some(v) => [v[0], v[1]],
-            None => [zero, zero],
-        };
-        let inputs = tree::Inputs {
-            velocity: &velocity,
-            prescribed: &prescribed,
-            tau: &q_applied,
-            gravity,
-        };
-        match tree::rolled(&mut g, &nodes, &inputs) {
-            Some(r) => {
-                let qdd = r.qdd.clone();
-                rolled = Some(r);
-                qdd
+        if !steps.is_empty() {
+            let inputs = spatial::Inputs {
+                velocity: &velocity,
+                prescribed: &prescribed,
+                tau: &q_applied,
+                gravity: match &gravity {
+                    Some(v) => [v[0], v[1], v[2]],
+                    None => [zero; 3],
+                },
+            };
+            spatial::articulated_body(&mut g, &steps, &inputs)
+        } else {
+            let gravity = match &gravity {
+                Some(v) => [v[0], v[1]],
+                None => [zero, zero],
+            };
+            let inputs = tree::Inputs {
+                velocity: &velocity,
+                prescribed: &prescribed,
+                tau: &q_applied,
+                gravity,
+            };
+            match tree::rolled(&mut g, &nodes, &inputs) {
+                Some(r) => {
+                    let qdd = r.qdd.clone();
+                    rolled = Some(r);
+                    qdd
+                }
+                None => tree::articulated_body(&mut g, &nodes, &inputs),
             }
-            None => tree::articulated_body(&mut g, &nodes, &inputs),
         }
     } else {
         Vec::new()
