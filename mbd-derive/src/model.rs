@@ -811,27 +811,34 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             .iter()
             .filter_map(|c| coords.iter().position(|k| k.name == **c))
             .collect();
-        let joint_steps: Vec<spatial::Step> = match (&tb.joint, coord_of.as_slice()) {
-            (parse::Joint::Prismatic { .. }, &[coord]) if axis.len() == 3 => {
-                vec![spatial::Step::Prismatic {
-                    coord,
-                    axis: [axis[0], axis[1], axis[2]],
-                }]
-            }
-            _ if turns.len() == coord_of.len() && !turns.is_empty() => turns
-                .iter()
-                .zip(&coord_of)
-                .map(|(&(axis, angle, _), &coord)| spatial::Step::Revolute { coord, angle, axis })
-                .collect(),
-            _ => vec![spatial::Step::Fixed],
-        };
+        let joint_steps: Vec<(spatial::Step, Option<(usize, Expr)>)> =
+            match (&tb.joint, coord_of.as_slice()) {
+                (parse::Joint::Prismatic { .. }, &[coord]) if axis.len() == 3 => {
+                    vec![(
+                        spatial::Step::Prismatic {
+                            coord,
+                            axis: [axis[0], axis[1], axis[2]],
+                        },
+                        None,
+                    )]
+                }
+                _ if turns.len() == coord_of.len() && !turns.is_empty() => turns
+                    .iter()
+                    .zip(&coord_of)
+                    .map(|(&(axis, angle, _), &coord)| {
+                        (spatial::Step::Revolute { coord, axis }, Some((axis, angle)))
+                    })
+                    .collect(),
+                _ => vec![(spatial::Step::Fixed, None)],
+            };
         let mut step_parent = parent_frame.map(|p| step_of_frame[p]);
         let last = joint_steps.len() - 1;
-        for (k, step) in joint_steps.into_iter().enumerate() {
+        for (k, (step, turn)) in joint_steps.into_iter().enumerate() {
             let body = k == last;
             steps.push(spatial::Node {
                 parent: step_parent,
                 step,
+                turn,
                 at: if k == 0 {
                     std::array::from_fn(|i| at[i])
                 } else {
@@ -1181,13 +1188,59 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         }
     }
 
+    // The articulated-body recursion, for a pure joint tree when it pays or is asked for.
+    let eligible = !(nodes.is_empty() && steps.is_empty())
+        && ast.bodies.is_empty()
+        && phi_full.is_empty()
+        && ast.frictions.is_empty();
+    let recursive = match ast.evaluation {
+        parse::Evaluation::MassMatrix => false,
+        parse::Evaluation::Recursive if !eligible => {
+            errors.at(ast.evaluation_span, "`recursive` evaluation needs a joint tree (`body`, `chain`) without constraints, friction or free-standing `particle`/`rigid` bodies");
+            false
+        }
+        parse::Evaluation::Recursive => true,
+        parse::Evaluation::Auto => eligible && nodes.len() + frames.len() >= RECURSIVE_FROM_BODIES,
+    };
+    // A pure joint tree's M, f and kinetic energy by recursion (composite rigid bodies,
+    // Newton-Euler: O(n^2) and O(n) terms), when every coordinate is a joint's; Kane's
+    // projections otherwise (O(n^3) for a chain).
+    let velocity: Vec<Expr> = coords.iter().map(|c| c.zd).collect();
+    let prescribed: Vec<Option<Expr>> = coords
+        .iter()
+        .map(|c| (!matches!(c.kind, CoordKind::Free)).then_some(c.zdd))
+        .collect();
+    let frames3 = match dim {
+        Dim::Planar => spatial::from_planar(&mut g, &nodes),
+        Dim::Spatial => std::mem::take(&mut steps),
+    };
+    let by_recursion = (recursive && spatial::covers(&frames3, nz)).then(|| {
+        let inputs = spatial::Inputs {
+            velocity: &velocity,
+            prescribed: &prescribed,
+            tau: &q_applied,
+            gravity: match &gravity {
+                Some(v) => std::array::from_fn(|i| v.get(i).copied().unwrap_or(zero)),
+                None => [zero; 3],
+            },
+        };
+        spatial::mass_and_forces(&mut g, &frames3, &inputs)
+    });
+    let steps = frames3;
+
     // Kane's projection: M_jk = sum m J_j . J_k + Jw_j^T I Jw_k;
     // f_j = Q_j - sum J_j . m a0 - Jw_j^T (I alpha0 + w x I w).
     let mut m_full = vec![vec![zero; nz]; nz];
     let applied_full = q_full.clone();
     let mut f_full = q_full;
     let mut kinetic = zero;
-    for b in &bodies {
+    let kane = by_recursion.is_none();
+    if let Some(rec) = by_recursion {
+        m_full = rec.mass;
+        f_full = rec.forces;
+        kinetic = rec.twice_kinetic;
+    }
+    for b in bodies.iter().filter(|_| kane) {
         let v: Vec<Expr> = b.r.iter().map(|x| kin.tder(&mut g, *x)).collect();
         let jac: Vec<Vec<Expr>> = zdsyms
             .iter()
@@ -1266,7 +1319,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             .all(|&e| !g.depends_on(e, time))
     });
     match form {
-        InertialForm::Shorter if scleronomic && nz <= LAGRANGE_MAX_COORDINATES => {
+        InertialForm::Shorter if kane && scleronomic && nz <= LAGRANGE_MAX_COORDINATES => {
             let lagrange = lagrange_forces(&mut g, &m_full, &applied_full, &zsyms, &coords);
             let cost = |g: &Graph, f: &[Expr]| {
                 let roots: Vec<Expr> = m_full.iter().flatten().chain(f).copied().collect();
@@ -1288,28 +1341,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let potential_all = g.add(potential, gravity_energy);
     let energy_full = g.add(kinetic, potential_all);
 
-    // The articulated-body recursion, for a pure joint tree when it pays or is asked for.
-    let eligible = !(nodes.is_empty() && steps.is_empty())
-        && ast.bodies.is_empty()
-        && phi_full.is_empty()
-        && ast.frictions.is_empty();
-    let recursive = match ast.evaluation {
-        parse::Evaluation::MassMatrix => false,
-        parse::Evaluation::Recursive if !eligible => {
-            errors.at(ast.evaluation_span, "`recursive` evaluation needs a joint tree (`body`, `chain`) without constraints, friction or free-standing `particle`/`rigid` bodies");
-            false
-        }
-        parse::Evaluation::Recursive => true,
-        parse::Evaluation::Auto => eligible && nodes.len() + frames.len() >= RECURSIVE_FROM_BODIES,
-    };
     let mut rolled: Option<tree::Rolled> = None;
     let qdd_recursive: Vec<Option<Expr>> = if recursive {
-        let velocity: Vec<Expr> = coords.iter().map(|c| c.zd).collect();
-        let prescribed: Vec<Option<Expr>> = coords
-            .iter()
-            .map(|c| (!matches!(c.kind, CoordKind::Free)).then_some(c.zdd))
-            .collect();
-        if !steps.is_empty() {
+        if dim == Dim::Spatial {
             let inputs = spatial::Inputs {
                 velocity: &velocity,
                 prescribed: &prescribed,

@@ -21,13 +21,13 @@ type M3 = [[Expr; 3]; 3];
 /// One degree of freedom (or none) between a frame and its parent.
 #[derive(Clone, Copy)]
 pub enum Step {
-    /// A rotation by the coordinate's angle about the parent's axis `axis` (0, 1, 2: x, y, z).
+    /// A rotation about the frame's axis `axis` (0, 1, 2: x, y, z); the angle is the
+    /// node's `turn`.
     Revolute {
         coord: usize,
-        angle: Expr,
         axis: usize,
     },
-    /// A translation along `axis` (unit, parent frame = child frame); the travel is in `at`.
+    /// A translation along `axis` (unit, parent frame); the travel is in `at`.
     Prismatic {
         coord: usize,
         axis: V3,
@@ -49,6 +49,9 @@ impl Step {
 pub struct Node {
     pub parent: Option<usize>,
     pub step: Step,
+    /// The frame's rotation relative to the parent's: about axis `.0` by the angle `.1` (a
+    /// revolute step's coordinate, plus a planar body's constant offset).
+    pub turn: Option<(usize, Expr)>,
     /// The frame's origin in the parent's frame (the prismatic travel included).
     pub at: V3,
     /// The mass centre in the frame.
@@ -56,6 +59,34 @@ pub struct Node {
     pub mass: Expr,
     /// Centroidal inertia in the frame's axes (zero: a point mass or a massless frame).
     pub inertia: M3,
+}
+
+/// A planar tree's bodies as spatial frames (rotations about `z`, the plane `z = 0`), for
+/// the recursions that only the spatial form has (mass matrix, bias forces).
+pub fn from_planar(g: &mut Graph, nodes: &[crate::tree::Node]) -> Vec<Node> {
+    let z = g.zero();
+    nodes
+        .iter()
+        .map(|n| Node {
+            parent: n.parent,
+            step: match &n.joint {
+                crate::tree::JointKin::Revolute { coord } => Step::Revolute {
+                    coord: *coord,
+                    axis: 2,
+                },
+                crate::tree::JointKin::Prismatic { coord, axis } => Step::Prismatic {
+                    coord: *coord,
+                    axis: [axis[0], axis[1], z],
+                },
+                crate::tree::JointKin::Fixed => Step::Fixed,
+            },
+            turn: (!g.is_zero(n.relative)).then_some((2, n.relative)),
+            at: [n.at[0], n.at[1], z],
+            com: [n.com[0], n.com[1], z],
+            mass: n.mass,
+            inertia: [[z, z, z], [z, z, z], [z, z, n.inertia]],
+        })
+        .collect()
 }
 
 /// A spatial motion or force vector: angular (moment) part, linear (force) part.
@@ -193,12 +224,9 @@ struct Transform {
 
 impl Transform {
     fn new(g: &mut Graph, node: &Node) -> Self {
-        let rot = match node.step {
-            Step::Revolute { angle, axis, .. } => {
-                Some(lower::rotation(g, ["rot_x", "rot_y", "rot_z"][axis], angle))
-            }
-            _ => None,
-        };
+        let rot = node
+            .turn
+            .map(|(axis, angle)| lower::rotation(g, ["rot_x", "rot_y", "rot_z"][axis], angle));
         Transform { rot, r: node.at }
     }
 
@@ -280,7 +308,7 @@ impl Transform {
 }
 
 /// The motion subspace of a step in the child's frame.
-fn subspace(g: &mut Graph, step: &Step) -> Option<Sv> {
+fn subspace(g: &mut Graph, step: &Step, x: &Transform) -> Option<Sv> {
     let z = [g.zero(); 3];
     match step {
         Step::Revolute { axis, .. } => {
@@ -288,7 +316,10 @@ fn subspace(g: &mut Graph, step: &Step) -> Option<Sv> {
             e[*axis] = g.one();
             Some(Sv { a: e, l: z })
         }
-        Step::Prismatic { axis, .. } => Some(Sv { a: z, l: *axis }),
+        Step::Prismatic { axis, .. } => Some(Sv {
+            a: z,
+            l: x.to_child(g, *axis),
+        }),
         Step::Fixed => None,
     }
 }
@@ -321,7 +352,7 @@ fn outward(
 ) -> Outward {
     let z = [g.zero(); 3];
     let zero = Sv { a: z, l: z };
-    let s = subspace(g, &node.step);
+    let s = subspace(g, &node.step, x);
     let vp = parent.map_or(zero, |v| x.motion(g, v));
     let (v, c) = match (s, rate) {
         (Some(si), Some(rate)) => {
@@ -518,4 +549,108 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
         });
     }
     qdd
+}
+
+/// The mass matrix, the forces at zero joint accelerations and the kinetic energy of a
+/// tree, over the full coordinates (`nz` of them; every one a step's), by recursion: the
+/// composite-rigid-body algorithm for `M` (O(n d) entries for depth `d`, each a force
+/// carried up the tree one transform at a time), recursive Newton-Euler at `qdd = 0` for
+/// `f = tau - C(q, qd) - G(q)` (O(n)). Kane's projections of the same tree are O(n^3).
+pub struct Inertial {
+    pub mass: Vec<Vec<Expr>>,
+    pub forces: Vec<Expr>,
+    /// `2 T = sum v . I v` (the caller halves it with the rest of the kinetic energy).
+    pub twice_kinetic: Expr,
+}
+
+pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inertial {
+    let nz = inp.velocity.len();
+    let zero = g.zero();
+    let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
+    // Newton-Euler, outward: velocities and accelerations at qdd = 0 (gravity as an upward
+    // acceleration of the ground), each frame's own force; kinetic energy.
+    let base = Sv {
+        a: [zero; 3],
+        l: inp.gravity.map(|x| g.neg(x)),
+    };
+    let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
+    let mut acc: Vec<Sv> = Vec::with_capacity(nodes.len());
+    let mut force: Vec<Sv> = Vec::with_capacity(nodes.len());
+    let mut twice_kinetic = zero;
+    for (node, x) in nodes.iter().zip(&xs) {
+        let parent = node.parent.map(|p| out[p].v);
+        let rate = node.step.coord().map(|j| inp.velocity[j]);
+        let o = outward(g, node, x, parent, rate);
+        let ap = x.motion(g, node.parent.map_or(base, |p| acc[p]));
+        let a = sv_add(g, ap, o.c);
+        let ia = si_mul(g, &o.inertia, a);
+        force.push(sv_add(g, ia, o.p));
+        let iv = si_mul(g, &o.inertia, o.v);
+        let viv = sv_dot(g, o.v, iv);
+        twice_kinetic = g.add(twice_kinetic, viv);
+        acc.push(a);
+        out.push(o);
+    }
+    // Inward: each step's effort, the forces and composite inertias handed to the parents.
+    let mut forces = inp.tau.to_vec();
+    let mut composite: Vec<Si> = out.iter().map(|o| o.inertia).collect();
+    for i in (0..nodes.len()).rev() {
+        if let (Some(s), Some(j)) = (out[i].s, nodes[i].step.coord()) {
+            let effort = sv_dot(g, s, force[i]);
+            forces[j] = g.sub(forces[j], effort);
+        }
+        if let Some(p) = nodes[i].parent {
+            let up = xs[i].force(g, force[i]);
+            force[p] = sv_add(g, force[p], up);
+            let i_up = xs[i].inertia(g, &composite[i]);
+            let c = &mut composite[p];
+            for r in 0..3 {
+                for k in 0..3 {
+                    c.a[r][k] = g.add(c.a[r][k], i_up.a[r][k]);
+                    c.b[r][k] = g.add(c.b[r][k], i_up.b[r][k]);
+                    c.m[r][k] = g.add(c.m[r][k], i_up.m[r][k]);
+                }
+            }
+        }
+    }
+    // Composite rigid bodies: column i of M is the force that moves the subtree at i with a
+    // unit rate of its step, projected on every step from i to the root.
+    let mut mass = vec![vec![zero; nz]; nz];
+    for i in 0..nodes.len() {
+        let (Some(s), Some(ji)) = (out[i].s, nodes[i].step.coord()) else {
+            continue;
+        };
+        let mut f = si_mul(g, &composite[i], s);
+        mass[ji][ji] = sv_dot(g, s, f);
+        let mut k = i;
+        while let Some(p) = nodes[k].parent {
+            f = xs[k].force(g, f);
+            k = p;
+            if let (Some(sk), Some(jk)) = (out[k].s, nodes[k].step.coord()) {
+                let m = sv_dot(g, sk, f);
+                mass[ji][jk] = m;
+                mass[jk][ji] = m;
+            }
+        }
+    }
+    Inertial {
+        mass,
+        forces,
+        twice_kinetic,
+    }
+}
+
+/// Whether every coordinate is moved by exactly one step of the tree (what
+/// [`mass_and_forces`] needs to give the whole `M` and `f`).
+pub fn covers(nodes: &[Node], nz: usize) -> bool {
+    let mut seen = vec![false; nz];
+    for n in nodes {
+        if let Some(j) = n.step.coord() {
+            if j >= nz || seen[j] {
+                return false;
+            }
+            seen[j] = true;
+        }
+    }
+    seen.into_iter().all(|s| s)
 }

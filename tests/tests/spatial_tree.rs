@@ -443,8 +443,10 @@ fn spherical_joint_reaction_is_newtons_force_on_the_body() {
 }
 
 // The spatial articulated-body recursion against the mass-matrix form of the same model: two
-// derivations (Featherstone's recursion over 6D spatial vectors, one step per joint axis, vs
-// Kane's projections of the composed kinematics) through two separately generated bodies.
+// algorithms (the articulated-body recursion, one step per joint axis, vs the
+// composite-rigid-body mass matrix and Newton-Euler forces at zero acceleration) through
+// separately generated bodies. The mass-matrix form itself equals the body-by-body twins'
+// (Kane's projections of kinematics written out) in the tests above.
 
 /// `|qdd - M^-1 f| <= 1e-12 |qdd|` and `|M qdd - f| <= 1e-12 (|M| |qdd| + |f|)` at each state.
 fn recursion_equals_mass_matrix_form<const N: usize>(
