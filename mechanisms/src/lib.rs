@@ -10,6 +10,7 @@ pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
 pub mod sim;
+pub mod spatial_chain_by_hand;
 pub mod stick_slip;
 pub mod svg;
 pub mod validation;

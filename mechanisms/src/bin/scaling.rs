@@ -1,7 +1,9 @@
-//! How the derive scales with the number of bodies: planar chains of N = 2, 4, 8, 16, 32
-//! (64 with `--max 64`) uniform links, each compiled as its own throw-away crate.
+//! How the derive scales with the number of bodies, each model compiled as its own throw-away
+//! crate: planar chains of N = 2, 4, .., 256 uniform links (`--family planar`, the default;
+//! up to `--max`, 256 by default, 32 for the explicit form), or spatial chains of N = 4, 8,
+//! 10, 16, 32 bars on universal joints (`--family spatial`, 2 N coordinates).
 //!
-//! `cargo run --release -p mechanisms --bin scaling [-- --json --max 32 --sizes 2,4,10 --form explicit|chain]`
+//! `cargo run --release -p mechanisms --bin scaling [-- --json --max 64 --sizes 2,4,10 --form explicit|chain --family planar|spatial]`
 //!
 //! Per N the report gives
 //! - `expand_s`: the derive's own expansion time, written by the macro itself when the build
@@ -12,8 +14,11 @@
 //! - `generated_lines`: the macro's output (`<dir>/<Struct>.rs`, one token string) parsed with
 //!   `syn::parse_file` and formatted with `prettyplease`, counted in lines (not counting the
 //!   names and types, one per line, of the grouped declarations long bodies start with);
+//! - `peak_mb`: the build's peak memory, the largest resident set of cargo and the compilers
+//!   it waited for (`/usr/bin/time`'s maximum RSS; absent without `/usr/bin/time`);
 //! - `rhs_ns` and `handwritten_rhs_ns`: the generated `OdeSystem::rhs` and the hand-written
-//!   articulated-body algorithm ([`mechanisms::chain_by_hand`]) for the same chain at the
+//!   articulated-body algorithm ([`mechanisms::chain_by_hand`], in space
+//!   [`mechanisms::spatial_chain_by_hand`]: the same algorithm) for the same chain at the
 //!   same fixed pseudo-random state, both timed by the throw-away binary, in turns over five
 //!   rounds, each round's figure the median of 201 batches long enough to be timed; the
 //!   least of the five rounds is reported for each (the machine's other load only slows);
@@ -24,11 +29,12 @@
 //! Forms: `explicit` writes every link as a `#[rigid]` with its position and angle written
 //! out; `chain` writes the joint-tree `#[chain(..)]`. Without `--form` the report probes
 //! `chain` at N = 2 and falls back to `explicit` (saying so on stderr) when that fails.
-//! A failed build or run is a row with an `error`, not a panic. `--max` defaults to 32: the
-//! explicit form's build grows too fast to wait for N = 64 on a two-core machine.
+//! A failed build or run is a row with an `error`, not a panic. Bad arguments (`--sizes 0`,
+//! an empty list, `--max` below 2) are refused with exit status 2 before any work.
 
-use clap::{Parser, ValueEnum};
+use clap::{CommandFactory, Parser, ValueEnum};
 use mechanisms::chain_by_hand::{chain_source, explicit_source};
+use mechanisms::spatial_chain_by_hand::spatial_chain_source;
 use serde::Serialize;
 use std::fs;
 use std::io::Read;
@@ -78,20 +84,32 @@ enum Form {
     Chain,
 }
 
+/// Which chains: planar links on revolute joints, or spatial bars on universal joints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum Family {
+    Planar,
+    Spatial,
+}
+
 #[derive(Debug, Parser)]
 #[command(about = "Compile cost and run-time cost of generated N-link chains")]
 struct Args {
     /// Print the rows as JSON.
     #[arg(long)]
     json: bool,
-    /// Largest N (of 2, 4, 8, 16, 32, 64). 32 by default: N = 64 in the explicit form takes
-    /// too long to build here.
-    #[arg(long, default_value_t = 32)]
-    max: usize,
-    /// The chain lengths to build instead, e.g. `--sizes 2,4,8,10,16`.
-    #[arg(long, value_delimiter = ',')]
-    sizes: Option<Vec<usize>>,
-    /// Model form; default: `chain` if it builds at N = 2, else `explicit`.
+    /// Largest N of the default sizes (planar 2, 4, .., 256; spatial 4, 8, 10, 16, 32).
+    /// Default: 256 (planar), 32 (planar explicit form, whose build grows too fast), 32
+    /// (spatial).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(2..))]
+    max: Option<u64>,
+    /// The chain lengths to build instead, e.g. `--sizes 2,4,8,10,16` (each at least 1).
+    #[arg(long, value_delimiter = ',', num_args = 1.., value_parser = clap::value_parser!(u64).range(1..))]
+    sizes: Option<Vec<u64>>,
+    /// Planar chains (default) or spatial chains of bars on universal joints.
+    #[arg(long, value_enum, default_value_t = Family::Planar)]
+    family: Family,
+    /// Planar model form; default: `chain` if it builds at N = 2, else `explicit`.
     #[arg(long, value_enum)]
     form: Option<Form>,
     /// Where the throw-away crates are written (default: `<workspace>/target/scaling`).
@@ -109,9 +127,11 @@ struct Args {
 #[derive(Debug, Clone, Default, Serialize)]
 struct Row {
     n_bodies: usize,
+    family: Option<Family>,
     form: Option<Form>,
     expand_s: Option<f64>,
     build_s: Option<f64>,
+    peak_mb: Option<f64>,
     generated_lines: Option<usize>,
     rhs_ns: Option<f64>,
     handwritten_rhs_ns: Option<f64>,
@@ -130,6 +150,9 @@ struct Row {
 const M: f64 = 1.3;
 const L: f64 = 0.7;
 const G: f64 = 9.81;
+/// A spatial bar's centroidal moments of inertia: `m l^2 / 12` across, a thin bar's along.
+const I: f64 = M * L * L / 12.0;
+const J: f64 = 0.004;
 
 fn main() {
     let args = Args::parse();
@@ -146,26 +169,41 @@ fn main() {
         .clone()
         .unwrap_or_else(|| work.join("target"));
     let timeout = Duration::from_secs(args.timeout);
-    let ns: Vec<usize> = match &args.sizes {
-        Some(sizes) => sizes.iter().copied().filter(|&n| n >= 1).collect(),
-        None => [2, 4, 8, 16, 32, 64]
-            .into_iter()
-            .filter(|&n| n <= args.max)
-            .collect(),
+    let max = args.max.map_or(
+        match (args.family, args.form) {
+            (Family::Planar, Some(Form::Explicit)) | (Family::Spatial, _) => 32,
+            (Family::Planar, _) => 256,
+        },
+        |m| m as usize,
+    );
+    let defaults: &[usize] = match args.family {
+        Family::Planar => &[2, 4, 8, 16, 32, 64, 128, 256],
+        Family::Spatial => &[4, 8, 10, 16, 32],
     };
-    if args.sizes.is_none() && args.max < 64 {
-        eprintln!("scaling: N up to {} (pass --max 64 for N = 64)", args.max);
+    let ns: Vec<usize> = match &args.sizes {
+        Some(sizes) => sizes.iter().map(|&n| n as usize).collect(),
+        None => defaults.iter().copied().filter(|&n| n <= max).collect(),
+    };
+    if ns.is_empty() {
+        Args::command()
+            .error(
+                clap::error::ErrorKind::ValueValidation,
+                format!("no chain sizes up to --max {max}"),
+            )
+            .exit();
     }
     let ctx = Ctx {
         root,
         work,
         target,
         timeout,
+        family: args.family,
     };
 
     // The form, and the warm-up build that compiles every dependency once.
     let form = match args.form {
         Some(f) => f,
+        None if args.family == Family::Spatial => Form::Chain,
         None => {
             eprintln!("scaling: probing the `chain` form at N = 2 (also the warm-up build)");
             match ctx.build(2, Form::Chain, false) {
@@ -200,7 +238,7 @@ fn main() {
             serde_json::to_string_pretty(&rows).expect("rows serialise")
         );
     } else {
-        print_table(form, &rows);
+        print_table(args.family, form, &rows);
     }
 }
 
@@ -209,11 +247,12 @@ struct Ctx {
     work: PathBuf,
     target: PathBuf,
     timeout: Duration,
+    family: Family,
 }
 
 impl Ctx {
     fn crate_dir(&self, n: usize) -> PathBuf {
-        self.work.join(format!("chain{n}"))
+        self.work.join(package_name(self.family, n))
     }
 
     fn dump_dir(&self, n: usize) -> PathBuf {
@@ -224,11 +263,23 @@ impl Ctx {
     /// or the compiler's error.
     fn build(&self, n: usize, form: Form, dump: bool) -> Result<f64, String> {
         let dir = self.crate_dir(n);
-        write_crate(&self.root, &dir, n, form).map_err(|e| format!("writing the crate: {e}"))?;
+        write_crate(&self.root, &dir, n, self.family, form)
+            .map_err(|e| format!("writing the crate: {e}"))?;
         let dump_dir = self.dump_dir(n);
         let _ = fs::remove_dir_all(&dump_dir);
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
-        let mut cmd = Command::new(cargo);
+        // `/usr/bin/time` reports the largest resident set of cargo and of the compilers it
+        // waited for.
+        let mut cmd = if Path::new(TIME).exists() {
+            let mut c = Command::new(TIME);
+            c.args(["-f", "%M", "-o"])
+                .arg(dir.join("peak_kb"))
+                .arg(cargo);
+            c
+        } else {
+            Command::new(cargo)
+        };
+        let _ = fs::remove_file(dir.join("peak_kb"));
         cmd.args(["build", "--release", "--color", "never"])
             .current_dir(&dir)
             .env("CARGO_TARGET_DIR", &self.target)
@@ -251,6 +302,7 @@ impl Ctx {
     fn row(&self, n: usize, form: Form) -> Row {
         let mut row = Row {
             n_bodies: n,
+            family: Some(self.family),
             form: Some(form),
             ..Row::default()
         };
@@ -268,7 +320,11 @@ impl Ctx {
                 return row;
             }
         }
-        let name = struct_name(n);
+        row.peak_mb = fs::read_to_string(self.crate_dir(n).join("peak_kb"))
+            .ok()
+            .and_then(|s| s.trim().parse::<f64>().ok())
+            .map(|kb| kb / 1024.0);
+        let name = struct_name(self.family, n);
         let dump = self.dump_dir(n);
         row.expand_s = fs::read_to_string(dump.join(format!("main.{name}.time")))
             .ok()
@@ -281,14 +337,18 @@ impl Ctx {
             Err(_) => eprintln!("[N={n}] no dump of the generated code (MBD_EXPAND_DUMP)"),
         }
         eprintln!(
-            "[N={n}] built in {:.2} s (expansion {}), {} generated lines; timing",
+            "[N={n}] built in {:.2} s, peak {} MB (expansion {}), {} generated lines; timing",
             row.build_s.unwrap_or(f64::NAN),
+            row.peak_mb.map_or("?".into(), |m| format!("{m:.0}")),
             row.expand_s.map_or("?".into(), |s| format!("{s:.3} s")),
             row.generated_lines.map_or("?".into(), |l| l.to_string()),
         );
 
         // The generated model, timed by its own binary.
-        let exe = self.target.join("release").join(package_name(n));
+        let exe = self
+            .target
+            .join("release")
+            .join(package_name(self.family, n));
         let out = dir_output(&exe, &self.crate_dir(n), self.timeout);
         let out = match out {
             Ok(o) => o,
@@ -341,12 +401,21 @@ fn code_lines(formatted: &str) -> usize {
         .count()
 }
 
-fn struct_name(n: usize) -> String {
-    format!("Chain{n}")
+/// Where `/usr/bin/time` is (GNU time: `-f %M` prints the maximum resident set in KB).
+const TIME: &str = "/usr/bin/time";
+
+fn struct_name(family: Family, n: usize) -> String {
+    match family {
+        Family::Planar => format!("Chain{n}"),
+        Family::Spatial => format!("Spatial{n}"),
+    }
 }
 
-fn package_name(n: usize) -> String {
-    format!("mbd-scaling-chain{n}")
+fn package_name(family: Family, n: usize) -> String {
+    match family {
+        Family::Planar => format!("mbd-scaling-chain{n}"),
+        Family::Spatial => format!("mbd-scaling-spatial{n}"),
+    }
 }
 
 /// The fixed pseudo-random state `[q; qd]` (entries in [-1, 1)), the same for every form.
@@ -362,13 +431,19 @@ fn state(n: usize) -> Vec<f64> {
         .collect()
 }
 
-fn write_crate(root: &Path, dir: &Path, n: usize, form: Form) -> std::io::Result<()> {
+fn write_crate(
+    root: &Path,
+    dir: &Path,
+    n: usize,
+    family: Family,
+    form: Form,
+) -> std::io::Result<()> {
     fs::create_dir_all(dir.join("src"))?;
     let manifest = format!(
         "[package]\nname = \"{}\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
          [dependencies]\nmbd = {{ path = {:?} }}\nmechanisms = {{ path = {:?} }}\n\n\
          # Not a member of the mbd workspace above it.\n[workspace]\n",
-        package_name(n),
+        package_name(family, n),
         root.display().to_string(),
         root.join("mechanisms").display().to_string(),
     );
@@ -377,27 +452,46 @@ fn write_crate(root: &Path, dir: &Path, n: usize, form: Form) -> std::io::Result
     if let Ok(lock) = fs::read(root.join("Cargo.lock")) {
         fs::write(dir.join("Cargo.lock"), lock)?;
     }
-    let name = struct_name(n);
-    let model = match form {
-        Form::Explicit => explicit_source(&name, n),
-        Form::Chain => chain_source(&name, n),
+    let name = struct_name(family, n);
+    // The model, its parameters, the hand-written twin and the number of coordinates.
+    let (model, fields, hand, coords) = match (family, form) {
+        (Family::Planar, Form::Explicit) => (
+            explicit_source(&name, n),
+            format!("m: {M:?}, l: {L:?}, g: {G:?}"),
+            format!("mechanisms::chain_by_hand::ChainByHand::<{n}>::new({M:?}, {L:?}, {G:?})"),
+            n,
+        ),
+        (Family::Planar, Form::Chain) => (
+            chain_source(&name, n),
+            format!("m: {M:?}, l: {L:?}, g: {G:?}"),
+            format!("mechanisms::chain_by_hand::ChainByHand::<{n}>::new({M:?}, {L:?}, {G:?})"),
+            n,
+        ),
+        (Family::Spatial, _) => (
+            spatial_chain_source(&name, n, ""),
+            format!("m: {M:?}, l: {L:?}, i: {I:?}, j: {J:?}, g: {G:?}"),
+            format!(
+                "mechanisms::spatial_chain_by_hand::SpatialChainByHand::<{n}>::new({M:?}, {L:?}, {I:?}, {J:?}, {G:?})"
+            ),
+            2 * n,
+        ),
     };
-    let y: Vec<String> = state(n).iter().map(|v| format!("{v:?}")).collect();
+    let y: Vec<String> = state(coords).iter().map(|v| format!("{v:?}")).collect();
     let main = format!(
-        "//! Throw-away crate written by the mbd `scaling` report: a {n}-link chain.\n\
+        "//! Throw-away crate written by the mbd `scaling` report: a {n}-body chain.\n\
          #![allow(dead_code)]\n\
          use mbd::prelude::*;\n\n\
          {model}\n\
          {TIMER_SRC}\n\n\
          fn main() {{\n\
-         \x20   let model = {name} {{ m: {M:?}, l: {L:?}, g: {G:?} }};\n\
+         \x20   let model = {name} {{ {fields} }};\n\
          \x20   let y = mbd::Vector::<{d}>::from_column_slice(&[{y}]);\n\
          \x20   for part in {name}::GENERATED.parts {{ println!(\"part {{part}}\"); }}\n\
          \x20   println!(\"statements {{}}\", {name}::GENERATED.statements);\n\
          \x20   match model.rhs(0.0, &y) {{\n\
          \x20       Err(e) => println!(\"error {{e}}\"),\n\
          \x20       Ok(v) => {{\n\
-         \x20           let hand = mechanisms::chain_by_hand::ChainByHand::<{n}>::new({M:?}, {L:?}, {G:?});\n\
+         \x20           let hand = {hand};\n\
          \x20           match hand.rhs(0.0, &y) {{\n\
          \x20               Err(e) => println!(\"error hand-written: {{e}}\"),\n\
          \x20               Ok(h) => println!(\"max_rel_diff {{:?}}\", (v - h).amax() / h.amax()),\n\
@@ -418,7 +512,7 @@ fn write_crate(root: &Path, dir: &Path, n: usize, form: Form) -> std::io::Result
          \x20       }}\n\
          \x20   }}\n\
          }}\n",
-        d = 2 * n,
+        d = 2 * coords,
         y = y.join(", "),
     );
     fs::write(dir.join("src").join("main.rs"), main)
@@ -502,15 +596,21 @@ fn indent(s: &str) -> String {
         .join("\n")
 }
 
-fn print_table(form: Form, rows: &[Row]) {
+fn print_table(family: Family, form: Form, rows: &[Row]) {
     let f = |v: Option<f64>, p: usize| v.map_or("-".to_string(), |v| format!("{v:.p$}"));
-    println!("scaling of generated planar N-link chains ({form:?} form)");
+    match family {
+        Family::Planar => println!("scaling of generated planar N-link chains ({form:?} form)"),
+        Family::Spatial => {
+            println!("scaling of generated spatial chains of N bodies on universal joints")
+        }
+    }
     println!(
-        "{:>4} {:>10} {:>9} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10}  parts",
+        "{:>4} {:>10} {:>9} {:>8} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10}  parts",
         "N",
         "expand_s",
         "build_s",
-        "lines",
+        "peak_mb",
+        "stmts",
         "rhs_ns",
         "by_hand_ns",
         "ratio",
@@ -519,11 +619,12 @@ fn print_table(form: Form, rows: &[Row]) {
     );
     for r in rows {
         println!(
-            "{:>4} {:>10} {:>9} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>5}  {}",
+            "{:>4} {:>10} {:>9} {:>8} {:>9} {:>11} {:>11} {:>7} {:>9} {:>10} {:>5}  {}",
             r.n_bodies,
             f(r.expand_s, 3),
             f(r.build_s, 2),
-            r.generated_lines.map_or("-".into(), |l| l.to_string()),
+            f(r.peak_mb, 0),
+            r.statements.map_or("-".into(), |l| l.to_string()),
             f(r.rhs_ns, 1),
             f(r.handwritten_rhs_ns, 1),
             f(r.ratio, 2),
@@ -538,7 +639,7 @@ fn print_table(form: Form, rows: &[Row]) {
     }
     println!(
         "build_s is the wall time of `cargo build --release` of the chain crate alone (dependencies \
-         prebuilt), expansion included; ratio = rhs_ns / by_hand_ns; load = 1-minute load average before the build \
+         prebuilt), expansion included; peak_mb its largest resident set (cargo or rustc); ratio = rhs_ns / by_hand_ns; load = 1-minute load average before the build \
          (2 cores)"
     );
 }
