@@ -43,7 +43,7 @@
 //! | `#[rigid(name, mass = m, inertia = i, at = [x, y], angle = phi)]` | a planar rigid body (inertia about its mass centre) |
 //! | `#[rigid3(name, mass = m, inertia = diag(a, b, c), at = [x, y, z], rotation = rot_z(psi) * rot_y(phi))]` | a spatial rigid body; angular velocity and acceleration are derived |
 //! | `#[body(name, parent = p, joint = revolute(q), at = [x, y], angle = a0, com = [cx, cy], mass = m, inertia = i)]` | a body of a planar joint tree: its frame is its parent's (`ground` by default) moved by the joint at `at` (parent frame); `joint` is `revolute(q)`, `prismatic(s, [ax, ay])` (axis in the parent frame) or `fixed`; the joint brings its coordinate (free, or driven if a `drive` names it); `com` is in the body frame |
-//! | `#[body(name, parent = p, joint = spherical(a, b, c), at = [x, y, z], com = [cx, cy, cz], mass = m, inertia = diag(ia, ib, ic))]` | a body of a spatial joint tree (`#[mechanism(spatial)]`): rotation `R = R_parent R_joint`, origin `o_parent + R_parent at`; `joint` is `revolute(q, x \| y \| z)` (about the parent's axis at the joint), `prismatic(s, [ax, ay, az])`, `universal(a, b)` (`rot_x(a) rot_y(b)`), `spherical(a, b, c)` (`rot_z(a) rot_y(b) rot_x(c)`, singular at `b = ±π/2`) or `fixed`; without `inertia` the body is a point mass. Evaluated through the mass matrix (the recursion is planar); no `angle` |
+//! | `#[body(name, parent = p, joint = spherical(a, b, c), at = [x, y, z], com = [cx, cy, cz], mass = m, inertia = diag(ia, ib, ic))]` | a body of a spatial joint tree (`#[mechanism(spatial)]`): rotation `R = R_parent R_joint`, origin `o_parent + R_parent at`; `joint` is `revolute(q, x \| y \| z)` (about the parent's axis at the joint), `prismatic(s, [ax, ay, az])`, `universal(a, b)` (`rot_x(a) rot_y(b)`), `spherical(a, b, c)` (`rot_z(a) rot_y(b) rot_x(c)`, singular at `b = ±π/2`) or `fixed`; without `inertia` the body is a point mass; no `angle` |
 //! | `#[body(.., reaction)]` | frees the joint origin by two relaxed coordinates `name_rx`, `name_ry` (three in space, with `name_rz`), so that `reaction(name_rx)`, ... are the joint's force on the body (ground frame) |
 //! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) |
 //! | `#[chain(link, n = 16, joint = revolute, length = l, mass = m, inertia = i)]` | `n` identical links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default), relative angles `link_q1 ..` (zero: straight down), mass centres at mid-length |
@@ -153,8 +153,10 @@
 //! compile time into straight-line code (part `articulated_body`): O(n) in the bodies,
 //! against the O(n^3) of forming and factoring the mass matrix. A run of 6 or more
 //! identical links at the end of the tree (a `chain`'s) is generated once, as loops over the
-//! links (part `rolled_chain`), so the code stays small however long the chain. Its mass
-//! matrix and forces are still generated (analyses and the exact Jacobian use them).
+//! links (part `rolled_chain`), so the code stays small however long the chain. Spatial
+//! trees (`#[mechanism(spatial)]` with `body`) get the same recursion in 6D, unrolled. The
+//! mass matrix and forces of a pure tree are generated too (analyses and the exact Jacobian
+//! use them), by recursion: composite rigid bodies for `M`, Newton-Euler for `f`.
 //!
 //! ```
 //! use mbd::prelude::*;
