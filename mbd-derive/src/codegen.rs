@@ -419,17 +419,22 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         .chain(&eq.forces)
         .copied()
         .collect();
-    let mf = Block::new(eq, &mf_roots);
-    parts.statements += mf.len();
-    let (mf_stmts, mass_fill, force_fill) = (
-        mf.stmts(),
-        mf.matrix("mass", n, n, &eq.mass),
-        mf.vector("f", n, &eq.forces),
-    );
-    let mass_only = Block::new(eq, &eq.mass.iter().flatten().copied().collect::<Vec<_>>());
+    // (Only where the acceleration is a mass-matrix solve.)
+    let mass_solve = eq.recursive_qdd.is_none() && eq.single_qdd.is_none() && !constrained;
+    let (mf_stmts, mass_fill, force_fill) = if mass_solve {
+        let mf = Block::new(eq, &mf_roots);
+        parts.statements += mf.len();
+        (
+            mf.stmts(),
+            mf.matrix("mass", n, n, &eq.mass),
+            mf.vector("f", n, &eq.forces),
+        )
+    } else {
+        Default::default()
+    };
+    let (mass_matrix, mass_len) = mass_matrix_body(eq, n);
     let force_only = Block::new(eq, &eq.forces);
     let energy = Block::new(eq, &[eq.energy]);
-    let (mo_stmts, mo_fill) = (mass_only.stmts(), mass_only.matrix("mass", n, n, &eq.mass));
     let (fo_stmts, fo_fill) = (force_only.stmts(), force_only.vector("f", n, &eq.forces));
     let (en_stmts, en_value) = (energy.stmts(), energy.leaf(eq.energy));
 
@@ -490,9 +495,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         impl ::mbd::__private::Mechanism<#n> for #ident {
             const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
             fn mass_matrix(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Matrix<#n, #n> {
-                #mo_stmts
-                #mo_fill
-                mass
+                #mass_matrix
             }
             fn forces(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
                 #forces_body
@@ -817,7 +820,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     let qd_ids: Vec<_> = eq.free.iter().map(|c| format_ident!("{}_dot", c)).collect();
     let q_idx: Vec<usize> = (0..n).collect();
     let qd_idx: Vec<usize> = (n..d).collect();
-    parts.statements += mf.len() + energy.len();
+    parts.statements += mass_len + force_only.len() + energy.len();
     let part_names = &parts.names;
     let statements = parts.statements;
     let state_doc = format!(
@@ -869,5 +872,33 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         #outputs
         #events
         #frictions
+    }
+}
+
+/// The body of `mass_matrix`: the entries written out, or, for a long tree, one column at a
+/// time from `M qdd` with `qdd` a column of the identity (O(n) code; O(n^2) work per call).
+fn mass_matrix_body(eq: &Equations, n: usize) -> (TokenStream, usize) {
+    match &eq.mass_times {
+        Some(rows) => {
+            let b = Block::new(eq, rows);
+            let (s, fill) = (b.stmts(), b.vector("column", n, rows));
+            let code = quote! {
+                let mut mass = ::mbd::__private::Matrix::<#n, #n>::zeros();
+                for j in 0..#n {
+                    let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
+                    qdd[j] = 1.0;
+                    #s
+                    #fill
+                    mass.set_column(j, &column);
+                }
+                mass
+            };
+            (code, b.len())
+        }
+        None => {
+            let b = Block::new(eq, &eq.mass.iter().flatten().copied().collect::<Vec<_>>());
+            let (s, fill) = (b.stmts(), b.matrix("mass", n, n, &eq.mass));
+            (quote!(#s #fill mass), b.len())
+        }
     }
 }

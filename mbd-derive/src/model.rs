@@ -124,6 +124,9 @@ pub struct Equations {
     /// `qdd` of a joint tree by the articulated-body recursion, when that evaluates the
     /// accelerations instead of the mass matrix.
     pub recursive_qdd: Option<Vec<Expr>>,
+    /// `(M qdd)_i` over the free coordinates (the `qdd` symbols standing for a column of the
+    /// identity): a long tree's mass matrix, formed column by column at run time.
+    pub mass_times: Option<Vec<Expr>>,
     /// `qdd` of a one-coordinate model without constraints, `f / m` with shared factors
     /// cancelled.
     pub single_qdd: Option<Expr>,
@@ -304,6 +307,11 @@ type Names = HashMap<String, Binding>;
 /// From how many tree bodies the articulated-body recursion replaces the mass-matrix solve
 /// (measured with `cargo bench -p mechanisms --bench rhs`: see docs/ARCHITECTURE.md).
 const RECURSIVE_FROM_BODIES: usize = 2;
+
+/// From how many free coordinates a pure tree's mass matrix is formed at run time, column
+/// by column (`Equations::mass_times`), instead of written out entry by entry: the entries
+/// are O(n d) code, what bounds the build of long chains (`scaling`).
+const LAZY_MASS_FROM: usize = 12;
 
 /// Up to how many full coordinates Lagrange's form of the forces is derived as well, to take
 /// it when it is shorter than Kane's (its Christoffel symbols are O(n^3)).
@@ -1226,6 +1234,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         };
         spatial::mass_and_forces(&mut g, &frames3, &inputs)
     });
+    let m_by_recursion = by_recursion.is_some();
     let steps = frames3;
 
     // Kane's projection: M_jk = sum m J_j . J_k + Jw_j^T I Jw_k;
@@ -1435,7 +1444,23 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         .collect();
     let n_rows_recursive = full_rows.len();
     full_rows.extend(&run_inits);
+    // A long tree's mass matrix as `M qdd` (free coordinates' accelerations; driven ones at
+    // rest), formed column by column at run time: O(n) code instead of O(n d) entries.
+    let lazy_mass = m_by_recursion && !ast.jacobian && n >= LAZY_MASS_FROM;
+    let n_rows_inits = full_rows.len();
+    if lazy_mass {
+        let accel: Vec<Expr> = coords
+            .iter()
+            .map(|c| match c.kind {
+                CoordKind::Free => c.zdd,
+                _ => zero,
+            })
+            .collect();
+        let rows = spatial::mass_times(&mut g, &steps, &accel);
+        full_rows.extend(free_idx.iter().map(|&i| rows[i]));
+    }
     let mut reduced = g.substitute_all(&full_rows, &reduce);
+    let mass_times = lazy_mass.then(|| reduced.split_off(n_rows_inits));
     let reduced_inits = reduced.split_off(n_rows_recursive);
     let recursive_qdd = recursive.then(|| reduced.split_off(n_rows));
     let rolled = match rolled {
@@ -1803,6 +1828,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         frictions,
         frictionless,
         recursive_qdd,
+        mass_times,
         single_qdd,
         rolled,
         init_q,

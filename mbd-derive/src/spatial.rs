@@ -654,3 +654,39 @@ pub fn covers(nodes: &[Node], nz: usize) -> bool {
     }
     seen.into_iter().all(|s| s)
 }
+
+/// `M(q) a` by Newton-Euler at rest without gravity (`a`: per full coordinate, zero for the
+/// coordinates that do not move): O(n) code, so that the mass matrix of a long tree can be
+/// formed column by column at run time instead of written out entry by entry (O(n d)).
+pub fn mass_times(g: &mut Graph, nodes: &[Node], accel: &[Expr]) -> Vec<Expr> {
+    let zero = g.zero();
+    let z = [zero; 3];
+    let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
+    let mut acc: Vec<Sv> = Vec::with_capacity(nodes.len());
+    let mut force: Vec<Sv> = Vec::with_capacity(nodes.len());
+    let mut subspaces = Vec::with_capacity(nodes.len());
+    for (node, x) in nodes.iter().zip(&xs) {
+        let s = subspace(g, &node.step, x);
+        let parent = node.parent.map_or(Sv { a: z, l: z }, |p| acc[p]);
+        let mut a = x.motion(g, parent);
+        if let (Some(s), Some(j)) = (s, node.step.coord()) {
+            let sa = sv_scale(g, s, accel[j]);
+            a = sv_add(g, a, sa);
+        }
+        let inertia = inertia_at_origin(g, node.mass, node.com, &node.inertia);
+        force.push(si_mul(g, &inertia, a));
+        acc.push(a);
+        subspaces.push(s);
+    }
+    let mut out = vec![zero; accel.len()];
+    for i in (0..nodes.len()).rev() {
+        if let (Some(s), Some(j)) = (subspaces[i], nodes[i].step.coord()) {
+            out[j] = sv_dot(g, s, force[i]);
+        }
+        if let Some(p) = nodes[i].parent {
+            let up = xs[i].force(g, force[i]);
+            force[p] = sv_add(g, force[p], up);
+        }
+    }
+    out
+}

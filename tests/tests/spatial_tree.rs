@@ -635,3 +635,84 @@ fn universal_chain_recursion_equals_the_mass_matrix_form() {
         0.0,
     );
 }
+
+/// Six bodies on universal joints (12 coordinates): long enough that the mass matrix is
+/// formed at run time, column by column from Newton-Euler (`M e_j`), not written out.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -g)]
+#[body(u1, joint = universal(a1, b1), com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u2, parent = u1, joint = universal(a2, b2), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u3, parent = u2, joint = universal(a3, b3), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u4, parent = u3, joint = universal(a4, b4), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u5, parent = u4, joint = universal(a5, b5), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u6, parent = u5, joint = universal(a6, b6), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+pub struct UniversalChain6 {
+    pub m: f64,
+    pub l: f64,
+    pub i: f64,
+    pub j: f64,
+    pub g: f64,
+}
+
+/// [`UniversalChain6`] in the mass-matrix form: Kane's projections, written out.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, mass_matrix)]
+#[gravity(0.0, 0.0, -g)]
+#[body(u1, joint = universal(a1, b1), com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u2, parent = u1, joint = universal(a2, b2), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u3, parent = u2, joint = universal(a3, b3), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u4, parent = u3, joint = universal(a4, b4), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u5, parent = u4, joint = universal(a5, b5), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+#[body(u6, parent = u5, joint = universal(a6, b6), at = [0.0, 0.0, -l], com = [0.0, 0.0, -l / 2.0],
+       mass = m, inertia = diag(i, i, j))]
+pub struct UniversalChain6Kane {
+    pub m: f64,
+    pub l: f64,
+    pub i: f64,
+    pub j: f64,
+    pub g: f64,
+}
+
+#[test]
+fn a_long_trees_mass_matrix_by_columns_equals_kanes() {
+    let (m, l, i, j, g) = (1.2, 0.5, 0.03, 0.002, 9.81);
+    let p = UniversalChain6 { m, l, i, j, g };
+    let kane = UniversalChain6Kane { m, l, i, j, g };
+    assert!(
+        UniversalChain6::GENERATED
+            .parts
+            .contains(&"articulated_body")
+    );
+    assert!(
+        !UniversalChain6Kane::GENERATED
+            .parts
+            .contains(&"articulated_body")
+    );
+    let q = Vector::<12>::from_fn(|r, _| 1.1 * (((r * 37) % 17) as f64 / 8.0 - 1.0));
+    let qd = Vector::<12>::from_fn(|r, _| 1.7 * (((r * 11) % 13) as f64 / 6.0 - 1.0));
+    let (mass, mass_kane): (Matrix<12, 12>, Matrix<12, 12>) =
+        (p.mass_matrix(0.0, &q), kane.mass_matrix(0.0, &q));
+    assert!((mass - mass_kane).norm() <= 1e-13 * mass_kane.norm());
+    let (f, f_kane) = (p.forces(0.0, &q, &qd), kane.forces(0.0, &q, &qd));
+    assert!((f - f_kane).norm() <= 1e-13 * f_kane.norm());
+    let (a, a_kane) = (
+        p.acceleration(0.0, &q, &qd).unwrap(),
+        kane.acceleration(0.0, &q, &qd).unwrap(),
+    );
+    assert!(
+        (a - a_kane).norm() <= 1e-12 * a_kane.norm(),
+        "{a:?}\n{a_kane:?}"
+    );
+}
