@@ -102,7 +102,7 @@ pub fn check_size(input: TokenStream) -> syn::Result<()> {
         if depth + run > MAX_DEPTH {
             return Err(too_big(
                 tt.span(),
-                format!("nested more than {MAX_DEPTH} levels"),
+                format!("nested more than {MAX_DEPTH} levels deep"),
             ));
         }
     }
