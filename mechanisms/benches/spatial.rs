@@ -2,6 +2,8 @@
 //! bars on universal joints (20 coordinates) against the hand-written spatial
 //! articulated-body algorithm (`mechanisms::spatial_chain_by_hand`, the same algorithm), and
 //! the forward dynamics of a 7-dof arm of revolute joints about mixed axes with offsets.
+//! Also the smallest recursive tree (two bodies) against its own mass-matrix form: the
+//! threshold from which the derive takes the recursion (`RECURSIVE_FROM_BODIES`).
 //!
 //! `cargo bench -p mechanisms --bench spatial`
 
@@ -57,8 +59,34 @@ pub struct Arm7 {
     pub g: f64,
 }
 
+/// A spatial double pendulum (universal joint, then a revolute joint about `x`): the
+/// smallest tree the derive evaluates by the recursion; [`CardanMassMatrix`] is the same
+/// model through the mass-matrix solve.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -g)]
+#[body(upper, joint = universal(a, b), com = [0.0, 0.0, -0.45], mass = 1.3,
+       inertia = diag(0.09, 0.09, 0.004))]
+#[body(lower, parent = upper, joint = revolute(c, x), at = [0.0, 0.0, -0.9],
+       com = [0.0, 0.0, -0.3], mass = 0.7, inertia = diag(0.021, 0.021, 0.002))]
+pub struct Cardan {
+    pub g: f64,
+}
+
+/// [`Cardan`] through the mass-matrix solve.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(spatial, mass_matrix)]
+#[gravity(0.0, 0.0, -g)]
+#[body(upper, joint = universal(a, b), com = [0.0, 0.0, -0.45], mass = 1.3,
+       inertia = diag(0.09, 0.09, 0.004))]
+#[body(lower, parent = upper, joint = revolute(c, x), at = [0.0, 0.0, -0.9],
+       com = [0.0, 0.0, -0.3], mass = 0.7, inertia = diag(0.021, 0.021, 0.002))]
+pub struct CardanMassMatrix {
+    pub g: f64,
+}
+
 /// The least time per call of `generated` and `hand` over interleaved batches.
-fn interleaved(name: &str, generated: &dyn Fn(), hand: &dyn Fn()) {
+fn interleaved(name: &str, (first, second): (&str, &str), generated: &dyn Fn(), hand: &dyn Fn()) {
     let batch = |run: &dyn Fn()| {
         let start = Instant::now();
         for _ in 0..1000 {
@@ -72,7 +100,7 @@ fn interleaved(name: &str, generated: &dyn Fn(), hand: &dyn Fn()) {
         h = h.min(batch(hand));
     }
     println!(
-        "{name}: min over interleaved batches: generated {g:.1} ns, hand-written {h:.1} ns, ratio {:.3}",
+        "{name}: min over interleaved batches: {first} {g:.1} ns, {second} {h:.1} ns, ratio {:.3}",
         g / h
     );
 }
@@ -91,6 +119,7 @@ fn benches(c: &mut Criterion) {
     );
     interleaved(
         "universal10 rhs",
+        ("generated", "hand-written"),
         &|| drop(black_box(model.rhs(0.0, black_box(&y)))),
         &|| drop(black_box(hand.rhs(0.0, black_box(&y)))),
     );
@@ -100,6 +129,20 @@ fn benches(c: &mut Criterion) {
     c.bench_function("universal10 rhs hand-written", |bch| {
         bch.iter(|| hand.rhs(0.0, black_box(&y)))
     });
+
+    let (cr, cm) = (Cardan { g }, CardanMassMatrix { g });
+    let yc = Vector::<6>::from([0.4, -0.9, 1.3, 1.1, -0.7, 2.3]);
+    let (a, b) = (cr.rhs(0.0, &yc).unwrap(), cm.rhs(0.0, &yc).unwrap());
+    assert!(
+        (a - b).amax() <= 1e-12 * b.amax(),
+        "recursion and mass-matrix form differ"
+    );
+    interleaved(
+        "cardan rhs (both generated)",
+        ("recursion", "mass-matrix solve"),
+        &|| drop(black_box(cr.rhs(0.0, black_box(&yc)))),
+        &|| drop(black_box(cm.rhs(0.0, black_box(&yc)))),
+    );
 
     let arm = Arm7 { g };
     assert!(Arm7::GENERATED.parts.contains(&"articulated_body"));
