@@ -184,7 +184,7 @@
 //!
 //! In a spatial mechanism the same `body` attribute composes rotation matrices, with
 //! revolute joints about a named axis, universal and spherical joints; such a tree is
-//! evaluated through its mass matrix.
+//! evaluated by the articulated-body recursion in 6D spatial vectors.
 //!
 //! ```
 //! use mbd::prelude::*;
@@ -201,7 +201,7 @@
 //! pub struct Cardan { pub m: f64, pub l: f64, pub g: f64 }
 //!
 //! let p = Cardan { m: 1.0, l: 0.5, g: 9.81 };
-//! assert!(!Cardan::GENERATED.parts.contains(&"articulated_body"));
+//! assert!(Cardan::GENERATED.parts.contains(&"articulated_body"));
 //! // Hanging straight down: the lower bar's centre is 1.5 l below the joint, and it stays.
 //! let rest = mbd::Vector::<6>::zeros();
 //! assert!((p.outputs(0.0, &rest)?.depth + 0.75).abs() < 1e-15);
