@@ -670,8 +670,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             inertia,
         });
     }
-    // Spatial joint trees: composed the same way with rotation matrices; evaluated through
-    // the mass matrix (the articulated-body recursion is planar).
+    // Spatial joint trees: composed the same way with rotation matrices; each joint also
+    // becomes one-degree-of-freedom steps for the recursions (`spatial`).
     let mut frames: Vec<Frame> = Vec::new();
     let mut frame_of: HashMap<String, usize> = HashMap::new();
     // The spatial recursion's frames, and the one of each body (its joint's last step).
