@@ -1,0 +1,272 @@
+//! Linear analysis about an operating point: the state matrix `A = d(y')/dy`, exact from the
+//! generated derivatives ([`OdeSystem::jacobian`] of a model derived with
+//! `#[mechanism(jacobian)]`), and its modes.
+//!
+//! Two eigen-analyses: [`modes`] decomposes the real non-symmetric `A` (damped, gyroscopic
+//! or unstable operating points alike) by nalgebra's real Schur form, with mode shapes by
+//! one inverse iteration each; [`undamped_modes`] solves the symmetric generalised problem
+//! `K v = w^2 M v` at an equilibrium of an undamped conservative model, with
+//! `K = -df/dq = -M dqdd/dq` (at rest in equilibrium `f = 0`, so `dqdd/dq = M^-1 df/dq`).
+//! Both convert to `DMatrix`: nalgebra's fixed-size decompositions need typenum bounds that
+//! a bare `const D: usize` does not meet.
+//!
+//! Closed loops in the augmented form are analysed in the coordinates of the model: `A` of
+//! the index-1 equations also has the directions that leave the constraint manifold (their
+//! eigenvalues are zero, drift modes). Projecting onto the constraints' tangent space
+//! (independent coordinates) is not done yet.
+
+use crate::error::{Error, Result};
+use crate::linalg::Lu;
+use crate::model::{Matrix, Mechanism, OdeSystem, Vector};
+use nalgebra::{Complex, DMatrix, SVector, Schur, SymmetricEigen};
+
+/// Eigenvalues with `|lambda| <= NEUTRAL_TOL |A|` (`|A|` the largest row sum) are neutral:
+/// rigid-body motion, a cyclic coordinate. A double zero (a free coordinate's Jordan block)
+/// is computed `O(sqrt(eps |A|))` away from zero, so this bound sits above `sqrt(eps)`.
+/// The same bound decides stability: unstable when `Re lambda > NEUTRAL_TOL |A|`.
+pub const NEUTRAL_TOL: f64 = 1e-7;
+
+/// `A = d(y')/dy` at `(t, y)` from the model's exact Jacobian.
+///
+/// Errors: [`Error::InvalidInput`] when the model has no generated Jacobian (derive it with
+/// `#[mechanism(jacobian)]`: a finite difference is not a linearisation this module vouches
+/// for); the model's own errors; [`Error::NonFinite`] for a non-finite entry.
+pub fn linearize<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+) -> Result<Matrix<D, D>> {
+    if !S::EXACT_JACOBIAN {
+        return Err(Error::InvalidInput {
+            what: "linearize",
+            detail: "the model has no generated Jacobian: derive it with #[mechanism(jacobian)]"
+                .into(),
+        });
+    }
+    let a = sys.jacobian(t, y)?;
+    if a.iter().all(|v| v.is_finite()) {
+        Ok(a)
+    } else {
+        Err(Error::NonFinite { t })
+    }
+}
+
+/// `df/dy` by central differences with steps `h_j = h (1 + |y_j|)`: truncation error
+/// `O(h^2 |f'''|)`, rounding `O(eps |f| / h)`. The check of [`linearize`] and the cost it is
+/// compared with; not used by the analysis.
+pub fn central_difference<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    h: f64,
+) -> Result<Matrix<D, D>> {
+    let mut jac = Matrix::<D, D>::zeros();
+    let mut yj = *y;
+    for j in 0..D {
+        let hj = h * (1.0 + y[j].abs());
+        yj[j] = y[j] + hj;
+        let plus = sys.rhs(t, &yj)?;
+        yj[j] = y[j] - hj;
+        let minus = sys.rhs(t, &yj)?;
+        yj[j] = y[j];
+        jac.set_column(j, &((plus - minus) / (2.0 * hj)));
+    }
+    Ok(jac)
+}
+
+/// What kind of motion an eigenvalue stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModeKind {
+    /// A complex pair `lambda = -zeta w_n +- i w_d` (reported once, `Im lambda > 0`).
+    Oscillatory,
+    /// A real eigenvalue: overdamped decay (`lambda < 0`) or divergence (`lambda > 0`).
+    Real,
+    /// `|lambda|` below [`NEUTRAL_TOL`]: rigid-body motion or drift.
+    Neutral,
+}
+
+/// One mode of `A`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mode<const D: usize> {
+    pub eigenvalue: Complex<f64>,
+    pub kind: ModeKind,
+    /// Natural frequency `w_n = |lambda|` in rad/s (0 for a neutral mode).
+    pub omega_n: f64,
+    /// Damped frequency `w_d = Im lambda` in rad/s (0 unless oscillatory).
+    pub omega_d: f64,
+    /// `zeta = -Re lambda / |lambda|`: 1 for a real decaying mode, -1 for a diverging one;
+    /// `None` for a neutral mode.
+    pub damping_ratio: Option<f64>,
+    /// `Re lambda > NEUTRAL_TOL |A|`.
+    pub unstable: bool,
+    /// The eigenvector over the state, scaled so that its largest entry is 1.
+    pub shape: SVector<Complex<f64>, D>,
+}
+
+impl<const D: usize> Mode<D> {
+    /// `w_n / 2 pi`.
+    pub fn frequency_hz(&self) -> f64 {
+        self.omega_n / std::f64::consts::TAU
+    }
+    /// `w_d / 2 pi`.
+    pub fn damped_hz(&self) -> f64 {
+        self.omega_d / std::f64::consts::TAU
+    }
+}
+
+/// The modes of `A`, slowest first: each complex pair once, each real eigenvalue once.
+///
+/// Errors: [`Error::NonFinite`] for a non-finite `A`; [`Error::InvalidInput`] when the Schur
+/// iteration does not converge.
+pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
+    if !a.iter().all(|v| v.is_finite()) {
+        return Err(Error::NonFinite { t: f64::NAN });
+    }
+    let norm = (0..D)
+        .map(|i| a.row(i).iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
+    let tol = NEUTRAL_TOL * norm.max(f64::MIN_POSITIVE);
+    let schur = Schur::try_new(DMatrix::from_iterator(D, D, a.iter().copied()), 0.0, 10_000)
+        .ok_or_else(|| Error::InvalidInput {
+            what: "modes",
+            detail: "the Schur iteration did not converge".into(),
+        })?;
+    let mut out = Vec::new();
+    for lambda in schur.complex_eigenvalues().iter().copied() {
+        if lambda.im < 0.0 {
+            continue;
+        }
+        let modulus = lambda.norm();
+        let kind = if modulus <= tol {
+            ModeKind::Neutral
+        } else if lambda.im > 0.0 {
+            ModeKind::Oscillatory
+        } else {
+            ModeKind::Real
+        };
+        let neutral = kind == ModeKind::Neutral;
+        out.push(Mode {
+            eigenvalue: lambda,
+            kind,
+            omega_n: if neutral { 0.0 } else { modulus },
+            omega_d: if kind == ModeKind::Oscillatory { lambda.im } else { 0.0 },
+            damping_ratio: (!neutral).then(|| -lambda.re / modulus),
+            unstable: lambda.re > tol,
+            shape: shape(a, lambda, norm),
+        });
+    }
+    out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
+    Ok(out)
+}
+
+/// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it
+/// (three solves with the complex LU; an exactly singular shift is moved further).
+fn shape<const D: usize>(
+    a: &Matrix<D, D>,
+    lambda: Complex<f64>,
+    norm: f64,
+) -> SVector<Complex<f64>, D> {
+    let ac = a.map(|v| Complex::new(v, 0.0));
+    let mut v = SVector::<Complex<f64>, D>::from_fn(|i, _| Complex::new(1.0, 0.1 * i as f64));
+    for k in 0..4 {
+        let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * norm.max(1.0);
+        let m = ac - nalgebra::SMatrix::<Complex<f64>, D, D>::identity() * shift;
+        if let Some(lu) = Lu::factor(m) {
+            for _ in 0..3 {
+                v = lu.solve(&v);
+                v /= largest(&v);
+            }
+            return v;
+        }
+    }
+    v
+}
+
+/// The entry of largest modulus (1 for a zero vector).
+fn largest<const D: usize>(v: &SVector<Complex<f64>, D>) -> Complex<f64> {
+    v.iter()
+        .copied()
+        .max_by(|x, y| x.norm().total_cmp(&y.norm()))
+        .filter(|x| x.norm() > 0.0)
+        .unwrap_or(Complex::new(1.0, 0.0))
+}
+
+/// A mode of `K v = w^2 M v`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalMode<const N: usize> {
+    /// `w^2` in (rad/s)^2; negative at an unstable equilibrium.
+    pub omega_squared: f64,
+    /// `v`, mass-normalised (`v^T M v = 1`).
+    pub shape: Vector<N>,
+}
+
+impl<const N: usize> NormalMode<N> {
+    /// `sqrt(w^2) / 2 pi`, `None` at an unstable equilibrium (`w^2 < 0`).
+    pub fn frequency_hz(&self) -> Option<f64> {
+        (self.omega_squared >= 0.0).then(|| self.omega_squared.sqrt() / std::f64::consts::TAU)
+    }
+}
+
+/// The modes of an undamped conservative model at its equilibrium `q` (at rest), slowest
+/// first: `K v = w^2 M v` with `K = -M dqdd/dq` from the exact Jacobian, reduced by the
+/// Cholesky factor of `M` to a symmetric eigenproblem.
+///
+/// Errors ([`Error::InvalidInput`]) when `q` is not an equilibrium (`|qdd| > 1e-9 |A|`),
+/// when the model is damped (`dqdd/dqd != 0` at rest), when `K` is not symmetric (to
+/// `1e-9 |K|`: non-conservative forces), or when `M` is not positive definite; plus the
+/// errors of [`linearize`].
+pub fn undamped_modes<S, const N: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+) -> Result<Vec<NormalMode<N>>>
+where
+    S: Mechanism<N> + OdeSystem<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let bad = |detail: String| Error::InvalidInput {
+        what: "undamped_modes",
+        detail,
+    };
+    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
+    let a = linearize(sys, t, &y)?;
+    let scale = a.abs().max().max(1.0);
+    let qdd = sys.rhs(t, &y)?.fixed_rows::<N>(N).abs().max();
+    if qdd > 1e-9 * scale {
+        return Err(bad(format!("not an equilibrium: |qdd| = {qdd:.3e}")));
+    }
+    let damping = a.fixed_view::<N, N>(N, N).abs().max();
+    if damping > 1e-12 * scale {
+        return Err(bad(format!("damped: |dqdd/dqd| = {damping:.3e}; use `modes`")));
+    }
+    let mass = sys.mass_matrix(t, q);
+    let k = -(mass * a.fixed_view::<N, N>(N, 0));
+    let asym = (k - k.transpose()).abs().max();
+    if asym > 1e-9 * k.abs().max() {
+        return Err(bad(format!("K is not symmetric (|K - K^T| = {asym:.3e})")));
+    }
+    let dm = DMatrix::from_iterator(N, N, mass.iter().copied());
+    let l = dm
+        .cholesky()
+        .ok_or_else(|| bad("M is not positive definite".into()))?
+        .l();
+    let linv = l
+        .clone()
+        .try_inverse()
+        .ok_or_else(|| bad("M is singular".into()))?;
+    let dk = DMatrix::from_iterator(N, N, (0.5 * (k + k.transpose())).iter().copied());
+    let c = &linv * dk * linv.transpose();
+    let eig = SymmetricEigen::try_new(c, 0.0, 10_000)
+        .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
+    let mut out: Vec<NormalMode<N>> = (0..N)
+        .map(|i| {
+            let v = linv.transpose() * eig.eigenvectors.column(i);
+            NormalMode {
+                omega_squared: eig.eigenvalues[i],
+                shape: Vector::<N>::from_fn(|r, _| v[r]),
+            }
+        })
+        .collect();
+    out.sort_by(|x, y| x.omega_squared.total_cmp(&y.omega_squared));
+    Ok(out)
+}
