@@ -9,6 +9,7 @@ pub mod accuracy;
 pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
+pub mod modes;
 pub mod sim;
 pub mod stick_slip;
 pub mod svg;

@@ -114,7 +114,8 @@ impl<const D: usize> Mode<D> {
     }
 }
 
-/// The modes of `A`, slowest first: each complex pair once, each real eigenvalue once.
+/// The modes of `A`, slowest first: each complex pair once, each real or neutral eigenvalue
+/// once.
 ///
 /// Errors: [`Error::NonFinite`] for a non-finite `A`; [`Error::InvalidInput`] when the Schur
 /// iteration does not converge.
@@ -126,17 +127,22 @@ pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
         .map(|i| a.row(i).iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max);
     let tol = NEUTRAL_TOL * norm.max(f64::MIN_POSITIVE);
-    let schur = Schur::try_new(DMatrix::from_iterator(D, D, a.iter().copied()), 0.0, 10_000)
-        .ok_or_else(|| Error::InvalidInput {
-            what: "modes",
-            detail: "the Schur iteration did not converge".into(),
-        })?;
+    let schur = Schur::try_new(
+        DMatrix::from_iterator(D, D, a.iter().copied()),
+        f64::EPSILON,
+        10_000,
+    )
+    .ok_or_else(|| Error::InvalidInput {
+        what: "modes",
+        detail: "the Schur iteration did not converge".into(),
+    })?;
     let mut out = Vec::new();
     for lambda in schur.complex_eigenvalues().iter().copied() {
-        if lambda.im < 0.0 {
+        let modulus = lambda.norm();
+        // A pair once; neutral eigenvalues each (a double zero may come out as `+-i eps`).
+        if lambda.im < 0.0 && modulus > tol {
             continue;
         }
-        let modulus = lambda.norm();
         let kind = if modulus <= tol {
             ModeKind::Neutral
         } else if lambda.im > 0.0 {
@@ -149,7 +155,11 @@ pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
             eigenvalue: lambda,
             kind,
             omega_n: if neutral { 0.0 } else { modulus },
-            omega_d: if kind == ModeKind::Oscillatory { lambda.im } else { 0.0 },
+            omega_d: if kind == ModeKind::Oscillatory {
+                lambda.im
+            } else {
+                0.0
+            },
             damping_ratio: (!neutral).then(|| -lambda.re / modulus),
             unstable: lambda.re > tol,
             shape: shape(a, lambda, norm),
@@ -237,7 +247,9 @@ where
     }
     let damping = a.fixed_view::<N, N>(N, N).abs().max();
     if damping > 1e-12 * scale {
-        return Err(bad(format!("damped: |dqdd/dqd| = {damping:.3e}; use `modes`")));
+        return Err(bad(format!(
+            "damped: |dqdd/dqd| = {damping:.3e}; use `modes`"
+        )));
     }
     let mass = sys.mass_matrix(t, q);
     let k = -(mass * a.fixed_view::<N, N>(N, 0));
@@ -256,7 +268,7 @@ where
         .ok_or_else(|| bad("M is singular".into()))?;
     let dk = DMatrix::from_iterator(N, N, (0.5 * (k + k.transpose())).iter().copied());
     let c = &linv * dk * linv.transpose();
-    let eig = SymmetricEigen::try_new(c, 0.0, 10_000)
+    let eig = SymmetricEigen::try_new(c, f64::EPSILON, 10_000)
         .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
     let mut out: Vec<NormalMode<N>> = (0..N)
         .map(|i| {
