@@ -85,7 +85,8 @@ pub struct Row {
     pub mode: usize,
     /// `Oscillatory`, `Real` or `Neutral`.
     pub kind: &'static str,
-    /// Natural frequency `|lambda| / 2 pi`.
+    /// Natural frequency `|lambda| / 2 pi` (a neutral mode's is its computed `|lambda|`,
+    /// rounding of the double zero: checked against 0 like any other).
     pub frequency_hz: f64,
     /// Damped frequency `Im lambda / 2 pi`.
     pub damped_hz: f64,
@@ -102,11 +103,11 @@ pub struct Row {
 /// A reference: natural frequency in rad/s, damping ratio (None for neutral).
 type Reference = (f64, Option<f64>);
 
-fn row<const D: usize>(
+fn row(
     mechanism: &'static str,
     point: &'static str,
     index: usize,
-    m: &Mode<D>,
+    m: &Mode,
     (w_ref, zeta_ref): Reference,
 ) -> Row {
     let rel = |x: f64, r: f64| {
@@ -149,10 +150,10 @@ fn row<const D: usize>(
 
 /// Rows for the modes of `A` at one point against references in the modes' order
 /// (slowest first); a count mismatch is an error.
-fn rows_of<const D: usize>(
+fn rows_of(
     mechanism: &'static str,
     point: &'static str,
-    found: &[Mode<D>],
+    found: &[Mode],
     refs: &[Reference],
 ) -> mbd::Result<Vec<Row>> {
     if found.len() != refs.len() {

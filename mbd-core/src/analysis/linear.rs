@@ -16,9 +16,8 @@
 //! (independent coordinates) is not done yet.
 
 use crate::error::{Error, Result};
-use crate::linalg::Lu;
 use crate::model::{Matrix, Mechanism, OdeSystem, Vector};
-use nalgebra::{Complex, DMatrix, SVector, Schur, SymmetricEigen};
+use nalgebra::{Complex, DMatrix, DVector, Schur, SymmetricEigen};
 
 /// Eigenvalues with `|lambda| <= NEUTRAL_TOL |A|` (`|A|` the largest row sum) are neutral:
 /// rigid-body motion, a cyclic coordinate. A double zero (a free coordinate's Jordan block)
@@ -87,10 +86,10 @@ pub enum ModeKind {
 
 /// One mode of `A`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Mode<const D: usize> {
+pub struct Mode {
     pub eigenvalue: Complex<f64>,
     pub kind: ModeKind,
-    /// Natural frequency `w_n = |lambda|` in rad/s (0 for a neutral mode).
+    /// Natural frequency `w_n = |lambda|` in rad/s (near 0 for a neutral mode).
     pub omega_n: f64,
     /// Damped frequency `w_d = Im lambda` in rad/s (0 unless oscillatory).
     pub omega_d: f64,
@@ -100,10 +99,10 @@ pub struct Mode<const D: usize> {
     /// `Re lambda > NEUTRAL_TOL |A|`.
     pub unstable: bool,
     /// The eigenvector over the state, scaled so that its largest entry is 1.
-    pub shape: SVector<Complex<f64>, D>,
+    pub shape: DVector<Complex<f64>>,
 }
 
-impl<const D: usize> Mode<D> {
+impl Mode {
     /// `w_n / 2 pi`.
     pub fn frequency_hz(&self) -> f64 {
         self.omega_n / std::f64::consts::TAU
@@ -119,23 +118,25 @@ impl<const D: usize> Mode<D> {
 ///
 /// Errors: [`Error::NonFinite`] for a non-finite `A`; [`Error::InvalidInput`] when the Schur
 /// iteration does not converge.
-pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
+pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode>> {
+    modes_of(DMatrix::from_iterator(D, D, a.iter().copied()))
+}
+
+/// [`modes`] of a matrix of any size.
+pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
     if !a.iter().all(|v| v.is_finite()) {
         return Err(Error::NonFinite { t: f64::NAN });
     }
-    let norm = (0..D)
-        .map(|i| a.row(i).iter().map(|v| v.abs()).sum::<f64>())
+    let norm = a
+        .row_iter()
+        .map(|r| r.iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max);
     let tol = NEUTRAL_TOL * norm.max(f64::MIN_POSITIVE);
-    let schur = Schur::try_new(
-        DMatrix::from_iterator(D, D, a.iter().copied()),
-        f64::EPSILON,
-        10_000,
-    )
-    .ok_or_else(|| Error::InvalidInput {
-        what: "modes",
-        detail: "the Schur iteration did not converge".into(),
-    })?;
+    let schur =
+        Schur::try_new(a.clone(), f64::EPSILON, 10_000).ok_or_else(|| Error::InvalidInput {
+            what: "modes",
+            detail: "the Schur iteration did not converge".into(),
+        })?;
     let mut out = Vec::new();
     for lambda in schur.complex_eigenvalues().iter().copied() {
         let modulus = lambda.norm();
@@ -154,7 +155,7 @@ pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
         out.push(Mode {
             eigenvalue: lambda,
             kind,
-            omega_n: if neutral { 0.0 } else { modulus },
+            omega_n: modulus,
             omega_d: if kind == ModeKind::Oscillatory {
                 lambda.im
             } else {
@@ -162,7 +163,7 @@ pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
             },
             damping_ratio: (!neutral).then(|| -lambda.re / modulus),
             unstable: lambda.re > tol,
-            shape: shape(a, lambda, norm),
+            shape: shape(&a, lambda, norm),
         });
     }
     out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
@@ -170,30 +171,32 @@ pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode<D>>> {
 }
 
 /// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it
-/// (three solves with the complex LU; an exactly singular shift is moved further).
-fn shape<const D: usize>(
-    a: &Matrix<D, D>,
-    lambda: Complex<f64>,
-    norm: f64,
-) -> SVector<Complex<f64>, D> {
+/// (three solves; an exactly singular shift is moved further).
+fn shape(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> DVector<Complex<f64>> {
+    let n = a.nrows();
     let ac = a.map(|v| Complex::new(v, 0.0));
-    let mut v = SVector::<Complex<f64>, D>::from_fn(|i, _| Complex::new(1.0, 0.1 * i as f64));
+    let mut v = DVector::from_fn(n, |i, _| Complex::new(1.0, 0.1 * i as f64));
     for k in 0..4 {
         let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * norm.max(1.0);
-        let m = ac - nalgebra::SMatrix::<Complex<f64>, D, D>::identity() * shift;
-        if let Some(lu) = Lu::factor(m) {
-            for _ in 0..3 {
-                v = lu.solve(&v);
-                v /= largest(&v);
-            }
-            return v;
+        let lu = (&ac - DMatrix::<Complex<f64>>::identity(n, n) * shift).lu();
+        if !lu.is_invertible() {
+            continue;
         }
+        for _ in 0..3 {
+            match lu.solve(&v) {
+                Some(w) if w.iter().all(|x| x.re.is_finite() && x.im.is_finite()) => v = w,
+                _ => break,
+            }
+            let big = largest(&v);
+            v /= big;
+        }
+        return v;
     }
     v
 }
 
 /// The entry of largest modulus (1 for a zero vector).
-fn largest<const D: usize>(v: &SVector<Complex<f64>, D>) -> Complex<f64> {
+fn largest(v: &DVector<Complex<f64>>) -> Complex<f64> {
     v.iter()
         .copied()
         .max_by(|x, y| x.norm().total_cmp(&y.norm()))
