@@ -7,7 +7,7 @@
 
 use crate::case10_pendulum_on_cart::{self as case10, PendulumOnCart};
 use crate::case30_damped_vibration::{self as case30, DampedBlock};
-use mbd::analysis::linear::{Mode, ModeKind, linearize, modes, undamped_modes};
+use mbd::analysis::linear::{Mode, ModeKind, constrained_modes, linearize, modes, undamped_modes};
 use mbd::prelude::*;
 use serde::Serialize;
 use std::f64::consts::{PI, TAU};
@@ -74,6 +74,51 @@ pub fn cart_reference() -> f64 {
         ..
     } = case10::MODEL;
     (g * (m_cart + m_bob) / (m_cart * l)).sqrt()
+}
+
+/// A parallelogram four-bar hanging from pivots `(0, 0)` and `(d, 0)`: cranks of length `r`
+/// at `phi`, `psi` from the downward vertical, massless, and a massless coupler of length
+/// `d` with mass `m / 2` lumped at each of its pins (the loop closes by one distance
+/// constraint, augmented form). A horizontal spring `k` of free length `w` holds pin A from
+/// the anchor `(-w, -r)`: unstretched at the equilibrium `phi = psi = 0`.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(phi, psi)]
+#[constraint((d + r * sin(psi) - r * sin(phi)) * (d + r * sin(psi) - r * sin(phi))
+    + (r * cos(phi) - r * cos(psi)) * (r * cos(phi) - r * cos(psi)) == d * d)]
+#[point(anchor, at = [-w, -r])]
+#[particle(pin_a, mass = 0.5 * m, at = [r * sin(phi), -r * cos(phi)])]
+#[particle(pin_b, mass = 0.5 * m, at = [d + r * sin(psi), -r * cos(psi)])]
+#[spring(spring, from = anchor, to = pin_a, k = k, length = w)]
+pub struct SprungFourBar {
+    pub m: f64,
+    pub r: f64,
+    pub d: f64,
+    pub k: f64,
+    pub w: f64,
+    pub g: f64,
+}
+
+/// `m = 2 kg`, `r = 0.5 m`, `d = 1.5 m`, `k = 30 N/m`, `w = 1 m`.
+pub const FOUR_BAR: SprungFourBar = SprungFourBar {
+    m: 2.0,
+    r: 0.5,
+    d: 1.5,
+    k: 30.0,
+    w: 1.0,
+    g: 9.81,
+};
+
+/// The sprung four-bar's one frequency in rad/s, by hand. On the loop `psi = phi` (the
+/// parallelogram branch through the equilibrium) both pins move on circles of radius `r`:
+/// `T = (m/2) r^2 phi'^2 / 2 * 2 = m r^2 phi'^2 / 2`. Gravity: `V_g = m g r (1 - cos phi)`.
+/// The spring's length is `sqrt((w + r sin phi)^2 + r^2 (1 - cos phi)^2) = w + r sin phi +
+/// O(phi^4)`, so `V_k = k r^2 sin^2 phi / 2 + O(phi^5)` (no preload at the equilibrium, no
+/// geometric stiffness). Hence `w^2 = (m g r + k r^2) / (m r^2) = g / r + k / m`.
+pub fn four_bar_reference() -> f64 {
+    let SprungFourBar { m, r, k, g, .. } = FOUR_BAR;
+    (g / r + k / m).sqrt()
 }
 
 /// One row of the report (the `--json` schema).
@@ -243,6 +288,13 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
         &modes(&a)?,
         &[(0.0, None), (0.0, None), (s, Some(0.0))],
     )?);
+    let found = constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::zeros())?;
+    out.extend(rows_of(
+        "sprung parallelogram four-bar",
+        "equilibrium, tangent space",
+        &found,
+        &[(four_bar_reference(), Some(0.0))],
+    )?);
     Ok(out)
 }
 
@@ -255,7 +307,7 @@ mod tests {
     #[test]
     fn modes_match_the_closed_forms() {
         let rows = rows().unwrap();
-        assert_eq!(rows.len(), 2 + 2 + 1 + 4 + 3);
+        assert_eq!(rows.len(), 2 + 2 + 1 + 4 + 3 + 1);
         for r in &rows {
             assert!(r.rel_error <= GOAL, "{r:?}");
             let diverges = r.damping_ratio.is_some_and(|z| z < 0.0);
@@ -297,6 +349,31 @@ mod tests {
         assert!(e1 < 1e-4 * a.abs().max(), "{e1}");
         let ratio = e1 / e2;
         assert!((3.6..=4.4).contains(&ratio), "ratio {ratio}, {e1} {e2}");
+    }
+
+    /// The four-bar's augmented `A` unrestricted has the loop's drift (a double zero) beside
+    /// the frequency the restriction to the tangent space gives alone; the mode moves both
+    /// cranks alike, velocities `i w` times the positions.
+    #[test]
+    fn four_bar_tangent_space() {
+        let a = linearize(&FOUR_BAR, 0.0, &Vector::<4>::zeros()).unwrap();
+        let full = modes(&a).unwrap();
+        let kinds: Vec<_> = full.iter().map(|m| m.kind).collect();
+        assert_eq!(
+            kinds,
+            [ModeKind::Neutral, ModeKind::Neutral, ModeKind::Oscillatory]
+        );
+        let w = four_bar_reference();
+        assert!((full[2].omega_n - w).abs() <= GOAL * w);
+        let reduced = constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::zeros()).unwrap();
+        assert_eq!(reduced.len(), 1);
+        let v = &reduced[0].shape;
+        // Positions: phi = psi; velocities are i w times them.
+        assert!((v[0] - v[1]).norm() < 1e-9 * v[0].norm(), "{v}");
+        let i_w = mbd::nalgebra::Complex::new(0.0, w);
+        assert!((v[2] - i_w * v[0]).norm() < 1e-8 * v[2].norm(), "{v}");
+        // A point off the loop is refused.
+        assert!(constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::new(0.1, 0.0)).is_err());
     }
 
     /// Typed errors: no generated Jacobian, not an equilibrium, a damped model.

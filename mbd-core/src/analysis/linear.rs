@@ -10,13 +10,14 @@
 //! Both convert to `DMatrix`: nalgebra's fixed-size decompositions need typenum bounds that
 //! a bare `const D: usize` does not meet.
 //!
-//! Closed loops in the augmented form are analysed in the coordinates of the model: `A` of
-//! the index-1 equations also has the directions that leave the constraint manifold (their
-//! eigenvalues are zero, drift modes). Projecting onto the constraints' tangent space
-//! (independent coordinates) is not done yet.
+//! Closed loops in the augmented form: `A` of the index-1 equations also has the directions
+//! that leave the constraint manifold (a double zero per constraint, the drift).
+//! [`constrained_modes`] restricts `A` to the constraints' tangent space (independent
+//! coordinates) at a rest state with time-independent constraints; elsewhere (moving
+//! points, drives) the tangent space needs `(Phi_q qd)_q`, which is not generated yet.
 
 use crate::error::{Error, Result};
-use crate::model::{Matrix, Mechanism, OdeSystem, Vector};
+use crate::model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
 use nalgebra::{Complex, DMatrix, DVector, Schur, SymmetricEigen};
 
 /// Eigenvalues with `|lambda| <= NEUTRAL_TOL |A|` (`|A|` the largest row sum) are neutral:
@@ -284,4 +285,75 @@ where
         .collect();
     out.sort_by(|x, y| x.omega_squared.total_cmp(&y.omega_squared));
     Ok(out)
+}
+
+/// The modes of a closed loop at rest on its constraints, in independent coordinates: `A`
+/// of the augmented (index-1) equations restricted to the tangent space of `Phi = 0`,
+/// `Phi_q qd = 0`. At rest that space is spanned by `T = diag(Z, Z)`, `Z` an orthonormal
+/// basis of the null space of `Phi_q` (from the eigenvectors of `Phi_q^T Phi_q`); the
+/// equations keep it invariant (`d^2 Phi / dt^2 = 0`), so `A T = T A_r` with
+/// `A_r = T^T A T` of size `2 (N - M)`. Shapes are mapped back to the full state (`T v`).
+/// Without the restriction `A` also has a double zero per constraint: the drift off it.
+///
+/// Errors: [`Error::InvalidInput`] when `q` is not assembled (`|Phi| > 1e-9`) or the
+/// constraints depend on time (`Phi_t != 0`: the tangent space then moves);
+/// [`Error::SingularConstraintJacobian`] when `Phi_q` lacks full row rank; plus those of
+/// [`linearize`] and [`modes`].
+pub fn constrained_modes<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+) -> Result<Vec<Mode>>
+where
+    S: Constrained<N, M> + OdeSystem<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let bad = |detail: String| Error::InvalidInput {
+        what: "constrained_modes",
+        detail,
+    };
+    let phi = sys.phi(t, q).abs().max();
+    if phi.is_nan() || phi > 1e-9 {
+        return Err(bad(format!("not assembled: |Phi| = {phi:.3e}")));
+    }
+    let phi_t = sys.phi_t(t, q).abs().max();
+    if phi_t.is_nan() || phi_t > 0.0 {
+        return Err(bad(format!(
+            "time-dependent constraints: |Phi_t| = {phi_t:.3e}"
+        )));
+    }
+    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
+    let a = linearize(sys, t, &y)?;
+    let z = null_space(&sys.phi_q(t, q)).ok_or(Error::SingularConstraintJacobian { t })?;
+    let r = z.ncols();
+    let mut tm = DMatrix::<f64>::zeros(D, 2 * r);
+    tm.view_mut((0, 0), (N, r)).copy_from(&z);
+    tm.view_mut((N, r), (N, r)).copy_from(&z);
+    let ad = DMatrix::from_iterator(D, D, a.iter().copied());
+    let mut out = modes_of(tm.transpose() * ad * &tm)?;
+    let tc = tm.map(|v| Complex::new(v, 0.0));
+    for m in &mut out {
+        m.shape = &tc * &m.shape;
+        let big = largest(&m.shape);
+        m.shape /= big;
+    }
+    Ok(out)
+}
+
+/// An orthonormal basis (`N x (N - M)`) of the null space of `Phi_q`, `None` when `Phi_q`
+/// lacks full row rank (eigenvalues of `Phi_q^T Phi_q` below `1e-10` of the largest count
+/// as zero: rank loss shows as more of them than `N - M`).
+fn null_space<const M: usize, const N: usize>(phi_q: &Matrix<M, N>) -> Option<DMatrix<f64>> {
+    let g = phi_q.transpose() * phi_q;
+    let eig = SymmetricEigen::try_new(
+        DMatrix::from_iterator(N, N, g.iter().copied()),
+        f64::EPSILON,
+        10_000,
+    )?;
+    let top = eig.eigenvalues.amax();
+    let zero: Vec<usize> = (0..N)
+        .filter(|&i| eig.eigenvalues[i] <= 1e-10 * top)
+        .collect();
+    (top.is_finite() && zero.len() + M == N)
+        .then(|| DMatrix::from_fn(N, zero.len(), |r, c| eig.eigenvectors[(r, zero[c])]))
 }
