@@ -8,7 +8,7 @@ use mbd::OdeSystem;
 use mbd::analysis::linear::{central_difference, linearize};
 use mbd::jacobian::forward_difference;
 use mbd::prelude::Vector;
-use mechanisms::modes::{self, DOUBLE, GOAL};
+use mechanisms::modes::{self, DOUBLE, FOUR_BAR, GOAL};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -33,28 +33,26 @@ fn median_us<F: FnMut()>(mut f: F) -> f64 {
     v[v.len() / 2]
 }
 
-/// The double pendulum at a moving state: one rhs, the exact `A`, forward and central
-/// differences (`D + 1` and `2 D` right-hand sides).
-fn timings() {
-    let y = Vector::<4>::new(0.7, -0.4, 1.3, -2.1);
-    let m = DOUBLE;
+/// One model at one state: one rhs, the exact `A`, forward and central differences
+/// (`D + 1` and `2 D` right-hand sides).
+fn timings<S: OdeSystem<D>, const D: usize>(name: &str, m: &S, y: &Vector<D>) {
     let rhs = median_us(|| {
-        black_box(m.rhs(0.0, black_box(&y)).unwrap());
+        black_box(m.rhs(0.0, black_box(y)).unwrap());
     });
     let exact = median_us(|| {
-        black_box(linearize(&m, 0.0, black_box(&y)).unwrap());
+        black_box(linearize(m, 0.0, black_box(y)).unwrap());
     });
     let forward = median_us(|| {
-        black_box(forward_difference(|y| m.rhs(0.0, y), black_box(&y)).unwrap());
+        black_box(forward_difference(|y| m.rhs(0.0, y), black_box(y)).unwrap());
     });
     let central = median_us(|| {
-        black_box(central_difference(&m, 0.0, black_box(&y), 1e-5).unwrap());
+        black_box(central_difference(m, 0.0, black_box(y), 1e-5).unwrap());
     });
-    println!("double pendulum (D = 4), median time per call:");
-    println!("  rhs                        {rhs:8.3} us");
-    println!("  exact A (generated)        {exact:8.3} us");
-    println!("  forward differences (5 f)  {forward:8.3} us");
-    println!("  central differences (8 f)  {central:8.3} us");
+    println!("{name} (D = {D}), median time per call:");
+    println!("  rhs                          {rhs:8.3} us");
+    println!("  exact A (generated)          {exact:8.3} us");
+    println!("  forward differences (D+1 f)  {forward:8.3} us");
+    println!("  central differences (2D f)   {central:8.3} us");
 }
 
 fn main() {
@@ -77,7 +75,7 @@ fn main() {
         }
     } else {
         println!(
-            "{:<26} {:<24} {:>2} {:<11} {:>14} {:>14} {:>9} {:>14} {:>9}  stable",
+            "{:<30} {:<27} {:>2} {:<11} {:>14} {:>14} {:>9} {:>14} {:>9}  stable",
             "mechanism",
             "point",
             "#",
@@ -93,7 +91,7 @@ fn main() {
                 .damping_ratio
                 .map_or("-".to_string(), |z| format!("{z:.6}"));
             println!(
-                "{:<26} {:<24} {:>2} {:<11} {:>14.10} {:>14.10} {:>9} {:>14.10} {:>9.1e}  {}",
+                "{:<30} {:<27} {:>2} {:<11} {:>14.10} {:>14.10} {:>9} {:>14.10} {:>9.1e}  {}",
                 r.mechanism,
                 r.point,
                 r.mode,
@@ -107,7 +105,17 @@ fn main() {
             );
         }
         println!("{} rows, {failed} above the goal {GOAL:e}\n", rows.len());
-        timings();
+        timings(
+            "double pendulum, moving",
+            &DOUBLE,
+            &Vector::<4>::new(0.7, -0.4, 1.3, -2.1),
+        );
+        let (p, v) = (0.3, 0.8);
+        timings(
+            "sprung four-bar (augmented), moving on its loop",
+            &FOUR_BAR,
+            &Vector::<4>::new(p, p, v, v),
+        );
     }
     if failed > 0 {
         std::process::exit(1);
