@@ -357,3 +357,35 @@ fn null_space<const M: usize, const N: usize>(phi_q: &Matrix<M, N>) -> Option<DM
     (top.is_finite() && zero.len() + M == N)
         .then(|| DMatrix::from_fn(N, zero.len(), |r, c| eig.eigenvectors[(r, zero[c])]))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `x'' + 6 x' + 36 x = 0`: `w_n = 6`, `zeta = 0.5`, `w_d = 3 sqrt(3)`; the shape's
+    /// velocity is `lambda` times its position.
+    #[test]
+    fn damped_oscillator() {
+        let a = Matrix::<2, 2>::new(0.0, 1.0, -36.0, -6.0);
+        let m = &modes(&a).unwrap()[0];
+        assert_eq!(m.kind, ModeKind::Oscillatory);
+        assert!((m.omega_n - 6.0).abs() < 1e-14);
+        assert!((m.damping_ratio.unwrap() - 0.5).abs() < 1e-15);
+        assert!((m.omega_d - 27f64.sqrt()).abs() < 1e-14);
+        assert!((m.shape[1] - m.eigenvalue * m.shape[0]).norm() < 1e-12);
+        assert!(!m.unstable);
+    }
+
+    /// A null basis is orthonormal and annihilated; rank loss is refused.
+    #[test]
+    fn null_space_and_rank_loss() {
+        let j = Matrix::<1, 3>::new(1.0, 2.0, -1.0);
+        let z = null_space(&j).unwrap();
+        assert_eq!(z.ncols(), 2);
+        let jd = DMatrix::from_row_slice(1, 3, &[1.0, 2.0, -1.0]);
+        assert!((&jd * &z).amax() < 1e-14);
+        assert!((z.transpose() * &z - DMatrix::<f64>::identity(2, 2)).amax() < 1e-14);
+        let dependent = Matrix::<2, 3>::new(1.0, 2.0, -1.0, 2.0, 4.0, -2.0);
+        assert!(null_space(&dependent).is_none());
+    }
+}

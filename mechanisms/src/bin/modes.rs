@@ -64,7 +64,10 @@ fn main() {
             std::process::exit(1);
         }
     };
-    let failed = rows.iter().filter(|r| !(r.rel_error <= GOAL)).count();
+    let failed = rows
+        .iter()
+        .filter(|r| r.rel_error.is_nan() || r.rel_error > GOAL)
+        .count();
     if json {
         match serde_json::to_string_pretty(&rows) {
             Ok(s) => println!("{s}"),
