@@ -9,6 +9,7 @@ pub mod accuracy;
 pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
+pub mod modes;
 pub mod sim;
 pub mod spatial_chain_by_hand;
 pub mod stick_slip;

@@ -10,6 +10,7 @@
 pub mod assembly;
 pub mod dynamics;
 pub mod kinematics;
+pub mod linear;
 pub mod projection;
 pub mod redundancy;
 pub mod statics;
@@ -17,6 +18,7 @@ pub mod statics;
 pub use assembly::{assemble, consistent_velocities};
 pub use dynamics::{Reactions, inverse_dynamics};
 pub use kinematics::{KinematicState, kinematic_sweep, kinematics};
+pub use linear::{Mode, ModeKind, NormalMode, constrained_modes, linearize, modes, undamped_modes};
 pub use projection::{constraint_drift, project_positions, project_state, project_velocities};
 pub use redundancy::{rank_and_redundant, redundant_constraints};
 pub use statics::{static_equilibrium, static_equilibrium_constrained};

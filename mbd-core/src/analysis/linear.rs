@@ -1,0 +1,391 @@
+//! Linear analysis about an operating point: the state matrix `A = d(y')/dy`, exact from the
+//! generated derivatives ([`OdeSystem::jacobian`] of a model derived with
+//! `#[mechanism(jacobian)]`), and its modes.
+//!
+//! Two eigen-analyses: [`modes`] decomposes the real non-symmetric `A` (damped, gyroscopic
+//! or unstable operating points alike) by nalgebra's real Schur form, with mode shapes by
+//! one inverse iteration each; [`undamped_modes`] solves the symmetric generalised problem
+//! `K v = w^2 M v` at an equilibrium of an undamped conservative model, with
+//! `K = -df/dq = -M dqdd/dq` (at rest in equilibrium `f = 0`, so `dqdd/dq = M^-1 df/dq`).
+//! Both convert to `DMatrix`: nalgebra's fixed-size decompositions need typenum bounds that
+//! a bare `const D: usize` does not meet.
+//!
+//! Closed loops in the augmented form: `A` of the index-1 equations also has the directions
+//! that leave the constraint manifold (a double zero per constraint, the drift).
+//! [`constrained_modes`] restricts `A` to the constraints' tangent space (independent
+//! coordinates) at a rest state with time-independent constraints; elsewhere (moving
+//! points, drives) the tangent space needs `(Phi_q qd)_q`, which is not generated yet.
+
+use crate::error::{Error, Result};
+use crate::model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
+use nalgebra::{Complex, DMatrix, DVector, Schur, SymmetricEigen};
+
+/// Eigenvalues with `|lambda| <= NEUTRAL_TOL |A|` (`|A|` the largest row sum) are neutral:
+/// rigid-body motion, a cyclic coordinate. A double zero (a free coordinate's Jordan block)
+/// is computed `O(sqrt(eps |A|))` away from zero, so this bound sits above `sqrt(eps)`.
+/// The same bound decides stability: unstable when `Re lambda > NEUTRAL_TOL |A|`.
+pub const NEUTRAL_TOL: f64 = 1e-7;
+
+/// `A = d(y')/dy` at `(t, y)` from the model's exact Jacobian.
+///
+/// Errors: [`Error::InvalidInput`] when the model has no generated Jacobian (derive it with
+/// `#[mechanism(jacobian)]`: a finite difference is not a linearisation this module vouches
+/// for); the model's own errors; [`Error::NonFinite`] for a non-finite entry.
+pub fn linearize<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+) -> Result<Matrix<D, D>> {
+    if !S::EXACT_JACOBIAN {
+        return Err(Error::InvalidInput {
+            what: "linearize",
+            detail: "the model has no generated Jacobian: derive it with #[mechanism(jacobian)]"
+                .into(),
+        });
+    }
+    let a = sys.jacobian(t, y)?;
+    if a.iter().all(|v| v.is_finite()) {
+        Ok(a)
+    } else {
+        Err(Error::NonFinite { t })
+    }
+}
+
+/// `df/dy` by central differences with steps `h_j = h (1 + |y_j|)`: truncation error
+/// `O(h^2 |f'''|)`, rounding `O(eps |f| / h)`. The check of [`linearize`] and the cost it is
+/// compared with; not used by the analysis.
+pub fn central_difference<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    h: f64,
+) -> Result<Matrix<D, D>> {
+    let mut jac = Matrix::<D, D>::zeros();
+    let mut yj = *y;
+    for j in 0..D {
+        let hj = h * (1.0 + y[j].abs());
+        yj[j] = y[j] + hj;
+        let plus = sys.rhs(t, &yj)?;
+        yj[j] = y[j] - hj;
+        let minus = sys.rhs(t, &yj)?;
+        yj[j] = y[j];
+        jac.set_column(j, &((plus - minus) / (2.0 * hj)));
+    }
+    Ok(jac)
+}
+
+/// What kind of motion an eigenvalue stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModeKind {
+    /// A complex pair `lambda = -zeta w_n +- i w_d` (reported once, `Im lambda > 0`).
+    Oscillatory,
+    /// A real eigenvalue: overdamped decay (`lambda < 0`) or divergence (`lambda > 0`).
+    Real,
+    /// `|lambda|` below [`NEUTRAL_TOL`]: rigid-body motion or drift.
+    Neutral,
+}
+
+/// One mode of `A`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mode {
+    pub eigenvalue: Complex<f64>,
+    pub kind: ModeKind,
+    /// Natural frequency `w_n = |lambda|` in rad/s (near 0 for a neutral mode).
+    pub omega_n: f64,
+    /// Damped frequency `w_d = Im lambda` in rad/s (0 unless oscillatory).
+    pub omega_d: f64,
+    /// `zeta = -Re lambda / |lambda|`: 1 for a real decaying mode, -1 for a diverging one;
+    /// `None` for a neutral mode.
+    pub damping_ratio: Option<f64>,
+    /// `Re lambda > NEUTRAL_TOL |A|`.
+    pub unstable: bool,
+    /// The eigenvector over the state, scaled so that its largest entry is 1.
+    pub shape: DVector<Complex<f64>>,
+}
+
+impl Mode {
+    /// `w_n / 2 pi`.
+    pub fn frequency_hz(&self) -> f64 {
+        self.omega_n / std::f64::consts::TAU
+    }
+    /// `w_d / 2 pi`.
+    pub fn damped_hz(&self) -> f64 {
+        self.omega_d / std::f64::consts::TAU
+    }
+}
+
+/// The modes of `A`, slowest first: each complex pair once, each real or neutral eigenvalue
+/// once.
+///
+/// Errors: [`Error::NonFinite`] for a non-finite `A`; [`Error::InvalidInput`] when the Schur
+/// iteration does not converge.
+pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode>> {
+    modes_of(DMatrix::from_iterator(D, D, a.iter().copied()))
+}
+
+/// [`modes`] of a matrix of any size.
+pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
+    if !a.iter().all(|v| v.is_finite()) {
+        return Err(Error::NonFinite { t: f64::NAN });
+    }
+    let norm = a
+        .row_iter()
+        .map(|r| r.iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
+    let tol = NEUTRAL_TOL * norm.max(f64::MIN_POSITIVE);
+    let schur =
+        Schur::try_new(a.clone(), f64::EPSILON, 10_000).ok_or_else(|| Error::InvalidInput {
+            what: "modes",
+            detail: "the Schur iteration did not converge".into(),
+        })?;
+    let mut out = Vec::new();
+    for lambda in schur.complex_eigenvalues().iter().copied() {
+        let modulus = lambda.norm();
+        // A pair once; neutral eigenvalues each (a double zero may come out as `+-i eps`).
+        if lambda.im < 0.0 && modulus > tol {
+            continue;
+        }
+        let kind = if modulus <= tol {
+            ModeKind::Neutral
+        } else if lambda.im > 0.0 {
+            ModeKind::Oscillatory
+        } else {
+            ModeKind::Real
+        };
+        let neutral = kind == ModeKind::Neutral;
+        out.push(Mode {
+            eigenvalue: lambda,
+            kind,
+            omega_n: modulus,
+            omega_d: if kind == ModeKind::Oscillatory {
+                lambda.im
+            } else {
+                0.0
+            },
+            damping_ratio: (!neutral).then(|| -lambda.re / modulus),
+            unstable: lambda.re > tol,
+            shape: shape(&a, lambda, norm),
+        });
+    }
+    out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
+    Ok(out)
+}
+
+/// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it
+/// (three solves; an exactly singular shift is moved further).
+fn shape(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> DVector<Complex<f64>> {
+    let n = a.nrows();
+    let ac = a.map(|v| Complex::new(v, 0.0));
+    let mut v = DVector::from_fn(n, |i, _| Complex::new(1.0, 0.1 * i as f64));
+    for k in 0..4 {
+        let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * norm.max(1.0);
+        let lu = (&ac - DMatrix::<Complex<f64>>::identity(n, n) * shift).lu();
+        if !lu.is_invertible() {
+            continue;
+        }
+        for _ in 0..3 {
+            match lu.solve(&v) {
+                Some(w) if w.iter().all(|x| x.re.is_finite() && x.im.is_finite()) => v = w,
+                _ => break,
+            }
+            let big = largest(&v);
+            v /= big;
+        }
+        return v;
+    }
+    v
+}
+
+/// The entry of largest modulus (1 for a zero vector).
+fn largest(v: &DVector<Complex<f64>>) -> Complex<f64> {
+    v.iter()
+        .copied()
+        .max_by(|x, y| x.norm().total_cmp(&y.norm()))
+        .filter(|x| x.norm() > 0.0)
+        .unwrap_or(Complex::new(1.0, 0.0))
+}
+
+/// A mode of `K v = w^2 M v`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalMode<const N: usize> {
+    /// `w^2` in (rad/s)^2; negative at an unstable equilibrium.
+    pub omega_squared: f64,
+    /// `v`, mass-normalised (`v^T M v = 1`).
+    pub shape: Vector<N>,
+}
+
+impl<const N: usize> NormalMode<N> {
+    /// `sqrt(w^2) / 2 pi`, `None` at an unstable equilibrium (`w^2 < 0`).
+    pub fn frequency_hz(&self) -> Option<f64> {
+        (self.omega_squared >= 0.0).then(|| self.omega_squared.sqrt() / std::f64::consts::TAU)
+    }
+}
+
+/// The modes of an undamped conservative model at its equilibrium `q` (at rest), slowest
+/// first: `K v = w^2 M v` with `K = -M dqdd/dq` from the exact Jacobian, reduced by the
+/// Cholesky factor of `M` to a symmetric eigenproblem.
+///
+/// Errors ([`Error::InvalidInput`]) when `q` is not an equilibrium (`|qdd| > 1e-9 |A|`),
+/// when the model is damped (`dqdd/dqd != 0` at rest), when `K` is not symmetric (to
+/// `1e-9 |K|`: non-conservative forces), or when `M` is not positive definite; plus the
+/// errors of [`linearize`].
+pub fn undamped_modes<S, const N: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+) -> Result<Vec<NormalMode<N>>>
+where
+    S: Mechanism<N> + OdeSystem<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let bad = |detail: String| Error::InvalidInput {
+        what: "undamped_modes",
+        detail,
+    };
+    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
+    let a = linearize(sys, t, &y)?;
+    let scale = a.abs().max().max(1.0);
+    let qdd = sys.rhs(t, &y)?.fixed_rows::<N>(N).abs().max();
+    if qdd > 1e-9 * scale {
+        return Err(bad(format!("not an equilibrium: |qdd| = {qdd:.3e}")));
+    }
+    let damping = a.fixed_view::<N, N>(N, N).abs().max();
+    if damping > 1e-12 * scale {
+        return Err(bad(format!(
+            "damped: |dqdd/dqd| = {damping:.3e}; use `modes`"
+        )));
+    }
+    let mass = sys.mass_matrix(t, q);
+    let k = -(mass * a.fixed_view::<N, N>(N, 0));
+    let asym = (k - k.transpose()).abs().max();
+    if asym > 1e-9 * k.abs().max() {
+        return Err(bad(format!("K is not symmetric (|K - K^T| = {asym:.3e})")));
+    }
+    let dm = DMatrix::from_iterator(N, N, mass.iter().copied());
+    let l = dm
+        .cholesky()
+        .ok_or_else(|| bad("M is not positive definite".into()))?
+        .l();
+    let linv = l
+        .clone()
+        .try_inverse()
+        .ok_or_else(|| bad("M is singular".into()))?;
+    let dk = DMatrix::from_iterator(N, N, (0.5 * (k + k.transpose())).iter().copied());
+    let c = &linv * dk * linv.transpose();
+    let eig = SymmetricEigen::try_new(c, f64::EPSILON, 10_000)
+        .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
+    let mut out: Vec<NormalMode<N>> = (0..N)
+        .map(|i| {
+            let v = linv.transpose() * eig.eigenvectors.column(i);
+            NormalMode {
+                omega_squared: eig.eigenvalues[i],
+                shape: Vector::<N>::from_fn(|r, _| v[r]),
+            }
+        })
+        .collect();
+    out.sort_by(|x, y| x.omega_squared.total_cmp(&y.omega_squared));
+    Ok(out)
+}
+
+/// The modes of a closed loop at rest on its constraints, in independent coordinates: `A`
+/// of the augmented (index-1) equations restricted to the tangent space of `Phi = 0`,
+/// `Phi_q qd = 0`. At rest that space is spanned by `T = diag(Z, Z)`, `Z` an orthonormal
+/// basis of the null space of `Phi_q` (from the eigenvectors of `Phi_q^T Phi_q`); the
+/// equations keep it invariant (`d^2 Phi / dt^2 = 0`), so `A T = T A_r` with
+/// `A_r = T^T A T` of size `2 (N - M)`. Shapes are mapped back to the full state (`T v`).
+/// Without the restriction `A` also has a double zero per constraint: the drift off it.
+///
+/// Errors: [`Error::InvalidInput`] when `q` is not assembled (`|Phi| > 1e-9`) or the
+/// constraints depend on time (`Phi_t != 0`: the tangent space then moves);
+/// [`Error::SingularConstraintJacobian`] when `Phi_q` lacks full row rank; plus those of
+/// [`linearize`] and [`modes`].
+pub fn constrained_modes<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+) -> Result<Vec<Mode>>
+where
+    S: Constrained<N, M> + OdeSystem<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let bad = |detail: String| Error::InvalidInput {
+        what: "constrained_modes",
+        detail,
+    };
+    let phi = sys.phi(t, q).abs().max();
+    if phi.is_nan() || phi > 1e-9 {
+        return Err(bad(format!("not assembled: |Phi| = {phi:.3e}")));
+    }
+    let phi_t = sys.phi_t(t, q).abs().max();
+    if phi_t.is_nan() || phi_t > 0.0 {
+        return Err(bad(format!(
+            "time-dependent constraints: |Phi_t| = {phi_t:.3e}"
+        )));
+    }
+    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
+    let a = linearize(sys, t, &y)?;
+    let z = null_space(&sys.phi_q(t, q)).ok_or(Error::SingularConstraintJacobian { t })?;
+    let r = z.ncols();
+    let mut tm = DMatrix::<f64>::zeros(D, 2 * r);
+    tm.view_mut((0, 0), (N, r)).copy_from(&z);
+    tm.view_mut((N, r), (N, r)).copy_from(&z);
+    let ad = DMatrix::from_iterator(D, D, a.iter().copied());
+    let mut out = modes_of(tm.transpose() * ad * &tm)?;
+    let tc = tm.map(|v| Complex::new(v, 0.0));
+    for m in &mut out {
+        m.shape = &tc * &m.shape;
+        let big = largest(&m.shape);
+        m.shape /= big;
+    }
+    Ok(out)
+}
+
+/// An orthonormal basis (`N x (N - M)`) of the null space of `Phi_q`, `None` when `Phi_q`
+/// lacks full row rank (eigenvalues of `Phi_q^T Phi_q` below `1e-10` of the largest count
+/// as zero: rank loss shows as more of them than `N - M`).
+fn null_space<const M: usize, const N: usize>(phi_q: &Matrix<M, N>) -> Option<DMatrix<f64>> {
+    let g = phi_q.transpose() * phi_q;
+    let eig = SymmetricEigen::try_new(
+        DMatrix::from_iterator(N, N, g.iter().copied()),
+        f64::EPSILON,
+        10_000,
+    )?;
+    let top = eig.eigenvalues.amax();
+    let zero: Vec<usize> = (0..N)
+        .filter(|&i| eig.eigenvalues[i] <= 1e-10 * top)
+        .collect();
+    (top.is_finite() && zero.len() + M == N)
+        .then(|| DMatrix::from_fn(N, zero.len(), |r, c| eig.eigenvectors[(r, zero[c])]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `x'' + 6 x' + 36 x = 0`: `w_n = 6`, `zeta = 0.5`, `w_d = 3 sqrt(3)`; the shape's
+    /// velocity is `lambda` times its position.
+    #[test]
+    fn damped_oscillator() {
+        let a = Matrix::<2, 2>::new(0.0, 1.0, -36.0, -6.0);
+        let m = &modes(&a).unwrap()[0];
+        assert_eq!(m.kind, ModeKind::Oscillatory);
+        assert!((m.omega_n - 6.0).abs() < 1e-14);
+        assert!((m.damping_ratio.unwrap() - 0.5).abs() < 1e-15);
+        assert!((m.omega_d - 27f64.sqrt()).abs() < 1e-14);
+        assert!((m.shape[1] - m.eigenvalue * m.shape[0]).norm() < 1e-12);
+        assert!(!m.unstable);
+    }
+
+    /// A null basis is orthonormal and annihilated; rank loss is refused.
+    #[test]
+    fn null_space_and_rank_loss() {
+        let j = Matrix::<1, 3>::new(1.0, 2.0, -1.0);
+        let z = null_space(&j).unwrap();
+        assert_eq!(z.ncols(), 2);
+        let jd = DMatrix::from_row_slice(1, 3, &[1.0, 2.0, -1.0]);
+        assert!((&jd * &z).amax() < 1e-14);
+        assert!((z.transpose() * &z - DMatrix::<f64>::identity(2, 2)).amax() < 1e-14);
+        let dependent = Matrix::<2, 3>::new(1.0, 2.0, -1.0, 2.0, 4.0, -2.0);
+        assert!(null_space(&dependent).is_none());
+    }
+}

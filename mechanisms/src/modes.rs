@@ -1,0 +1,394 @@
+//! Linear modes about operating points, from the exact generated Jacobian
+//! ([`mbd::analysis::linear`]), against closed forms: the rows of the `modes` report.
+//!
+//! Each mechanism's reference is derived beside its rows; a row fails when its relative
+//! error (frequency, damped frequency and damping ratio, the worst of them) exceeds
+//! [`GOAL`].
+
+use crate::case10_pendulum_on_cart::{self as case10, PendulumOnCart};
+use crate::case30_damped_vibration::{self as case30, DampedBlock};
+use mbd::analysis::linear::{Mode, ModeKind, constrained_modes, linearize, modes, undamped_modes};
+use mbd::prelude::*;
+use serde::Serialize;
+use std::f64::consts::{PI, TAU};
+
+/// Frequencies within `1e-10` relative of the closed forms.
+pub const GOAL: f64 = 1e-10;
+
+/// Two equal point masses on massless rods of equal length, angles from the downward
+/// vertical, with its exact Jacobian generated.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(a, b)]
+#[particle(p1, mass = m, at = [l * sin(a), -l * cos(a)])]
+#[particle(p2, mass = m, at = [l * sin(a) + l * sin(b), -l * cos(a) - l * cos(b)])]
+pub struct DoublePendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// `m = 1 kg`, `l = 1 m`, `g = 9.81 m/s^2`.
+pub const DOUBLE: DoublePendulum = DoublePendulum {
+    m: 1.0,
+    l: 1.0,
+    g: 9.81,
+};
+
+/// The double pendulum's small-oscillation frequencies `[w_1, w_2]` in rad/s.
+///
+/// About `a = b = 0` the Lagrangian's quadratic part gives `M = m l^2 [[2, 1], [1, 1]]`
+/// and `K = m g l [[2, 0], [0, 1]]`. With `mu = w^2 l / g`,
+/// `det(K - w^2 M) / (m g l)^2 = (2 - 2 mu)(1 - mu) - mu^2 = 2 (1 - mu)^2 - mu^2 = 0`, so
+/// `sqrt(2) (1 - mu) = +-mu`, `mu = sqrt(2) / (sqrt(2) +- 1) = 2 -+ sqrt(2)`:
+/// `w^2 = (g / l)(2 -+ sqrt(2))`. The shapes `b / a = mu / (1 - mu)` are `+sqrt(2)` (in
+/// phase, slow) and `-sqrt(2)` (against, fast).
+pub fn double_pendulum_reference() -> [f64; 2] {
+    let DoublePendulum { l, g, .. } = DOUBLE;
+    let s = 2f64.sqrt();
+    [(g / l * (2.0 - s)).sqrt(), (g / l * (2.0 + s)).sqrt()]
+}
+
+/// Case 30 about its equilibrium `x = 0`: `m x'' + c x' + k x = 0`, `lambda = -zeta w_n +-
+/// i w_d` with `w_n = sqrt(k/m) = 6 rad/s`, `zeta = c / (2 sqrt(m k)) = 0.5`,
+/// `w_d = w_n sqrt(1 - zeta^2) = 3 sqrt(3)`: `[w_n, zeta, w_d]`.
+pub fn case30_reference() -> [f64; 3] {
+    let DampedBlock { m, k, .. } = case30::MODEL;
+    let [zeta, omega_d] = case30::damping();
+    [(k / m).sqrt(), zeta, omega_d]
+}
+
+/// Case 10's cart (mass `M`) and bob (mass `m` on a light rod `l`), `theta` from upright.
+/// Linearised about `theta = 0` at rest: `(M + m) x'' + m l theta'' = 0` and
+/// `m l x'' + m l^2 theta'' - m g l theta = 0`; eliminating `x'' = -m l theta'' / (M + m)`
+/// gives `theta'' = g (M + m) / (M l) theta`: `lambda = +-s`, `s = sqrt(g (M + m) / (M l))`
+/// (one unstable real eigenvalue), and a double zero (the cart's free drift `x`). Hanging
+/// (`theta = pi`) the sign of gravity's term flips: an oscillation at `w = s`.
+pub fn cart_reference() -> f64 {
+    let PendulumOnCart {
+        m_cart,
+        m_bob,
+        g,
+        l,
+        ..
+    } = case10::MODEL;
+    (g * (m_cart + m_bob) / (m_cart * l)).sqrt()
+}
+
+/// A parallelogram four-bar hanging from pivots `(0, 0)` and `(d, 0)`: cranks of length `r`
+/// at `phi`, `psi` from the downward vertical, massless, and a massless coupler of length
+/// `d` with mass `m / 2` lumped at each of its pins (the loop closes by one distance
+/// constraint, augmented form). A horizontal spring `k` of free length `w` holds pin A from
+/// the anchor `(-w, -r)`: unstretched at the equilibrium `phi = psi = 0`.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(phi, psi)]
+#[constraint((d + r * sin(psi) - r * sin(phi)) * (d + r * sin(psi) - r * sin(phi))
+    + (r * cos(phi) - r * cos(psi)) * (r * cos(phi) - r * cos(psi)) == d * d)]
+#[point(anchor, at = [-w, -r])]
+#[particle(pin_a, mass = 0.5 * m, at = [r * sin(phi), -r * cos(phi)])]
+#[particle(pin_b, mass = 0.5 * m, at = [d + r * sin(psi), -r * cos(psi)])]
+#[spring(spring, from = anchor, to = pin_a, k = k, length = w)]
+pub struct SprungFourBar {
+    pub m: f64,
+    pub r: f64,
+    pub d: f64,
+    pub k: f64,
+    pub w: f64,
+    pub g: f64,
+}
+
+/// `m = 2 kg`, `r = 0.5 m`, `d = 1.5 m`, `k = 30 N/m`, `w = 1 m`.
+pub const FOUR_BAR: SprungFourBar = SprungFourBar {
+    m: 2.0,
+    r: 0.5,
+    d: 1.5,
+    k: 30.0,
+    w: 1.0,
+    g: 9.81,
+};
+
+/// The sprung four-bar's one frequency in rad/s, by hand. On the loop `psi = phi` (the
+/// parallelogram branch through the equilibrium) both pins move on circles of radius `r`:
+/// `T = (m/2) r^2 phi'^2 / 2 * 2 = m r^2 phi'^2 / 2`. Gravity: `V_g = m g r (1 - cos phi)`.
+/// The spring's length is `sqrt((w + r sin phi)^2 + r^2 (1 - cos phi)^2) = w + r sin phi +
+/// O(phi^4)`, so `V_k = k r^2 sin^2 phi / 2 + O(phi^5)` (no preload at the equilibrium, no
+/// geometric stiffness). Hence `w^2 = (m g r + k r^2) / (m r^2) = g / r + k / m`.
+pub fn four_bar_reference() -> f64 {
+    let SprungFourBar { m, r, k, g, .. } = FOUR_BAR;
+    (g / r + k / m).sqrt()
+}
+
+/// One row of the report (the `--json` schema).
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    pub mechanism: &'static str,
+    pub point: &'static str,
+    /// Mode number, slowest first.
+    pub mode: usize,
+    /// `Oscillatory`, `Real` or `Neutral`.
+    pub kind: &'static str,
+    /// Natural frequency `|lambda| / 2 pi` (a neutral mode's is its computed `|lambda|`,
+    /// rounding of the double zero: checked against 0 like any other).
+    pub frequency_hz: f64,
+    /// Damped frequency `Im lambda / 2 pi`.
+    pub damped_hz: f64,
+    /// `-Re lambda / |lambda|`; `None` for a neutral mode.
+    pub damping_ratio: Option<f64>,
+    pub unstable: bool,
+    pub reference_hz: f64,
+    pub reference_damping_ratio: Option<f64>,
+    /// The worst of: the frequency's relative error (absolute in Hz when the reference is
+    /// 0), the damped frequency's, the damping ratio's (absolute).
+    pub rel_error: f64,
+}
+
+/// A reference: natural frequency in rad/s, damping ratio (None for neutral).
+type Reference = (f64, Option<f64>);
+
+fn row(
+    mechanism: &'static str,
+    point: &'static str,
+    index: usize,
+    m: &Mode,
+    (w_ref, zeta_ref): Reference,
+) -> Row {
+    let rel = |x: f64, r: f64| {
+        if r == 0.0 {
+            x.abs()
+        } else {
+            (x - r).abs() / r.abs()
+        }
+    };
+    let wd_ref = match zeta_ref {
+        Some(z) if z.abs() < 1.0 => w_ref * (1.0 - z * z).sqrt(),
+        _ => 0.0,
+    };
+    let zeta_err = match (m.damping_ratio, zeta_ref) {
+        (Some(z), Some(r)) => (z - r).abs(),
+        (None, None) => 0.0,
+        _ => f64::INFINITY,
+    };
+    let rel_error = rel(m.omega_n, w_ref)
+        .max(rel(m.omega_d, wd_ref))
+        .max(zeta_err);
+    Row {
+        mechanism,
+        point,
+        mode: index + 1,
+        kind: match m.kind {
+            ModeKind::Oscillatory => "oscillatory",
+            ModeKind::Real => "real",
+            ModeKind::Neutral => "neutral",
+        },
+        frequency_hz: m.frequency_hz(),
+        damped_hz: m.damped_hz(),
+        damping_ratio: m.damping_ratio,
+        unstable: m.unstable,
+        reference_hz: w_ref / TAU,
+        reference_damping_ratio: zeta_ref,
+        rel_error,
+    }
+}
+
+/// Rows for the modes of `A` at one point against references in the modes' order
+/// (slowest first); a count mismatch is an error.
+fn rows_of(
+    mechanism: &'static str,
+    point: &'static str,
+    found: &[Mode],
+    refs: &[Reference],
+) -> mbd::Result<Vec<Row>> {
+    if found.len() != refs.len() {
+        return Err(mbd::Error::InvalidInput {
+            what: "modes report",
+            detail: format!(
+                "{mechanism} at {point}: {} modes, {} references",
+                found.len(),
+                refs.len()
+            ),
+        });
+    }
+    Ok(found
+        .iter()
+        .zip(refs)
+        .enumerate()
+        .map(|(i, (m, r))| row(mechanism, point, i, m, *r))
+        .collect())
+}
+
+/// Every row of the report.
+pub fn rows() -> mbd::Result<Vec<Row>> {
+    let mut out = Vec::new();
+    let [w1, w2] = double_pendulum_reference();
+    let dp = DOUBLE;
+    let a = linearize(&dp, 0.0, &Vector::<4>::zeros())?;
+    out.extend(rows_of(
+        "double pendulum",
+        "hanging, A",
+        &modes(&a)?,
+        &[(w1, Some(0.0)), (w2, Some(0.0))],
+    )?);
+    for (i, (nm, w)) in undamped_modes(&dp, 0.0, &Vector::<2>::zeros())?
+        .iter()
+        .zip([w1, w2])
+        .enumerate()
+    {
+        let f = nm.frequency_hz().unwrap_or(f64::NAN);
+        out.push(Row {
+            mechanism: "double pendulum",
+            point: "hanging, K v = w^2 M v",
+            mode: i + 1,
+            kind: "oscillatory",
+            frequency_hz: f,
+            damped_hz: f,
+            damping_ratio: Some(0.0),
+            unstable: nm.omega_squared < 0.0,
+            reference_hz: w / TAU,
+            reference_damping_ratio: Some(0.0),
+            rel_error: if f.is_nan() {
+                f64::INFINITY
+            } else {
+                (f * TAU - w).abs() / w
+            },
+        });
+    }
+    let [wn, zeta, _] = case30_reference();
+    let block = case30::MODEL;
+    let a = linearize(&block, 0.0, &Vector::<2>::zeros())?;
+    out.extend(rows_of(
+        "case 30 damped block",
+        "equilibrium",
+        &modes(&a)?,
+        &[(wn, Some(zeta))],
+    )?);
+    let s = cart_reference();
+    let cart = case10::MODEL;
+    let a = linearize(&cart, 0.0, &Vector::<4>::zeros())?;
+    // Sorted by |lambda|: the double zero (one neutral row for each), then -s and +s in
+    // the order the Schur form gives them (the same modulus): matched by sign below.
+    let mut found = modes(&a)?;
+    found.sort_by(|x, y| {
+        x.omega_n
+            .total_cmp(&y.omega_n)
+            .then(x.eigenvalue.re.total_cmp(&y.eigenvalue.re))
+    });
+    out.extend(rows_of(
+        "case 10 pendulum on cart",
+        "upright",
+        &found,
+        &[(0.0, None), (0.0, None), (s, Some(1.0)), (s, Some(-1.0))],
+    )?);
+    let a = linearize(&cart, 0.0, &Vector::<4>::new(0.0, PI, 0.0, 0.0))?;
+    out.extend(rows_of(
+        "case 10 pendulum on cart",
+        "hanging",
+        &modes(&a)?,
+        &[(0.0, None), (0.0, None), (s, Some(0.0))],
+    )?);
+    let found = constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::zeros())?;
+    out.extend(rows_of(
+        "sprung parallelogram four-bar",
+        "equilibrium, tangent space",
+        &found,
+        &[(four_bar_reference(), Some(0.0))],
+    )?);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mbd::analysis::linear::central_difference;
+
+    /// Every row within the goal, and the stability flags where the closed forms put them.
+    #[test]
+    fn modes_match_the_closed_forms() {
+        let rows = rows().unwrap();
+        assert_eq!(rows.len(), 2 + 2 + 1 + 4 + 3 + 1);
+        for r in &rows {
+            assert!(r.rel_error <= GOAL, "{r:?}");
+            let diverges = r.damping_ratio.is_some_and(|z| z < 0.0);
+            assert_eq!(r.unstable, diverges, "{r:?}");
+        }
+        assert_eq!(rows.iter().filter(|r| r.unstable).count(), 1);
+    }
+
+    /// The double pendulum's mode shapes: `b / a = +sqrt(2)` slow, `-sqrt(2)` fast, from
+    /// both analyses.
+    #[test]
+    fn double_pendulum_shapes() {
+        let a = linearize(&DOUBLE, 0.0, &Vector::<4>::zeros()).unwrap();
+        let s = 2f64.sqrt();
+        let found = modes(&a).unwrap();
+        for (m, ratio) in found.iter().zip([s, -s]) {
+            let r = m.shape[1] / m.shape[0];
+            assert!((r.re - ratio).abs() < 1e-9 && r.im.abs() < 1e-9, "{r}");
+        }
+        let normal = undamped_modes(&DOUBLE, 0.0, &Vector::<2>::zeros()).unwrap();
+        for (m, ratio) in normal.iter().zip([s, -s]) {
+            assert!((m.shape[1] / m.shape[0] - ratio).abs() < 1e-12);
+        }
+    }
+
+    /// `A` from the generated Jacobian against central differences at a moving state of
+    /// the double pendulum: the difference falls as `h^2` (by 4 when h halves, to 10%),
+    /// so it is the differences' truncation error and `A` is their limit.
+    #[test]
+    fn linearisation_is_the_limit_of_central_differences() {
+        let y = Vector::<4>::new(0.7, -0.4, 1.3, -2.1);
+        let a = linearize(&DOUBLE, 0.0, &y).unwrap();
+        let err = |h: f64| {
+            (central_difference(&DOUBLE, 0.0, &y, h).unwrap() - a)
+                .abs()
+                .max()
+        };
+        let (e1, e2) = (err(2e-3), err(1e-3));
+        assert!(e1 < 1e-4 * a.abs().max(), "{e1}");
+        let ratio = e1 / e2;
+        assert!((3.6..=4.4).contains(&ratio), "ratio {ratio}, {e1} {e2}");
+    }
+
+    /// The four-bar's augmented `A` unrestricted has the loop's drift (a double zero) beside
+    /// the frequency the restriction to the tangent space gives alone; the mode moves both
+    /// cranks alike, velocities `i w` times the positions.
+    #[test]
+    fn four_bar_tangent_space() {
+        let a = linearize(&FOUR_BAR, 0.0, &Vector::<4>::zeros()).unwrap();
+        let full = modes(&a).unwrap();
+        let kinds: Vec<_> = full.iter().map(|m| m.kind).collect();
+        assert_eq!(
+            kinds,
+            [ModeKind::Neutral, ModeKind::Neutral, ModeKind::Oscillatory]
+        );
+        let w = four_bar_reference();
+        assert!((full[2].omega_n - w).abs() <= GOAL * w);
+        let reduced = constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::zeros()).unwrap();
+        assert_eq!(reduced.len(), 1);
+        let v = &reduced[0].shape;
+        // Positions: phi = psi; velocities are i w times them.
+        assert!((v[0] - v[1]).norm() < 1e-9 * v[0].norm(), "{v}");
+        let i_w = mbd::nalgebra::Complex::new(0.0, w);
+        assert!((v[2] - i_w * v[0]).norm() < 1e-8 * v[2].norm(), "{v}");
+        // A point off the loop is refused.
+        assert!(constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::new(0.1, 0.0)).is_err());
+    }
+
+    /// Typed errors: no generated Jacobian, not an equilibrium, a damped model.
+    #[test]
+    fn refuses_what_it_cannot_analyse() {
+        let by_hand = crate::handwritten::PendulumByHand {
+            m: 1.0,
+            l: 1.0,
+            g: 9.81,
+        };
+        assert!(linearize(&by_hand, 0.0, &Vector::<2>::zeros()).is_err());
+        let off = Vector::<2>::new(0.3, 0.0);
+        assert!(undamped_modes(&DOUBLE, 0.0, &off).is_err());
+        assert!(undamped_modes(&case30::MODEL, 0.0, &Vector::<1>::zeros()).is_err());
+        let nan = Matrix::<2, 2>::new(f64::NAN, 0.0, 0.0, 1.0);
+        assert!(modes(&nan).is_err());
+    }
+}
