@@ -54,11 +54,20 @@ pub struct Domain {
     pub coord: String,
 }
 
+/// A dependent coordinate's closed form: its value and, for an angle, its `sin` and `cos`
+/// without trigonometric calls (`sin(asin(u)) = u`, `cos(asin(u)) = sqrt(1 - u^2)`, valid
+/// where the domain is checked), which replace `sin(x)` and `cos(x)` in the kinematics.
+#[derive(Clone, Copy)]
+pub struct Form {
+    pub value: Expr,
+    pub trig: Option<[Expr; 2]>,
+}
+
 /// The closure in closed form.
 pub struct Solution {
     /// `(coordinate index, closed form)` in the independent coordinates (and parameters,
     /// driven coordinates, `t`), in the order solved.
-    pub solved: Vec<(usize, Expr)>,
+    pub solved: Vec<(usize, Form)>,
     pub domain: Vec<Domain>,
 }
 
@@ -68,13 +77,13 @@ pub struct Solution {
 struct State {
     eqs: Vec<Expr>,
     open: Vec<usize>,
-    solved: Vec<(usize, Expr)>,
+    solved: Vec<(usize, Form)>,
     domain: Vec<(Expr, usize)>,
 }
 
 /// One step: closed forms for one or two unknowns, the equations they use, new conditions.
 struct Step {
-    forms: Vec<(usize, Expr)>,
+    forms: Vec<(usize, Form)>,
     used: Vec<usize>,
     domain: Vec<(Expr, usize)>,
 }
@@ -190,19 +199,42 @@ fn apply(g: &mut Graph, st: &State, step: Step, unknowns: &[Unknown]) -> State {
         .map(|(_, e)| *e)
         .collect();
     next.domain.extend(step.domain);
-    for (u, h) in step.forms {
-        next.solved.push((u, h));
+    for (u, form) in step.forms {
+        next.solved.push((u, form));
         next.open.retain(|&o| o != u);
-        let map: HashMap<Sym, Expr> = [(unknowns[u].sym, h)].into();
-        next.eqs = g.substitute_all(&next.eqs, &map);
+        let mut memo = HashMap::new();
+        let x = unknowns[u].sym;
+        let mut elim = |g: &mut Graph, e: Expr| eliminate(g, e, x, form, &mut memo);
+        for e in next.eqs.iter_mut() {
+            *e = elim(g, *e);
+        }
         for s in next.solved.iter_mut() {
-            s.1 = g.substitute(s.1, &map);
+            s.1.value = elim(g, s.1.value);
+            if let Some([sn, cs]) = s.1.trig {
+                s.1.trig = Some([elim(g, sn), elim(g, cs)]);
+            }
         }
         for d in next.domain.iter_mut() {
-            d.0 = g.substitute(d.0, &map);
+            d.0 = elim(g, d.0);
         }
     }
     next
+}
+
+/// `e` with coordinate `x` replaced by its closed form: `sin(x)`, `cos(x)` by the form's
+/// trigonometric values first, then `x` itself. `memo` is per coordinate and form.
+pub fn eliminate(
+    g: &mut Graph,
+    e: Expr,
+    x: Sym,
+    form: Form,
+    memo: &mut HashMap<Expr, Expr>,
+) -> Expr {
+    let e = match form.trig {
+        Some([sn, cs]) => replace_trig(g, e, x, sn, cs, memo),
+        None => e,
+    };
+    g.substitute(e, &[(x, form.value)].into())
 }
 
 /// `e = 0` solved for `x` alone: the closed form and its `asin`/`acos` arguments.
@@ -211,7 +243,7 @@ fn single(
     e: Expr,
     x: &Unknown,
     env: &HashMap<Sym, f64>,
-) -> Option<(Expr, Vec<Expr>)> {
+) -> Option<(Form, Vec<Expr>)> {
     let d = g.diff(e, x.sym);
     if let Some(c) = g.as_const(d) {
         if c == 0.0 || !c.is_finite() {
@@ -221,7 +253,8 @@ fn single(
         let rest = g.substitute(e, &[(x.sym, zero)].into());
         let c = g.constant(c);
         let h = g.div(rest, c);
-        return Some((g.neg(h), Vec::new()));
+        let value = g.neg(h);
+        return Some((Form { value, trig: None }, Vec::new()));
     }
     let [s, c] = placeholders(g, x);
     let r = replace_trig(g, e, x.sym, s, c, &mut HashMap::new());
@@ -243,29 +276,59 @@ fn single(
     Some((choose(g, &cands, x, env), vec![u]))
 }
 
-/// `P cos x + Q sin x = K`: the `asin`/`acos` argument and the two branches.
-fn angle_from(g: &mut Graph, p: Expr, q: Expr, k: Expr) -> Option<(Expr, [Expr; 2])> {
+/// `sqrt(1 - u^2)`, built as the derivative of `asin` builds it (so the two share it).
+fn cofactor(g: &mut Graph, u: Expr) -> Expr {
+    let one = g.one();
+    let u2 = g.powi(u, 2);
+    let r = g.sub(one, u2);
+    g.call(Func::Sqrt, r)
+}
+
+/// `P cos x + Q sin x = K`: the `asin`/`acos` argument and the two branches, each with
+/// its `sin` and `cos` written without trigonometric calls.
+fn angle_from(g: &mut Graph, p: Expr, q: Expr, k: Expr) -> Option<(Expr, [Form; 2])> {
     let pi = g.constant(PI);
+    let form = |value, sn, cs| Form {
+        value,
+        trig: Some([sn, cs]),
+    };
     match (g.is_zero(p), g.is_zero(q)) {
         (true, true) => None,
         (true, false) => {
             let u = g.div(k, q);
             let s = g.call(Func::Asin, u);
-            Some((u, [s, g.sub(pi, s)]))
+            let w = cofactor(g, u);
+            let (other, minus_w) = (g.sub(pi, s), g.neg(w));
+            Some((u, [form(s, u, w), form(other, u, minus_w)]))
         }
         (false, true) => {
             let u = g.div(k, p);
             let c = g.call(Func::Acos, u);
-            Some((u, [c, g.neg(c)]))
+            let w = cofactor(g, u);
+            let (other, minus_w) = (g.neg(c), g.neg(w));
+            Some((u, [form(c, w, u), form(other, minus_w, u)]))
         }
         (false, false) => {
+            // x = base ± acos(u), cos(base) = P / n, sin(base) = Q / n.
             let (p2, q2) = (g.mul(p, p), g.mul(q, q));
             let n2 = g.add(p2, q2);
             let n = g.call(Func::Sqrt, n2);
             let u = g.div(k, n);
             let base = g.atan2(q, p);
             let c = g.call(Func::Acos, u);
-            Some((u, [g.add(base, c), g.sub(base, c)]))
+            let w = cofactor(g, u);
+            let (pu, qu, pw, qw) = (g.mul(p, u), g.mul(q, u), g.mul(p, w), g.mul(q, w));
+            let mut branch = |sign: bool| {
+                let value = if sign { g.add(base, c) } else { g.sub(base, c) };
+                let (cn, sn) = if sign {
+                    (g.sub(pu, qw), g.add(qu, pw))
+                } else {
+                    (g.add(pu, qw), g.sub(qu, pw))
+                };
+                let (cs, sn) = (g.div(cn, n), g.div(sn, n));
+                form(value, sn, cs)
+            };
+            Some((u, [branch(true), branch(false)]))
         }
     }
 }
@@ -278,7 +341,7 @@ fn pair(
     a: &Unknown,
     b: &Unknown,
     env: &HashMap<Sym, f64>,
-) -> Option<(Expr, Expr, Expr)> {
+) -> Option<(Form, Form, Expr)> {
     let [sa, ca] = placeholders(g, a);
     let [sb, cb] = placeholders(g, b);
     let places = [ca, sa, cb, sb].map(|p| sym(g, p));
@@ -329,7 +392,15 @@ fn pair(
     let (x, y) = (g.dot(&a0, &v), g.dot(&a1, &v));
     let (nx, ny) = (g.neg(x), g.neg(y));
     let base = g.atan2(ny, nx);
-    let ha = choose(g, &[base, base], a, env);
+    let (x2, y2) = (g.mul(nx, nx), g.mul(ny, ny));
+    let n2 = g.add(x2, y2);
+    let n = g.call(Func::Sqrt, n2);
+    let (cs, sn) = (g.div(nx, n), g.div(ny, n));
+    let fa = Form {
+        value: base,
+        trig: Some([sn, cs]),
+    };
+    let ha = choose(g, &[fa, fa], a, env);
     Some((ha, hb, arg))
 }
 
@@ -345,13 +416,13 @@ fn scaled_orthogonal(g: &mut Graph, c0: [Expr; 2], c1: [Expr; 2]) -> Option<Expr
 
 /// The branch (and multiple of `2π`) that reproduces the default value of `x`; the first
 /// candidate when there is no default configuration.
-fn choose(g: &mut Graph, cands: &[Expr], x: &Unknown, env: &HashMap<Sym, f64>) -> Expr {
+fn choose(g: &mut Graph, cands: &[Form], x: &Unknown, env: &HashMap<Sym, f64>) -> Form {
     let Some(x0) = x.default else {
         return cands[0];
     };
     let mut best: Option<(f64, usize, f64)> = None;
-    for (i, &c) in cands.iter().enumerate() {
-        let v = g.eval(c, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
+    for (i, c) in cands.iter().enumerate() {
+        let v = g.eval(c.value, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
         if !v.is_finite() {
             continue;
         }
@@ -364,7 +435,10 @@ fn choose(g: &mut Graph, cands: &[Expr], x: &Unknown, env: &HashMap<Sym, f64>) -
     match best {
         Some((_, i, turns)) if turns != 0.0 => {
             let shift = g.constant(2.0 * PI * turns);
-            g.add(cands[i], shift)
+            Form {
+                value: g.add(cands[i].value, shift),
+                trig: cands[i].trig,
+            }
         }
         Some((_, i, _)) => cands[i],
         None => cands[0],
@@ -424,6 +498,71 @@ fn replace_trig(
     r
 }
 
+/// How a constraint depends on earlier ones with constant coefficients.
+pub enum Dependence {
+    /// A combination of them, constants included: it adds nothing.
+    Redundant,
+    /// Its coordinate part is a combination of theirs, its constant part differs by this.
+    Contradictory(f64),
+    /// Its coordinate part is a combination of theirs; the constant parts (parameters,
+    /// `t`) agree only for some values.
+    Dependent,
+}
+
+/// Constraints affine in the coordinates with constant coefficients (`x == y`,
+/// `2.0 * x == 2.0 * y`, `x == 1.0`) whose coordinate parts are linearly dependent on earlier
+/// such constraints: their Jacobian rows are dependent everywhere, so each is a compile
+/// error (the index of the constraint and how it depends).
+pub fn constant_dependence(g: &mut Graph, phi: &[Expr], q: &[Sym]) -> Vec<(usize, Dependence)> {
+    // Reduced rows (coefficients, constant part) kept in echelon form with their pivots.
+    let mut basis: Vec<(Vec<f64>, Expr, usize)> = Vec::new();
+    let mut out = Vec::new();
+    for (k, &p) in phi.iter().enumerate() {
+        let coefs: Option<Vec<f64>> = q
+            .iter()
+            .map(|&s| {
+                let d = g.diff(p, s);
+                g.as_const(d)
+            })
+            .collect();
+        let Some(mut row) = coefs else { continue };
+        let zero = g.zero();
+        let map: HashMap<Sym, Expr> = q.iter().map(|&s| (s, zero)).collect();
+        let mut rest = g.substitute(p, &map);
+        let scale = row.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+        if scale == 0.0 {
+            continue; // no coordinate: reported elsewhere
+        }
+        for (b, b_rest, pivot) in &basis {
+            let f = row[*pivot] / b[*pivot];
+            if f != 0.0 {
+                for (r, c) in row.iter_mut().zip(b) {
+                    *r -= f * c;
+                }
+                let fc = g.constant(f);
+                let scaled = g.mul(fc, *b_rest);
+                rest = g.sub(rest, scaled);
+            }
+        }
+        let left = row.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+        if left > 1e-12 * scale {
+            let pivot = (0..row.len())
+                .max_by(|&i, &j| row[i].abs().total_cmp(&row[j].abs()))
+                .expect("a coordinate");
+            basis.push((row, rest, pivot));
+            continue;
+        }
+        let dependence = match g.as_const(rest) {
+            Some(v) if v.abs() <= 1e-12 * (1.0 + scale) => Dependence::Redundant,
+            Some(v) => Dependence::Contradictory(v),
+            None if g.is_zero(rest) => Dependence::Redundant,
+            None => Dependence::Dependent,
+        };
+        out.push((k, dependence));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -466,7 +605,7 @@ mod tests {
         };
         let value = |i: usize| {
             let h = sol.solved.iter().find(|(k, _)| *k == i).unwrap().1;
-            g.eval(h, &env)
+            g.eval(h.value, &env)
         };
         let beta = (0.3 * th.sin()).asin();
         assert!((value(1) - beta).abs() < 1e-15);
@@ -514,7 +653,10 @@ mod tests {
             };
             for (i, want) in [(1, reference.0), (2, reference.1)] {
                 let h = sol.solved.iter().find(|(k, _)| *k == i).unwrap().1;
-                let got = g.eval(h, &at);
+                let got = g.eval(h.value, &at);
+                let [sn, cs] = h.trig.expect("an angle");
+                assert!((g.eval(sn, &at) - want.sin()).abs() < 1e-12);
+                assert!((g.eval(cs, &at) - want.cos()).abs() < 1e-12);
                 assert!((got - want).abs() < 1e-12, "elbow {elbow}: {got} vs {want}");
             }
         }

@@ -1448,6 +1448,14 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             errors.over(tokens, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
         }
     }
+    for (k, how) in closure::constant_dependence(&mut g, &phi, &qsyms) {
+        let why = match how {
+            closure::Dependence::Redundant => "this constraint repeats earlier ones (a combination of them with constant coefficients): the constraint Jacobian would be singular everywhere; remove it".to_string(),
+            closure::Dependence::Contradictory(v) => format!("this constraint contradicts earlier ones: its coordinate part is a constant combination of theirs but its constant part differs by {v}"),
+            closure::Dependence::Dependent => "this constraint's coordinate part is a constant combination of earlier constraints': it is redundant or contradicts them (depending on the parameters), and the constraint Jacobian would be singular everywhere".to_string(),
+        };
+        errors.over(phi_tokens[k], why);
+    }
     for (k, p) in phi.iter().enumerate() {
         if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
             errors.over(phi_tokens[k], "this constraint involves no coordinate: it relates only parameters and `t`, so it cannot hold the mechanism");
@@ -1833,9 +1841,10 @@ fn minimal_coordinates(
         return None;
     };
     check_closure_defaults(g, &loops, &env, ast, errors);
-    // z -> h, z' -> dh/dt, z'' -> d2h/dt2 (in the independent coordinates).
+    // z -> h (sin z, cos z by the form's own), z' -> dh/dt, z'' -> d2h/dt2.
     let mut map: HashMap<Sym, Expr> = HashMap::new();
     let mut forms = Vec::new();
+    let mut eliminations = Vec::new();
     {
         let mut none = Vec::new();
         let kin = Kin {
@@ -1845,28 +1854,37 @@ fn minimal_coordinates(
             dim: ast.dim,
             reactions: &mut none,
         };
-        for &(i, h) in &solution.solved {
+        for &(i, form) in &solution.solved {
+            let h = form.value;
+            eliminations.push((g.as_sym(coords[i].z).expect("symbol"), form));
             let hd = kin.tder(g, h);
             let hdd = kin.tder(g, hd);
             let c = &coords[i];
-            for (s, v) in [(c.z, h), (c.zd, hd), (c.zdd, hdd)] {
+            for (s, v) in [(c.zd, hd), (c.zdd, hdd)] {
                 map.insert(g.as_sym(s).expect("symbol"), v);
             }
             forms.push((i, [h, hd, hdd]));
         }
     }
+    let mut dependent_names = Vec::new();
     for (i, form) in forms {
         coords[i].kind = CoordKind::Dependent(form);
-        names.insert(
-            coords[i].name.to_string(),
-            Binding::Value(Value::Scalar(form[0])),
-        );
+        dependent_names.push((coords[i].name.to_string(), form[0]));
     }
+    let mut memos: Vec<HashMap<Expr, Expr>> = vec![HashMap::new(); eliminations.len()];
+    let mut close = |g: &mut Graph, e: Expr| {
+        let mut e = g.substitute(e, &map);
+        for ((x, form), memo) in eliminations.iter().zip(memos.iter_mut()) {
+            e = closure::eliminate(g, e, *x, *form, memo);
+        }
+        e
+    };
     for b in bodies.iter_mut() {
         let rot = b.rot.iter().flatten().flatten();
         let mut roots: Vec<Expr> = b.r.iter().chain(&b.angle).chain(rot).copied().collect();
         roots.extend(b.omega.iter().flatten());
-        let mut image = g.substitute_all(&roots, &map).into_iter();
+        let images: Vec<Expr> = roots.iter().map(|&e| close(g, e)).collect();
+        let mut image = images.into_iter();
         for e in b.r.iter_mut().chain(b.angle.iter_mut()) {
             *e = image.next().expect("one image per root");
         }
@@ -1883,11 +1901,14 @@ fn minimal_coordinates(
     for binding in names.values_mut() {
         if let Binding::Value(v) = binding {
             *v = match v {
-                Value::Scalar(e) => Value::Scalar(g.substitute(*e, &map)),
-                Value::Vector(v) => Value::Vector(g.substitute_all(v, &map)),
-                Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|e| g.substitute(e, &map)))),
+                Value::Scalar(e) => Value::Scalar(close(g, *e)),
+                Value::Vector(v) => Value::Vector(v.iter().map(|&e| close(g, e)).collect()),
+                Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|e| close(g, e)))),
             };
         }
+    }
+    for (name, h) in dependent_names {
+        names.insert(name, Binding::Value(Value::Scalar(h)));
     }
     // The state is the independent coordinates, in the order of `coords`.
     let mut next = 0;
