@@ -524,8 +524,11 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
                 #direction
+                // The domain check after the body: its `sin` shares the body's basic block
+                // with the `cos`, so the two become one `sincos` call.
+                let qdd = { #acceleration };
                 #check
-                #acceleration
+                qdd
             }
             fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
                 #en_stmts
