@@ -507,6 +507,8 @@ pub enum Dependence {
     /// Its coordinate part is a combination of theirs; the constant parts (parameters,
     /// `t`) agree only for some values.
     Dependent,
+    /// Its coordinate terms cancel (`x == x + 1.0`): it holds always or never.
+    NoCoordinate,
 }
 
 /// Constraints affine in the coordinates with constant coefficients (`x == y`,
@@ -531,7 +533,11 @@ pub fn constant_dependence(g: &mut Graph, phi: &[Expr], q: &[Sym]) -> Vec<(usize
         let mut rest = g.substitute(p, &map);
         let scale = row.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
         if scale == 0.0 {
-            continue; // no coordinate: reported elsewhere
+            // Structurally free of coordinates: reported by the caller's own check.
+            if q.iter().any(|&s| g.depends_on(p, s)) {
+                out.push((k, Dependence::NoCoordinate));
+            }
+            continue;
         }
         for (b, b_rest, pivot) in &basis {
             let f = row[*pivot] / b[*pivot];

@@ -1449,7 +1449,11 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         }
     }
     for (k, how) in closure::constant_dependence(&mut g, &phi, &qsyms) {
+        if m_con > n && k >= n {
+            continue; // already an over-determining constraint
+        }
         let why = match how {
+            closure::Dependence::NoCoordinate => "the coordinate terms of this constraint cancel: it relates only parameters and `t`, so it cannot hold the mechanism".to_string(),
             closure::Dependence::Redundant => "this constraint repeats earlier ones (a combination of them with constant coefficients): the constraint Jacobian would be singular everywhere; remove it".to_string(),
             closure::Dependence::Contradictory(v) => format!("this constraint contradicts earlier ones: its coordinate part is a constant combination of theirs but its constant part differs by {v}"),
             closure::Dependence::Dependent => "this constraint's coordinate part is a constant combination of earlier constraints': it is redundant or contradicts them (depending on the parameters), and the constraint Jacobian would be singular everywhere".to_string(),

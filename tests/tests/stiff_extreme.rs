@@ -747,9 +747,11 @@ fn stops_at_the_singular_position<const D: usize>(
 // ---------------------------------------------------------------------------------------
 // Bad initial conditions
 
-/// The free crank-rocker under gravity, three coordinates and two loop closures.
+/// The free crank-rocker under gravity, three coordinates and two loop closures, kept in
+/// the augmented form (`augmented`; the derive would close this loop in closed form): the
+/// test is about assembling that form from bad initial conditions.
 #[derive(Debug, Mechanism)]
-#[mechanism(planar, jacobian)]
+#[mechanism(planar, jacobian, augmented)]
 #[gravity(0.0, -g)]
 #[coords(phi, psi, chi)]
 #[constraint(a * cos(phi) + b * cos(psi) == d + c * cos(chi))]
