@@ -219,6 +219,23 @@ impl<'a> Block<'a> {
     }
 }
 
+/// Minimal coordinates of a closed loop: every `asin`/`acos` argument of the closed forms
+/// checked to lie strictly inside `(-1, 1)` (`q` in scope), else `SingularPosition`.
+fn closure_check(eq: &Equations, n: usize) -> Option<TokenStream> {
+    let domain = eq.closure_domain.as_ref().filter(|d| !d.is_empty())?;
+    let args: Vec<Expr> = domain.iter().map(|d| d.arg).collect();
+    let b = Block::new(eq, &args);
+    let s = b.stmts();
+    let checks = domain.iter().map(|d| {
+        let (arg, coord) = (b.leaf(d.arg), &d.coord);
+        quote! {
+            ::mbd::__private::closure::check_domain(t, #arg, #coord,
+                &<Self as ::mbd::__private::Mechanism<#n>>::COORDINATES, q.as_slice())?;
+        }
+    });
+    Some(quote!({ #s #(#checks)* }))
+}
+
 /// Reorders a schedule so that the nodes of parameters and constants alone come first (a
 /// stable partition, so children still precede parents): they do not wait for the state,
 /// so a quotient of parameters overlaps a `sin` call instead of following it, and a loop's
@@ -398,6 +415,12 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     };
 
     let coord_names: Vec<String> = eq.free.iter().map(|c| c.to_string()).collect();
+    let check = closure_check(eq, n);
+    match (&eq.closure_domain, constrained) {
+        (Some(_), _) => parts.names.push("minimal_closed_form"),
+        (None, true) => parts.names.push("augmented"),
+        (None, false) => {}
+    }
     // Friction directions: the sign of the sliding velocities (sliding view: given).
     let friction_coords: Vec<usize> = eq.frictions.iter().map(|f| f.coord).collect();
     let nf = friction_coords.len();
@@ -504,7 +527,11 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
                 #direction
-                #acceleration
+                // The domain check after the body: its `sin` shares the body's basic block
+                // with the `cos`, so the two become one `sincos` call.
+                let qdd = { #acceleration };
+                #check
+                qdd
             }
             fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
                 #en_stmts
@@ -658,6 +685,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 /// Evaluate the outputs at `(t, y)`, solving for accelerations and reactions when they need them.
                 pub fn outputs(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<#outputs_struct> {
                     #split
+                    #check
                     #pre
                     #s
                     Ok(#outputs_struct { #(#out_names: #vals,)* })
@@ -683,6 +711,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 #[doc = #doc]
                 pub fn #fname(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<f64> {
                     #split
+                    #check
                     #pre
                     #s
                     Ok(#v)

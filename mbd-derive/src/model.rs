@@ -7,6 +7,7 @@
 //! driven and relaxed coordinates are exactly their reactions:
 //! `r_u = (M zdd - f + Phi_z^T lambda)_u` (Kane's projection form; see MATH.md).
 
+use crate::closure;
 use crate::lower::{self, Binding, Context, Lowerer, Value};
 use crate::parse::{self, BodyKind, Dim, End, Errors, Load, Mechanism};
 use crate::sym::{Expr, Func, Graph, Sym, schedule};
@@ -43,6 +44,9 @@ pub enum CoordKind {
     /// A driven coordinate with its law `s(t)`.
     Driven(Expr),
     Relaxed,
+    /// A coordinate the closure fixes in closed form (minimal coordinates): its position,
+    /// velocity and acceleration in the independent coordinates.
+    Dependent([Expr; 3]),
 }
 
 pub struct Coord {
@@ -137,6 +141,9 @@ pub struct Equations {
     /// Initial positions and velocities of the free coordinates (parameters allowed).
     pub init_q: Vec<Expr>,
     pub init_qd: Vec<Expr>,
+    /// Minimal coordinates of a closed loop (closure.rs): the `asin`/`acos` arguments the
+    /// generated code checks, `None` when the model is not one (no loop, or augmented).
+    pub closure_domain: Option<Vec<closure::Domain>>,
     zero: Expr,
     one: Expr,
 }
@@ -974,6 +981,24 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         }
     }
 
+    // Minimal coordinates where the closure has a closed form (closure.rs).
+    let loops = LoopParts {
+        phi: &mut phi_full,
+        spans: &mut phi_spans,
+        tokens: &mut phi_tokens,
+    };
+    let closure_domain = minimal_coordinates(
+        ast,
+        &mut g,
+        &mut coords,
+        &mut roles,
+        &mut names,
+        &mut bodies,
+        loops,
+        t,
+        &mut errors,
+    );
+
     // Generalised forces (full coordinates) and potential energy.
     let nz = coords.len();
     let mut q_full = vec![zero; nz];
@@ -1179,7 +1204,16 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 })
                 .scalar(value, Context::Force)
                 {
-                    q_full[j] = g.add(q_full[j], v);
+                    // Along a dependent coordinate `x = h(q)`: virtual work `v dh/dq_k`.
+                    if let CoordKind::Dependent([h, ..]) = coords[j].kind {
+                        for (k, zs) in zsyms.iter().enumerate() {
+                            let d = g.diff(h, *zs);
+                            let w = g.mul(v, d);
+                            q_full[k] = g.add(q_full[k], w);
+                        }
+                    } else {
+                        q_full[j] = g.add(q_full[j], v);
+                    }
                 }
             }
         }
@@ -1200,6 +1234,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let eligible = !(nodes.is_empty() && steps.is_empty())
         && ast.bodies.is_empty()
         && phi_full.is_empty()
+        && closure_domain.is_none()
         && ast.frictions.is_empty();
     let recursive = match ast.evaluation {
         parse::Evaluation::MassMatrix => false,
@@ -1400,6 +1435,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 (*law, d1, d2, d3)
             }
             CoordKind::Relaxed => (zero, zero, zero, zero),
+            CoordKind::Dependent([h, hd, hdd]) => (*h, *hd, *hdd, zero),
         };
         for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd), (c.zddd, zddd)] {
             reduce.insert(g.as_sym(s).expect("symbol"), v);
@@ -1533,6 +1569,18 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         for tokens in &phi_tokens[n..] {
             errors.over(tokens, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
         }
+    }
+    for (k, how) in closure::constant_dependence(&mut g, &phi, &qsyms) {
+        if m_con > n && k >= n {
+            continue; // already an over-determining constraint
+        }
+        let why = match how {
+            closure::Dependence::NoCoordinate => "the coordinate terms of this constraint cancel: it relates only parameters and `t`, so it cannot hold the mechanism".to_string(),
+            closure::Dependence::Redundant => "this constraint repeats earlier ones (a combination of them with constant coefficients): the constraint Jacobian would be singular everywhere; remove it".to_string(),
+            closure::Dependence::Contradictory(v) => format!("this constraint contradicts earlier ones: its coordinate part is a constant combination of theirs but its constant part differs by {v}"),
+            closure::Dependence::Dependent => "this constraint's coordinate part is a constant combination of earlier constraints': it is redundant or contradicts them (depending on the parameters), and the constraint Jacobian would be singular everywhere".to_string(),
+        };
+        errors.over(phi_tokens[k], why);
     }
     for (k, p) in phi.iter().enumerate() {
         if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
@@ -1744,6 +1792,11 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let mut init_q = vec![zero; n];
     let mut init_qd = vec![zero; n];
     for i in &ast.inits {
+        // A dependent coordinate's initial state follows from the closure.
+        let dependent = |c: &Coord| matches!(c.kind, CoordKind::Dependent(_));
+        if coords.iter().any(|c| c.name == i.coord && dependent(c)) {
+            continue;
+        }
         let Some(a) = free_idx.iter().position(|&j| coords[j].name == i.coord) else {
             errors.at(
                 i.coord.span(),
@@ -1833,6 +1886,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         rolled,
         init_q,
         init_qd,
+        closure_domain,
     })
 }
 
@@ -1844,6 +1898,264 @@ impl Equations {
     /// The constant 1 of this model's graph.
     pub fn g_one(&self) -> Expr {
         self.one
+    }
+}
+
+/// The constraint equations of a model with their spans, as `minimal_coordinates` edits
+/// them.
+struct LoopParts<'a, 'b> {
+    phi: &'a mut Vec<Expr>,
+    spans: &'a mut Vec<Span>,
+    tokens: &'a mut Vec<&'b proc_macro2::TokenStream>,
+}
+
+/// Minimal coordinates for a closed loop (see closure.rs): where the closure has a closed
+/// form, each dependent coordinate becomes that form in the kinematics (bodies, points, the
+/// coordinate's own name), its constraints are dropped and the rest of the derivation sees
+/// an unconstrained model. Returns the run-time domain conditions, `None` when the model
+/// keeps the augmented form (asked for, reactions or friction that need the multipliers,
+/// no independent coordinate left, or no closed form).
+#[allow(clippy::too_many_arguments)]
+fn minimal_coordinates(
+    ast: &Mechanism,
+    g: &mut Graph,
+    coords: &mut [Coord],
+    roles: &mut HashMap<Sym, Role>,
+    names: &mut Names,
+    bodies: &mut [BodyKin],
+    loops: LoopParts<'_, '_>,
+    t: Expr,
+    errors: &mut Errors,
+) -> Option<Vec<closure::Domain>> {
+    if loops.phi.is_empty() || ast.loop_form == parse::LoopForm::Augmented {
+        return None;
+    }
+    let env = default_values(ast, g, coords, names);
+    let free: Vec<closure::Unknown> = coords
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| matches!(c.kind, CoordKind::Free))
+        .map(|(i, c)| closure::Unknown {
+            index: i,
+            sym: g.as_sym(c.z).expect("symbol"),
+            name: c.name.to_string(),
+            default: env.get(&g.as_sym(c.z).expect("symbol")).copied(),
+        })
+        .collect();
+    let asks_reactions = ast.outputs.iter().any(|o| names_reaction(&o.expr))
+        || ast.events.iter().any(|e| names_reaction(&e.expr));
+    let why_not = if !ast.frictions.is_empty() {
+        Some("friction keeps the augmented form (its normal force may need the multipliers)")
+    } else if !ast.relaxed.is_empty() || asks_reactions {
+        Some("reactions (`relaxed`, `reaction(..)`) need the multipliers of the augmented form")
+    } else if free.len() <= loops.phi.len() {
+        Some("no independent coordinate would remain (the constraints fix every free coordinate)")
+    } else {
+        None
+    };
+    let solution = match why_not {
+        Some(_) => None,
+        None => closure::solve(g, loops.phi, &free, &env),
+    };
+    let Some(solution) = solution else {
+        if ast.loop_form == parse::LoopForm::Minimal {
+            let why = why_not.unwrap_or("no closed form for the closure: the derive solves a constraint linear in one coordinate with a constant coefficient, an angle inside only `sin`/`cos` of itself, or a planar loop of two angles");
+            errors.at(
+                ast.loop_form_span,
+                format!("`minimal` coordinates are not possible here: {why}"),
+            );
+        }
+        return None;
+    };
+    check_closure_defaults(g, &loops, &env, ast, errors);
+    // z -> h (sin z, cos z by the form's own), z' -> dh/dt, z'' -> d2h/dt2.
+    let mut map: HashMap<Sym, Expr> = HashMap::new();
+    let mut forms = Vec::new();
+    let mut eliminations = Vec::new();
+    {
+        let mut none = Vec::new();
+        let kin = Kin {
+            coords,
+            bodies,
+            t,
+            dim: ast.dim,
+            reactions: &mut none,
+        };
+        for &(i, form) in &solution.solved {
+            let h = form.value;
+            eliminations.push((g.as_sym(coords[i].z).expect("symbol"), form));
+            let hd = kin.tder(g, h);
+            let hdd = kin.tder(g, hd);
+            let c = &coords[i];
+            for (s, v) in [(c.zd, hd), (c.zdd, hdd)] {
+                map.insert(g.as_sym(s).expect("symbol"), v);
+            }
+            forms.push((i, [h, hd, hdd]));
+        }
+    }
+    let mut dependent_names = Vec::new();
+    for (i, form) in forms {
+        coords[i].kind = CoordKind::Dependent(form);
+        dependent_names.push((coords[i].name.to_string(), form[0]));
+    }
+    let mut memos: Vec<HashMap<Expr, Expr>> = vec![HashMap::new(); eliminations.len()];
+    let mut close = |g: &mut Graph, e: Expr| {
+        let mut e = g.substitute(e, &map);
+        for ((x, form), memo) in eliminations.iter().zip(memos.iter_mut()) {
+            e = closure::eliminate(g, e, *x, *form, memo);
+        }
+        e
+    };
+    for b in bodies.iter_mut() {
+        let rot = b.rot.iter().flatten().flatten();
+        let mut roots: Vec<Expr> = b.r.iter().chain(&b.angle).chain(rot).copied().collect();
+        roots.extend(b.omega.iter().flatten());
+        let images: Vec<Expr> = roots.iter().map(|&e| close(g, e)).collect();
+        let mut image = images.into_iter();
+        for e in b.r.iter_mut().chain(b.angle.iter_mut()) {
+            *e = image.next().expect("one image per root");
+        }
+        for e in b
+            .rot
+            .iter_mut()
+            .flatten()
+            .flatten()
+            .chain(b.omega.iter_mut().flatten())
+        {
+            *e = image.next().expect("one image per root");
+        }
+    }
+    for binding in names.values_mut() {
+        if let Binding::Value(v) = binding {
+            *v = match v {
+                Value::Scalar(e) => Value::Scalar(close(g, *e)),
+                Value::Vector(v) => Value::Vector(v.iter().map(|&e| close(g, e)).collect()),
+                Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|e| close(g, e)))),
+            };
+        }
+    }
+    for (name, h) in dependent_names {
+        names.insert(name, Binding::Value(Value::Scalar(h)));
+    }
+    // The state is the independent coordinates, in the order of `coords`.
+    let mut next = 0;
+    for c in coords.iter() {
+        let [z, zd, zdd] = [c.z, c.zd, c.zdd].map(|e| g.as_sym(e).expect("symbol"));
+        match c.kind {
+            CoordKind::Free => {
+                roles.insert(z, Role::Q(next));
+                roles.insert(zd, Role::Qd(next));
+                roles.insert(zdd, Role::Qdd(next));
+                next += 1;
+            }
+            CoordKind::Dependent(_) => {
+                for s in [z, zd, zdd] {
+                    roles.remove(&s);
+                }
+            }
+            _ => {}
+        }
+    }
+    loops.phi.clear();
+    loops.spans.clear();
+    loops.tokens.clear();
+    Some(solution.domain)
+}
+
+/// Whether an output or event expression names `reaction`.
+fn names_reaction(e: &syn::Expr) -> bool {
+    fn walk(ts: proc_macro2::TokenStream) -> bool {
+        ts.into_iter().any(|tt| match tt {
+            proc_macro2::TokenTree::Ident(i) => i == "reaction",
+            proc_macro2::TokenTree::Group(gr) => walk(gr.stream()),
+            _ => false,
+        })
+    }
+    walk(quote::ToTokens::to_token_stream(e))
+}
+
+/// Values of the default configuration: parameter `#[default]`s, `init` positions (with
+/// those defaults) and driven coordinates at `t = 0`; a parameter without a default leaves
+/// only the constant `init` positions.
+fn default_values(
+    ast: &Mechanism,
+    g: &mut Graph,
+    coords: &[Coord],
+    names: &Names,
+) -> HashMap<Sym, f64> {
+    let mut env: HashMap<Sym, f64> = HashMap::new();
+    let mut scratch = Errors::default();
+    let no_names = HashMap::new();
+    for p in &ast.params {
+        let Some(d) = &p.default else { continue };
+        let e = Lowerer {
+            g,
+            names: &no_names,
+            struct_name: "",
+            model: None,
+            errors: &mut scratch,
+        }
+        .scalar(d, Context::Constant);
+        if let Some(v) = e.and_then(|e| g.as_const(e)) {
+            let s = g.symbol(&p.name.to_string());
+            env.insert(g.as_sym(s).expect("symbol"), v);
+        }
+    }
+    let time = g.symbol("t");
+    if let Some(s) = g.as_sym(time) {
+        env.insert(s, 0.0);
+    }
+    let mut values = Vec::new();
+    for c in coords {
+        let value = match &c.kind {
+            CoordKind::Driven(law) => Some(*law),
+            _ => ast
+                .inits
+                .iter()
+                .find(|i| !i.velocity && i.coord == c.name)
+                .and_then(|i| {
+                    Lowerer {
+                        g,
+                        names,
+                        struct_name: "",
+                        model: None,
+                        errors: &mut scratch,
+                    }
+                    .scalar(&i.value, Context::Constant)
+                }),
+        };
+        if let Some(e) = value {
+            let v = g.eval(e, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
+            if v.is_finite() {
+                values.push((g.as_sym(c.z).expect("symbol"), v));
+            }
+        }
+    }
+    env.extend(values);
+    env
+}
+
+/// The closure's equations at the default configuration, when it is complete (as
+/// `check_default_configuration` does for the augmented form).
+fn check_closure_defaults(
+    g: &Graph,
+    loops: &LoopParts<'_, '_>,
+    env: &HashMap<Sym, f64>,
+    ast: &Mechanism,
+    errors: &mut Errors,
+) {
+    let positioned = |c: &Ident| ast.inits.iter().any(|i| !i.velocity && i.coord == *c);
+    if ast.params.iter().any(|p| p.default.is_none()) || !ast.coords.iter().all(positioned) {
+        return;
+    }
+    for (k, p) in loops.phi.iter().enumerate() {
+        let r = g.eval(*p, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
+        if r.is_finite() && r.abs() > 1e-9 {
+            errors.over(
+                loops.tokens[k],
+                format!("the default configuration (parameter defaults and `init` positions at t = 0) violates this constraint: residual {r:.3e}"),
+            );
+        }
     }
 }
 

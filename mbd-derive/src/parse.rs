@@ -194,6 +194,17 @@ pub enum Evaluation {
     MassMatrix,
 }
 
+/// Which form a closed loop's equations take (`#[mechanism(augmented | minimal)]`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum LoopForm {
+    /// Minimal coordinates where the closure has a closed form, else augmented.
+    Auto,
+    /// Every coordinate, the constraints and their multipliers.
+    Augmented,
+    /// Minimal coordinates, or a compile error saying why not.
+    Minimal,
+}
+
 pub struct Mechanism {
     pub ident: Ident,
     pub params: Vec<Param>,
@@ -220,6 +231,8 @@ pub struct Mechanism {
     pub jacobian: bool,
     pub evaluation: Evaluation,
     pub evaluation_span: Span,
+    pub loop_form: LoopForm,
+    pub loop_form_span: Span,
 }
 
 /// Collects errors so a model reports all its mistakes at once (serde's `Ctxt`).
@@ -435,6 +448,8 @@ impl Mechanism {
             jacobian: false,
             evaluation: Evaluation::Auto,
             evaluation_span: Span::call_site(),
+            loop_form: LoopForm::Auto,
+            loop_form_span: Span::call_site(),
         };
         let mut dim_given = false;
         for attr in &input.attrs {
@@ -456,9 +471,13 @@ impl Mechanism {
                                 m.evaluation = if f == "recursive" { Evaluation::Recursive } else { Evaluation::MassMatrix };
                                 m.evaluation_span = f.span();
                             }
+                            Arg::Flag(f) if f == "augmented" || f == "minimal" => {
+                                m.loop_form = if f == "augmented" { LoopForm::Augmented } else { LoopForm::Minimal };
+                                m.loop_form_span = f.span();
+                            }
                             Arg::Flag(f) => errors.at(
                                 f.span(),
-                                format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `recursive`, `mass_matrix`"),
+                                format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
                             ),
                             Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
                             Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),

@@ -131,7 +131,7 @@ fn benches(c: &mut Criterion) {
         &c23::MODEL,
         c23::MODEL.initial_state(),
     );
-    bench_model::<_, _, 2, 4>(
+    bench_model::<_, _, 1, 2>(
         c,
         "case26",
         &c26::MODEL,

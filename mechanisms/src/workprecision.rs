@@ -689,7 +689,7 @@ fn case23(s: &Setting) -> Result<Measured, Failure> {
 fn case26(s: &Setting) -> Result<Measured, Failure> {
     let model = black_box(c26::MODEL);
     let events = model.events();
-    let sol = solve_loop::<_, 2, 1, 3, 4>(s, &model, 0.0, model.initial_state(), 2.0, &events)?;
+    let sol = solve_mechanism::<_, 1, 2>(s, &model, 0.0, model.initial_state(), 2.0, &events)?;
     let hit = event(&sol, 0, "OA vertical")?;
     let [v_b] = c26::references();
     Ok(measured(

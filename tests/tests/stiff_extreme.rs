@@ -330,9 +330,10 @@ fn free_slider_crank_at_high_speed() {
 // Singular positions: the slider-crank's dead centre
 
 /// A free slider-crank with a flywheel: crank angle `theta` free (inertia `j` about O), no
-/// gravity, no load. Three coordinates, two loop closures.
+/// gravity, no load. Three coordinates, two loop closures, kept in the augmented form
+/// (`augmented`; the derive would close this loop in closed form): the test is about it.
 #[derive(Debug, Mechanism)]
-#[mechanism(planar, jacobian)]
+#[mechanism(planar, jacobian, augmented)]
 #[coords(theta, beta, x)]
 #[constraint(x == l * cos(beta) + r * cos(theta))]
 #[constraint(l * sin(beta) == r * sin(theta))]
@@ -746,9 +747,11 @@ fn stops_at_the_singular_position<const D: usize>(
 // ---------------------------------------------------------------------------------------
 // Bad initial conditions
 
-/// The free crank-rocker under gravity, three coordinates and two loop closures.
+/// The free crank-rocker under gravity, three coordinates and two loop closures, kept in
+/// the augmented form (`augmented`; the derive would close this loop in closed form): the
+/// test is about assembling that form from bad initial conditions.
 #[derive(Debug, Mechanism)]
-#[mechanism(planar, jacobian)]
+#[mechanism(planar, jacobian, augmented)]
 #[gravity(0.0, -g)]
 #[coords(phi, psi, chi)]
 #[constraint(a * cos(phi) + b * cos(psi) == d + c * cos(chi))]

@@ -162,10 +162,11 @@ impl Graph {
             Func::Exp => fa,
             Func::Ln => self.powi(a, -1),
             Func::Sqrt => {
-                // 1 / (2 sqrt a)
-                let two = self.constant(2.0);
-                let den = self.mul(two, fa);
-                self.powi(den, -1)
+                // (1/2) (sqrt a)^-1: the reciprocal `asin`'s derivative forms too, so a closed
+                // loop's `cos(asin u) = sqrt(1 - u^2)` and `asin u` share one division.
+                let half = self.constant(0.5);
+                let inv = self.powi(fa, -1);
+                self.mul(half, inv)
             }
             Func::Abs => self.call(Func::Signum, a),
             Func::Signum => self.zero(),

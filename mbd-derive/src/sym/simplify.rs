@@ -385,6 +385,11 @@ impl Graph {
             }
             _ => {}
         }
+        if n < -1 {
+            // x^-n as (1/x)^n: the reciprocal is shared with x^-1 (one division, not two).
+            let r = self.powi(a, -1);
+            return self.intern(Node::Powi(r, -n));
+        }
         self.intern(Node::Powi(a, n))
     }
 
