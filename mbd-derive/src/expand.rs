@@ -1,6 +1,6 @@
 //! The pipeline: parse -> check -> mechanics -> codegen. Errors become `compile_error!`s.
 
-use crate::{codegen, model, parse};
+use crate::{check, codegen, model, parse};
 use proc_macro2::TokenStream;
 use std::time::Instant;
 use syn::DeriveInput;
@@ -42,6 +42,7 @@ fn dump(dir: &std::path::Path, name: &str, code: &TokenStream, seconds: f64) {
 
 fn try_expand(input: &DeriveInput) -> syn::Result<TokenStream> {
     let ast = parse::Mechanism::from_syn(input)?;
+    check::check(input, &ast)?;
     let eqs = model::derive(&ast)?;
     Ok(codegen::emit(&ast, &eqs))
 }

@@ -7,6 +7,7 @@
 //! exact derivatives), `codegen` (straight-line Rust).
 //! The language itself is documented on the facade crate `mbd`.
 
+mod check;
 mod codegen;
 mod expand;
 mod friction;
