@@ -1,6 +1,7 @@
-//! The pipeline: parse -> check -> mechanics -> codegen. Errors become `compile_error!`s.
+//! The pipeline: parse -> check -> mechanics -> codegen. Errors become `compile_error!`s,
+//! beside the skeleton of the items the model would have had.
 
-use crate::{check, codegen, model, parse};
+use crate::{check, codegen, model, parse, skeleton};
 use proc_macro2::TokenStream;
 use std::time::Instant;
 use syn::DeriveInput;
@@ -17,7 +18,12 @@ pub fn derive(input: &DeriveInput, source: &str) -> TokenStream {
     let start = Instant::now();
     let out = match try_expand(input) {
         Ok(ts) => ts,
-        Err(err) => err.to_compile_error(),
+        Err((err, ast)) => {
+            // The model's items still exist, so that uses of them add no errors.
+            let errors = err.to_compile_error();
+            let skeleton = ast.as_ref().map(skeleton::emit);
+            quote::quote!(#errors #skeleton)
+        }
     };
     if let Some(dir) = std::env::var_os(DUMP_VAR) {
         let stem = std::path::Path::new(source)
@@ -40,9 +46,14 @@ fn dump(dir: &std::path::Path, name: &str, code: &TokenStream, seconds: f64) {
     let _ = std::fs::write(dir.join(format!("{name}.time")), format!("{seconds}\n"));
 }
 
-fn try_expand(input: &DeriveInput) -> syn::Result<TokenStream> {
-    let ast = parse::Mechanism::from_syn(input)?;
-    check::check(input, &ast)?;
-    let eqs = model::derive(&ast)?;
-    Ok(codegen::emit(&ast, &eqs))
+/// The generated code, or the errors with the parsed model when there is one.
+type Failed = (syn::Error, Option<parse::Mechanism>);
+
+fn try_expand(input: &DeriveInput) -> Result<TokenStream, Failed> {
+    let ast = parse::Mechanism::read(input)?;
+    let checked = check::check(input, &ast).and_then(|()| model::derive(&ast));
+    match checked {
+        Ok(eqs) => Ok(codegen::emit(&ast, &eqs)),
+        Err(e) => Err((e, Some(ast))),
+    }
 }

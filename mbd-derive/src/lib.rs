@@ -15,6 +15,7 @@ mod guard;
 mod lower;
 mod model;
 mod parse;
+mod skeleton;
 mod spatial;
 mod sym;
 mod tree;
