@@ -32,6 +32,16 @@ pub fn check(input: &DeriveInput, ast: &Mechanism) -> syn::Result<()> {
     let env = defaults(ast, &mut errors);
     constants(ast, &generated(input), &env, &mut errors);
     driven_loads(ast, &mut errors);
+    for (name, a, b) in ast
+        .springs
+        .iter()
+        .map(|s| (&s.name, &s.from, &s.to))
+        .chain(ast.dampers.iter().map(|d| (&d.name, &d.from, &d.to)))
+    {
+        if same_ends(a, b) {
+            errors.at(name.span(), format!("`{name}` joins an end to itself: give two different points or bodies"));
+        }
+    }
     errors.finish()
 }
 
@@ -570,5 +580,57 @@ mod tests {
         let e: Expr = syn::parse_quote!(m + l);
         assert_eq!(fold(&e, &env), None);
         assert!(fold(&syn::parse_quote!(0.0 / 0.0), &env).unwrap().is_nan());
+    }
+}
+
+/// Whether a spatial rotation `rot` (lowered) is one: `R^T R = I` and `det R = 1` at two
+/// sample values of its symbols (parameters at their `defaults` where given). A product of
+/// `rot_x`, `rot_y`, `rot_z` always is; a matrix written out may not be (a scale, a
+/// reflection). `None`: it names a parameter without default, so it cannot be judged here.
+pub fn is_rotation(
+    g: &crate::sym::Graph,
+    rot: &[[crate::sym::Expr; 3]; 3],
+    defaults: &HashMap<String, f64>,
+    params: &HashSet<String>,
+) -> Option<bool> {
+    let mut symbols = std::collections::BTreeSet::new();
+    for x in rot.iter().flatten() {
+        symbols.extend(g.free_symbols(*x));
+    }
+    if symbols.iter().any(|s| {
+        let n = g.sym_name(*s);
+        params.contains(n) && !defaults.contains_key(n)
+    }) {
+        return None;
+    }
+    for sample in [0.37, -1.21] {
+        let env = |s: crate::sym::Sym| {
+            let n = g.sym_name(s);
+            defaults.get(n).copied().unwrap_or(sample + 0.1 * n.len() as f64)
+        };
+        let r: Vec<[f64; 3]> = rot.iter().map(|row| row.map(|x| g.eval(x, &env))).collect();
+        let m = [r[0], r[1], r[2]];
+        for i in 0..3 {
+            for j in 0..3 {
+                let dot: f64 = (0..3).map(|k| m[k][i] * m[k][j]).sum();
+                let want = if i == j { 1.0 } else { 0.0 };
+                if !((dot - want).abs() <= 1e-9) {
+                    return Some(false);
+                }
+            }
+        }
+        if !((det3(&m) - 1.0).abs() <= 1e-9) {
+            return Some(false);
+        }
+    }
+    Some(true)
+}
+
+/// A spring or damper between one end and itself has no length to change (and its
+/// direction is 0/0).
+pub fn same_ends(a: &crate::parse::End, b: &crate::parse::End) -> bool {
+    match (a, b) {
+        (crate::parse::End::Named(x), crate::parse::End::Named(y)) => x == y,
+        _ => false,
     }
 }

@@ -411,6 +411,15 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         }
     }
 
+    // Parameters' defaults by name, for checks at the default values.
+    let param_names: std::collections::HashSet<String> =
+        ast.params.iter().map(|p| p.name.to_string()).collect();
+    let defaults: HashMap<String, f64> = ast
+        .params
+        .iter()
+        .filter_map(|p| Some((p.name.to_string(), crate::check::fold(p.default.as_ref()?, &HashMap::new())?)))
+        .collect();
+
     // Coordinates: free, driven, relaxed.
     let mut coords: Vec<Coord> = Vec::new();
     let new_coord = |g: &mut Graph, name: &Ident, kind: CoordKind| {
@@ -558,7 +567,12 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 }
                 match &b.orientation {
                     Some(e) => match lw.lower(e, Context::Kinematics) {
-                        Some(Value::Matrix(m)) => rot = Some(m),
+                        Some(Value::Matrix(m)) => {
+                            if crate::check::is_rotation(lw.g, &m, &defaults, &param_names) == Some(false) {
+                                lw.errors.over(e, format!("the rotation of `{}` is not a rotation (R^T R = I, det R = 1): build it from `rot_x`, `rot_y`, `rot_z`", b.name));
+                            }
+                            rot = Some(m)
+                        }
                         Some(_) => lw.errors.at(
                             e.span(),
                             "a rotation is a product of `rot_x`, `rot_y`, `rot_z` or a 3x3 matrix",
