@@ -124,7 +124,11 @@ impl fmt::Display for Error {
                 Num(*t)
             ),
             Error::NonFinite { t } => {
-                write!(f, "a state or derivative became NaN or infinite at t = {}", Num(*t))
+                write!(
+                    f,
+                    "a state or derivative became NaN or infinite at t = {}",
+                    Num(*t)
+                )
             }
             Error::StaticsFailed {
                 t,
@@ -147,7 +151,11 @@ impl fmt::Display for Error {
                 Num(*t)
             ),
             Error::EventFailed { event, t, cause } => match cause {
-                Some(c) => write!(f, "event `{event}` could not be evaluated at t = {}: {c}", Num(*t)),
+                Some(c) => write!(
+                    f,
+                    "event `{event}` could not be evaluated at t = {}: {c}",
+                    Num(*t)
+                ),
                 None => write!(f, "event `{event}` is NaN or infinite at t = {}", Num(*t)),
             },
         }
@@ -171,8 +179,14 @@ mod tests {
         assert_eq!(Num(2.5e7).to_string(), "2.50000e7");
         assert_eq!(Num(-2.0).to_string(), "-2");
         assert_eq!(Num(0.000123456789).to_string(), "0.000123457");
-        let e = Error::StepSizeUnderflow { t: 1.0 / 3.0, h: 1e-300 };
-        assert_eq!(e.to_string(), "step size underflow at t = 0.333333 (h = 1.000e-300)");
+        let e = Error::StepSizeUnderflow {
+            t: 1.0 / 3.0,
+            h: 1e-300,
+        };
+        assert_eq!(
+            e.to_string(),
+            "step size underflow at t = 0.333333 (h = 1.000e-300)"
+        );
         let e = Error::TooManySteps { t: 2.5, steps: 100 };
         assert!(!e.to_string().contains("stiff"), "{e}");
     }

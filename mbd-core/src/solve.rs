@@ -179,9 +179,15 @@ mod tests {
         let err = solve_mass::<2>(0.5, &indefinite, &f).unwrap_err();
         assert_eq!(err, Error::MassMatrixNotPositiveDefinite { t: 0.5 });
         let singular = Matrix::<2, 2>::new(1.0, 1.0, 1.0, 1.0);
-        assert_eq!(solve_mass::<2>(0.5, &singular, &f).unwrap_err(), Error::SingularMassMatrix { t: 0.5 });
+        assert_eq!(
+            solve_mass::<2>(0.5, &singular, &f).unwrap_err(),
+            Error::SingularMassMatrix { t: 0.5 }
+        );
         let nan = Matrix::<2, 2>::new(1.0, 0.0, 0.0, f64::NAN);
-        assert_eq!(solve_mass::<2>(0.5, &nan, &f).unwrap_err(), Error::NonFinite { t: 0.5 });
+        assert_eq!(
+            solve_mass::<2>(0.5, &nan, &f).unwrap_err(),
+            Error::NonFinite { t: 0.5 }
+        );
         let x = solve_mass::<2>(0.5, &Matrix::<2, 2>::new(2.0, 1.0, 1.0, 2.0), &f).unwrap();
         assert!((x[0] - 1.0 / 3.0).abs() < 1e-15 && (x[1] - 1.0 / 3.0).abs() < 1e-15);
     }
@@ -204,7 +210,10 @@ mod tests {
     #[test]
     fn one_coordinate_checks_the_mass_and_the_result() {
         assert_eq!(one_coordinate(0.0, 2.0, -4.5).unwrap()[0], -4.5);
-        assert_eq!(one_coordinate(3.0, 0.0, 1.0).unwrap_err(), Error::SingularMassMatrix { t: 3.0 });
+        assert_eq!(
+            one_coordinate(3.0, 0.0, 1.0).unwrap_err(),
+            Error::SingularMassMatrix { t: 3.0 }
+        );
         assert_eq!(
             one_coordinate(3.0, -2.0, 1.0).unwrap_err(),
             Error::MassMatrixNotPositiveDefinite { t: 3.0 }

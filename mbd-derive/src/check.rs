@@ -39,7 +39,10 @@ pub fn check(input: &DeriveInput, ast: &Mechanism) -> syn::Result<()> {
         .chain(ast.dampers.iter().map(|d| (&d.name, &d.from, &d.to)))
     {
         if same_ends(a, b) {
-            errors.at(name.span(), format!("`{name}` joins an end to itself: give two different points or bodies"));
+            errors.at(
+                name.span(),
+                format!("`{name}` joins an end to itself: give two different points or bodies"),
+            );
         }
     }
     errors.finish()
@@ -95,9 +98,18 @@ fn repetitions(input: &DeriveInput, errors: &mut Errors) {
                     errors.at(f.span(), format!("mechanism option `{f}` given twice"));
                 }
                 for (a, b, why) in EXCLUSIVE {
-                    let other = if name == a { b } else if name == b { a } else { continue };
+                    let other = if name == a {
+                        b
+                    } else if name == b {
+                        a
+                    } else {
+                        continue;
+                    };
                     if seen.contains_key(other) {
-                        errors.at(f.span(), format!("`{f}` contradicts `{other}`: {why}; keep one"));
+                        errors.at(
+                            f.span(),
+                            format!("`{f}` contradicts `{other}`: {why}; keep one"),
+                        );
                     }
                 }
             }
@@ -173,7 +185,13 @@ fn generated(input: &DeriveInput) -> HashMap<String, String> {
                 out.insert(format!("{name}_q{k}"), format!("{why}' angles"));
             }
         }
-        if attr.path().is_ident("body") && args.iter().skip(1).filter_map(flag).any(|f| f == "reaction") {
+        if attr.path().is_ident("body")
+            && args
+                .iter()
+                .skip(1)
+                .filter_map(flag)
+                .any(|f| f == "reaction")
+        {
             for axis in ["rx", "ry", "rz"] {
                 out.insert(
                     format!("{name}_{axis}"),
@@ -197,7 +215,9 @@ fn reserved_names(input: &DeriveInput, ast: &Mechanism, errors: &mut Errors) {
         if ["coords", "relaxed"].iter().any(|p| path.is_ident(p)) {
             user.extend(args.iter().filter_map(flag).cloned());
         }
-        let named = ["particle", "rigid", "rigid3", "body", "point", "spring", "damper", "chain"];
+        let named = [
+            "particle", "rigid", "rigid3", "body", "point", "spring", "damper", "chain",
+        ];
         if named.iter().any(|p| path.is_ident(p))
             && let Some(n) = args.first().and_then(flag)
         {
@@ -268,7 +288,14 @@ enum Sign {
 
 /// Value `e` of `what` (e.g. "the mass of `bob`"), folded with the defaults: finite and of
 /// `sign`; `timeless`: it may not name `t`.
-fn constant(e: &Expr, what: &str, sign: Sign, timeless: bool, env: &HashMap<String, f64>, errors: &mut Errors) {
+fn constant(
+    e: &Expr,
+    what: &str,
+    sign: Sign,
+    timeless: bool,
+    env: &HashMap<String, f64>,
+    errors: &mut Errors,
+) {
     if timeless && names_time(e) {
         errors.over(
             e,
@@ -300,23 +327,44 @@ fn show(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-3..1e6).contains(&v.abs()) {
         let s = format!("{v:.6}");
         let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s.is_empty() || s == "-" { "0".into() } else { s.into() }
+        if s.is_empty() || s == "-" {
+            "0".into()
+        } else {
+            s.into()
+        }
     } else {
         format!("{v:.4e}")
     }
 }
 
-fn constants(ast: &Mechanism, reserved: &HashMap<String, String>, env: &HashMap<String, f64>, errors: &mut Errors) {
+fn constants(
+    ast: &Mechanism,
+    reserved: &HashMap<String, String>,
+    env: &HashMap<String, f64>,
+    errors: &mut Errors,
+) {
     use Sign::*;
     for b in &ast.bodies {
         let name = &b.name;
         if let Some(m) = &b.mass {
-            constant(m, &format!("the mass of `{name}`"), Positive, true, env, errors);
+            constant(
+                m,
+                &format!("the mass of `{name}`"),
+                Positive,
+                true,
+                env,
+                errors,
+            );
         }
         match (b.kind, &b.inertia) {
-            (BodyKind::Rigid, Some(i)) => {
-                constant(i, &format!("the inertia of `{name}`"), Positive, true, env, errors)
-            }
+            (BodyKind::Rigid, Some(i)) => constant(
+                i,
+                &format!("the inertia of `{name}`"),
+                Positive,
+                true,
+                env,
+                errors,
+            ),
             (BodyKind::Rigid3, Some(i)) => tensor(i, name, true, env, errors),
             _ => {}
         }
@@ -328,28 +376,70 @@ fn constants(ast: &Mechanism, reserved: &HashMap<String, String>, env: &HashMap<
             continue;
         }
         if let Some(m) = &tb.mass {
-            constant(m, &format!("the mass of `{name}`"), Positive, true, env, errors);
+            constant(
+                m,
+                &format!("the mass of `{name}`"),
+                Positive,
+                true,
+                env,
+                errors,
+            );
         }
         match &tb.inertia {
             Some(i @ (Expr::Call(_) | Expr::Array(_))) => tensor(i, name, false, env, errors),
-            Some(i) => constant(i, &format!("the inertia of `{name}`"), NonNegative, true, env, errors),
+            Some(i) => constant(
+                i,
+                &format!("the inertia of `{name}`"),
+                NonNegative,
+                true,
+                env,
+                errors,
+            ),
             None => {}
         }
     }
     for s in &ast.springs {
-        constant(&s.k, &format!("the stiffness of spring `{}`", s.name), NonNegative, false, env, errors);
+        constant(
+            &s.k,
+            &format!("the stiffness of spring `{}`", s.name),
+            NonNegative,
+            false,
+            env,
+            errors,
+        );
         if let Some(l) = &s.length {
-            constant(l, &format!("the length of spring `{}`", s.name), NonNegative, false, env, errors);
+            constant(
+                l,
+                &format!("the length of spring `{}`", s.name),
+                NonNegative,
+                false,
+                env,
+                errors,
+            );
         }
     }
     for d in &ast.dampers {
-        constant(&d.c, &format!("the damping of `{}`", d.name), NonNegative, false, env, errors);
+        constant(
+            &d.c,
+            &format!("the damping of `{}`", d.name),
+            NonNegative,
+            false,
+            env,
+            errors,
+        );
     }
     for f in &ast.frictions {
         let what = format!("the friction coefficient along `{}`", f.along);
         constant(&f.mu, &what, NonNegative, false, env, errors);
         if let Some(s) = &f.mu_static {
-            constant(s, &format!("the static {}", &what[4..]), NonNegative, false, env, errors);
+            constant(
+                s,
+                &format!("the static {}", &what[4..]),
+                NonNegative,
+                false,
+                env,
+                errors,
+            );
         }
     }
 }
@@ -359,11 +449,19 @@ fn constants(ast: &Mechanism, reserved: &HashMap<String, String>, env: &HashMap<
 /// is a thin rod about its own axis).
 fn tensor(e: &Expr, body: &Ident, definite: bool, env: &HashMap<String, f64>, errors: &mut Errors) {
     if names_time(e) {
-        errors.over(e, format!("the inertia of `{body}` depends on time `t`: a varying inertia is not a rigid body"));
+        errors.over(
+            e,
+            format!(
+                "the inertia of `{body}` depends on time `t`: a varying inertia is not a rigid body"
+            ),
+        );
         return;
     }
     let entries: Option<[[f64; 3]; 3]> = match e {
-        Expr::Call(c) if matches!(&*c.func, Expr::Path(p) if p.path.is_ident("diag")) && c.args.len() == 3 => {
+        Expr::Call(c)
+            if matches!(&*c.func, Expr::Path(p) if p.path.is_ident("diag"))
+                && c.args.len() == 3 =>
+        {
             let d: Vec<Option<f64>> = c.args.iter().map(|a| fold(a, env)).collect();
             match (d[0], d[1], d[2]) {
                 (Some(a), Some(b), Some(c)) => Some([[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, c]]),
@@ -398,7 +496,10 @@ fn tensor(e: &Expr, body: &Ident, definite: bool, env: &HashMap<String, f64>, er
     let scale = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
     let asym = (0..3).any(|i| (0..3).any(|j| (m[i][j] - m[j][i]).abs() > 1e-12 * scale));
     if asym {
-        errors.over(e, format!("the inertia of `{body}` is not symmetric: an inertia tensor is"));
+        errors.over(
+            e,
+            format!("the inertia of `{body}` is not symmetric: an inertia tensor is"),
+        );
         return;
     }
     // Leading principal minors (Sylvester): all positive for a definite tensor; for a
@@ -412,18 +513,28 @@ fn tensor(e: &Expr, body: &Ident, definite: bool, env: &HashMap<String, f64>, er
         d1 > 0.0 && d2 > 0.0 && d3 > 0.0
     } else {
         let trace = m[0][0] + m[1][1] + m[2][2];
-        let minors = d2 + (m[0][0] * m[2][2] - m[0][2] * m[2][0]) + (m[1][1] * m[2][2] - m[1][2] * m[2][1]);
+        let minors =
+            d2 + (m[0][0] * m[2][2] - m[0][2] * m[2][0]) + (m[1][1] * m[2][2] - m[1][2] * m[2][1]);
         trace >= -tol && minors >= -tol * scale && d3 >= -tol * scale * scale
     };
     if !ok {
-        let need = if definite { "positive definite (every principal moment > 0)" } else { "positive semi-definite" };
-        let with = if mentions_param(e, env) { " (with the parameters' defaults)" } else { "" };
+        let need = if definite {
+            "positive definite (every principal moment > 0)"
+        } else {
+            "positive semi-definite"
+        };
+        let with = if mentions_param(e, env) {
+            " (with the parameters' defaults)"
+        } else {
+            ""
+        };
         errors.over(e, format!("the inertia of `{body}` is not {need}{with}"));
     }
 }
 
 fn det3(m: &[[f64; 3]; 3]) -> f64 {
-    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
@@ -431,7 +542,9 @@ fn det3(m: &[[f64; 3]; 3]) -> f64 {
 /// the force would enter only the coordinate's reaction and be silently dropped.
 fn driven_loads(ast: &Mechanism, errors: &mut Errors) {
     for load in &ast.loads {
-        let Load::Generalized { coord, .. } = load else { continue };
+        let Load::Generalized { coord, .. } = load else {
+            continue;
+        };
         if ast.drives.iter().any(|d| d.name == *coord) && !ast.coords.contains(coord) {
             errors.at(
                 coord.span(),
@@ -447,13 +560,24 @@ fn driven_loads(ast: &Mechanism, errors: &mut Errors) {
     let mut driven = HashSet::new();
     for d in &ast.drives {
         if !driven.insert(d.name.to_string()) {
-            errors.at(d.name.span(), format!("drive of `{}` given twice: a coordinate has one law", d.name));
+            errors.at(
+                d.name.span(),
+                format!(
+                    "drive of `{}` given twice: a coordinate has one law",
+                    d.name
+                ),
+            );
         }
     }
     for f in &ast.frictions {
         let c = &f.along;
         if ast.drives.iter().any(|d| d.name == *c) || ast.relaxed.contains(c) {
-            errors.at(c.span(), format!("friction along `{c}`, which is not free: friction acts along a free coordinate"));
+            errors.at(
+                c.span(),
+                format!(
+                    "friction along `{c}`, which is not free: friction acts along a free coordinate"
+                ),
+            );
         }
     }
 }
@@ -511,7 +635,10 @@ pub fn fold(e: &Expr, env: &HashMap<String, f64>) -> Option<f64> {
         Expr::Group(p) => fold(&p.expr, env),
         Expr::Cast(c) => fold(&c.expr, env),
         Expr::Path(p) => match p.path.get_ident() {
-            Some(id) => env.get(&id.to_string()).copied().or_else(|| lower::named_constant(&id.to_string())),
+            Some(id) => env
+                .get(&id.to_string())
+                .copied()
+                .or_else(|| lower::named_constant(&id.to_string())),
             None => lower::path_constant(&p.path),
         },
         Expr::Unary(u) if matches!(u.op, syn::UnOp::Neg(_)) => fold(&u.expr, env).map(|v| -v),
@@ -606,7 +733,10 @@ pub fn is_rotation(
     for sample in [0.37, -1.21] {
         let env = |s: crate::sym::Sym| {
             let n = g.sym_name(s);
-            defaults.get(n).copied().unwrap_or(sample + 0.1 * n.len() as f64)
+            defaults
+                .get(n)
+                .copied()
+                .unwrap_or(sample + 0.1 * n.len() as f64)
         };
         let r: Vec<[f64; 3]> = rot.iter().map(|row| row.map(|x| g.eval(x, &env))).collect();
         let m = [r[0], r[1], r[2]];

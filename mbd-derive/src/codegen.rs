@@ -385,13 +385,15 @@ fn parameter_checks(ast: &Mechanism, eq: &Equations) -> (TokenStream, Option<Tok
         (!tests.is_empty()).then(|| quote!(#s #(#tests)*))
     };
     let (all, eager) = (checks(false), checks(true));
-    let eager_fn = eager.as_ref().map(|code| quote! {
-        /// The checks no solve would notice (stiffnesses, dampings, friction coefficients).
-        #[inline]
-        fn check_elements(&self) -> ::mbd::__private::Result<()> {
-            let t = 0.0_f64;
-            #code
-            Ok(())
+    let eager_fn = eager.as_ref().map(|code| {
+        quote! {
+            /// The checks no solve would notice (stiffnesses, dampings, friction coefficients).
+            #[inline]
+            fn check_elements(&self) -> ::mbd::__private::Result<()> {
+                let t = 0.0_f64;
+                #code
+                Ok(())
+            }
         }
     });
     let code = quote! {
@@ -887,7 +889,6 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             }
         }
     });
-
 
     let init_roots: Vec<Expr> = eq.init_q.iter().chain(&eq.init_qd).copied().collect();
     let init = Block::new(eq, &init_roots);

@@ -67,20 +67,68 @@ mod tests {
     use proptest::strategy::ValueTree;
 
     const VALUES: &[&str] = &[
-        "1.0", "0.5", "2.0 * p0", "p1", "-1.0", "0.0", "2.5", "p0", "-p1", "p0 - p1", "t", "x", "1e400", "0.0 / 0.0",
-        "PI", "pi", "sqrt(-1.0)", "std::f64::consts::FRAC_PI_2", "f64::NAN",
+        "1.0",
+        "0.5",
+        "2.0 * p0",
+        "p1",
+        "-1.0",
+        "0.0",
+        "2.5",
+        "p0",
+        "-p1",
+        "p0 - p1",
+        "t",
+        "x",
+        "1e400",
+        "0.0 / 0.0",
+        "PI",
+        "pi",
+        "sqrt(-1.0)",
+        "std::f64::consts::FRAC_PI_2",
+        "f64::NAN",
     ];
     const EXPRS: &[&str] = &[
-        "x", "y", "0.5 * y", "x + 1.0", "y * p0", "theta", "sin(x)", "x * x + y", "t", "link_q1", "p0 * x", "der(x)", "abs(x)",
-        "position(b0)[0]", "1.0 / 0.0", "x ^ 2", "b0", "velocity(link_1, [0.0, -1.0])[1]",
+        "x",
+        "y",
+        "0.5 * y",
+        "x + 1.0",
+        "y * p0",
+        "theta",
+        "sin(x)",
+        "x * x + y",
+        "t",
+        "link_q1",
+        "p0 * x",
+        "der(x)",
+        "abs(x)",
+        "position(b0)[0]",
+        "1.0 / 0.0",
+        "x ^ 2",
+        "b0",
+        "velocity(link_1, [0.0, -1.0])[1]",
     ];
     const DEFAULTS: &[&str] = &[
-        "1.0", "0.5", "2.0", "3.0", "1.5", "0.25", "-1.0", "0.0 / 0.0", "x", "1e400",
+        "1.0",
+        "0.5",
+        "2.0",
+        "3.0",
+        "1.5",
+        "0.25",
+        "-1.0",
+        "0.0 / 0.0",
+        "x",
+        "1e400",
     ];
     const COORDS: &[&str] = &["x", "y", "theta", "link_q1", "b0_rx", "x_dot", "t"];
     const OPTIONS: &[&str] = &[
-        "planar", "spatial", "recursive", "mass_matrix", "jacobian", "planar, spatial",
-        "recursive, mass_matrix", "bogus",
+        "planar",
+        "spatial",
+        "recursive",
+        "mass_matrix",
+        "jacobian",
+        "planar, spatial",
+        "recursive, mass_matrix",
+        "bogus",
     ];
     const DIRECTIONS: &[&str] = &["rising", "falling", "rising, falling", "terminal", "", "up"];
 
@@ -89,7 +137,11 @@ mod tests {
         // Mostly one of a pool's first (sensible) entries, else any: random sets that are
         // all mistakes would only test the first error.
         let pick = |pool: &[&'static str], sensible: usize, i: usize| {
-            pool[if c[i] < 40 { c[i] % sensible } else { c[i] % pool.len() }]
+            pool[if c[i] < 40 {
+                c[i] % sensible
+            } else {
+                c[i] % pool.len()
+            }]
         };
         let v = |i: usize| pick(VALUES, 4, i);
         let e = |i: usize| pick(EXPRS, 5, i);
@@ -101,29 +153,64 @@ mod tests {
             2 => "#[gravity(0.0, 0.0, -9.81)]".into(),
             3 => format!("#[coords({}, {})]", q(0), q(1)),
             4 => format!("#[drive({} = {})]", q(0), e(1)),
-            5 => format!("#[particle(b{k}, mass = {}, at = [{}, {}])]", v(0), e(1), e(2)),
+            5 => format!(
+                "#[particle(b{k}, mass = {}, at = [{}, {}])]",
+                v(0),
+                e(1),
+                e(2)
+            ),
             6 => format!(
                 "#[rigid(b{k}, mass = {}, inertia = {}, at = [{}, {}], angle = {})]",
-                v(0), v(1), e(2), e(3), e(4)
+                v(0),
+                v(1),
+                e(2),
+                e(3),
+                e(4)
             ),
             7 => format!(
                 "#[rigid3(b{k}, mass = {}, inertia = diag({}, 1.0, {}), at = [{}, 0.0, 0.0], rotation = rot_z({}))]",
-                v(0), v(1), v(2), e(3), e(4)
+                v(0),
+                v(1),
+                v(2),
+                e(3),
+                e(4)
             ),
             8 => format!(
                 "#[body(b{k}, parent = ground, joint = revolute({}), com = [0.0, -0.5], mass = {}, inertia = {}{})]",
-                q(0), v(1), v(2), if c[3] % 2 == 0 { ", reaction" } else { "" }
+                q(0),
+                v(1),
+                v(2),
+                if c[3] % 2 == 0 { ", reaction" } else { "" }
             ),
             9 => format!(
                 "#[chain(link, n = {}, joint = revolute, length = {}, mass = {})]",
-                c[0] % 4, v(1), v(2)
+                c[0] % 4,
+                v(1),
+                v(2)
             ),
-            10 => format!("#[spring(s{k}, from = [0.0, 0.0], to = b0, k = {}, length = {})]", v(0), v(1)),
+            10 => format!(
+                "#[spring(s{k}, from = [0.0, 0.0], to = b0, k = {}, length = {})]",
+                v(0),
+                v(1)
+            ),
             11 => format!("#[damper(d{k}, from = [0.0, 0.0], to = b0, c = {})]", v(0)),
-            12 => format!("#[friction(along = {}, mu = {}, normal = {})]", q(0), v(1), v(2)),
-            13 => format!("#[generalized_force(f{k}, along = {}, value = {})]", q(0), e(1)),
+            12 => format!(
+                "#[friction(along = {}, mu = {}, normal = {})]",
+                q(0),
+                v(1),
+                v(2)
+            ),
+            13 => format!(
+                "#[generalized_force(f{k}, along = {}, value = {})]",
+                q(0),
+                e(1)
+            ),
             14 => format!("#[constraint({} == {})]", e(0), e(1)),
-            15 => format!("#[event(e{k} = {}, {})]", e(0), DIRECTIONS[c[1] % DIRECTIONS.len()]),
+            15 => format!(
+                "#[event(e{k} = {}, {})]",
+                e(0),
+                DIRECTIONS[c[1] % DIRECTIONS.len()]
+            ),
             16 => format!("#[output(o{k} = {})]", e(0)),
             17 => format!("#[init({} = {})]", q(0), v(1)),
             _ => format!("#[torque(m{k}, on = b{}, value = {})]", c[1] % 3, e(2)),
@@ -145,7 +232,11 @@ mod tests {
         } else {
             ""
         };
-        format!("{base}{}\npub struct M {{ {} }}", attrs.join("\n"), params.join(" "))
+        format!(
+            "{base}{}\npub struct M {{ {} }}",
+            attrs.join("\n"),
+            params.join(" ")
+        )
     }
 
     proptest! {
@@ -183,7 +274,8 @@ mod tests {
             let mut counts = [0usize; 2];
             for _ in 0..200 {
                 let (attrs, defaults) = strategy.new_tree(&mut rng).expect("value").current();
-                let input: syn::DeriveInput = syn::parse_str(&source(&attrs, &defaults)).expect("Rust");
+                let input: syn::DeriveInput =
+                    syn::parse_str(&source(&attrs, &defaults)).expect("Rust");
                 let out = super::derive(&input, "t.rs").to_string();
                 counts[usize::from(out.contains("compile_error"))] += 1;
             }
@@ -191,7 +283,10 @@ mod tests {
         };
         let [models, errors] = runner();
         eprintln!("{models} models, {errors} errors");
-        assert!(models >= 20 && errors >= 20, "{models} models, {errors} errors");
+        assert!(
+            models >= 20 && errors >= 20,
+            "{models} models, {errors} errors"
+        );
     }
 
     /// A fixed sample the property may not reach: each is an error or code, never a panic.

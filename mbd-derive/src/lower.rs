@@ -118,7 +118,11 @@ pub fn path_constant(path: &syn::Path) -> Option<f64> {
     let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
     let (last, prefix) = segs.split_last()?;
     let ok = matches!(
-        prefix.iter().map(String::as_str).collect::<Vec<_>>().as_slice(),
+        prefix
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>()
+            .as_slice(),
         ["std" | "core", "f64", "consts"] | ["f64", "consts"] | ["consts"]
     );
     if ok { named_constant(last) } else { None }
@@ -225,7 +229,10 @@ impl Lowerer<'_> {
                         self.errors.push(err);
                     })?;
                     if !v.is_finite() {
-                        return self.fail(f.span(), "this number is too large for an `f64` (it would be infinite)");
+                        return self.fail(
+                            f.span(),
+                            "this number is too large for an `f64` (it would be infinite)",
+                        );
                     }
                     Ok(Value::Scalar(self.g.constant(v)))
                 }
@@ -318,11 +325,33 @@ impl Lowerer<'_> {
             return match path_constant(&p.path) {
                 Some(v) => Ok(Value::Scalar(self.g.constant(v))),
                 None => {
-                    let last = p.path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
-                    let why = if ["NAN", "INFINITY", "NEG_INFINITY", "MAX", "MIN", "EPSILON", "MIN_POSITIVE"].contains(&last.as_str()) {
+                    let last = p
+                        .path
+                        .segments
+                        .last()
+                        .map(|s| s.ident.to_string())
+                        .unwrap_or_default();
+                    let why = if [
+                        "NAN",
+                        "INFINITY",
+                        "NEG_INFINITY",
+                        "MAX",
+                        "MIN",
+                        "EPSILON",
+                        "MIN_POSITIVE",
+                    ]
+                    .contains(&last.as_str())
+                    {
                         format!("`{last}` is not a value a model can mean: use a finite number")
                     } else {
-                        format!("expected a parameter, coordinate or constant name; the constants are `{}` (also as `std::f64::consts::..`)", CONSTANTS.iter().map(|c| c.0).collect::<Vec<_>>().join("`, `"))
+                        format!(
+                            "expected a parameter, coordinate or constant name; the constants are `{}` (also as `std::f64::consts::..`)",
+                            CONSTANTS
+                                .iter()
+                                .map(|c| c.0)
+                                .collect::<Vec<_>>()
+                                .join("`, `")
+                        )
                     };
                     self.errors.over(p, why);
                     Err(())
@@ -338,14 +367,20 @@ impl Lowerer<'_> {
             Some(Binding::Value(v)) => Ok(v.clone()),
             Some(Binding::Coord(c)) => {
                 if ctx == Context::Constant {
-                    self.fail(id.span(), format!("`{name}` is a coordinate: not allowed here (only `t` and parameters)"))
+                    self.fail(
+                        id.span(),
+                        format!(
+                            "`{name}` is a coordinate: not allowed here (only `t` and parameters)"
+                        ),
+                    )
                 } else {
                     Ok(Value::Scalar(*c))
                 }
             }
-            Some(Binding::Body(_)) => {
-                self.fail(id.span(), format!("`{name}` is a body: use `position({name})`, `velocity({name})`, ..."))
-            }
+            Some(Binding::Body(_)) => self.fail(
+                id.span(),
+                format!("`{name}` is a body: use `position({name})`, `velocity({name})`, ..."),
+            ),
             None => match named_constant(&name) {
                 Some(v) => Ok(Value::Scalar(self.g.constant(v))),
                 None => {
@@ -376,7 +411,9 @@ impl Lowerer<'_> {
         };
         match bad {
             Some(x) => {
-                let msg = format!("this constant expression is {x}, not a finite number (a division by zero?)");
+                let msg = format!(
+                    "this constant expression is {x}, not a finite number (a division by zero?)"
+                );
                 self.errors.over(e, msg);
                 Err(())
             }

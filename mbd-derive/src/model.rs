@@ -417,7 +417,12 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let defaults: HashMap<String, f64> = ast
         .params
         .iter()
-        .filter_map(|p| Some((p.name.to_string(), crate::check::fold(p.default.as_ref()?, &HashMap::new())?)))
+        .filter_map(|p| {
+            Some((
+                p.name.to_string(),
+                crate::check::fold(p.default.as_ref()?, &HashMap::new())?,
+            ))
+        })
         .collect();
 
     // Coordinates: free, driven, relaxed.
@@ -568,7 +573,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 match &b.orientation {
                     Some(e) => match lw.lower(e, Context::Kinematics) {
                         Some(Value::Matrix(m)) => {
-                            if crate::check::is_rotation(lw.g, &m, &defaults, &param_names) == Some(false) {
+                            if crate::check::is_rotation(lw.g, &m, &defaults, &param_names)
+                                == Some(false)
+                            {
                                 lw.errors.over(e, format!("the rotation of `{}` is not a rotation (R^T R = I, det R = 1): build it from `rot_x`, `rot_y`, `rot_z`", b.name));
                             }
                             rot = Some(m)
@@ -1105,8 +1112,16 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             None => Some(lw.g.zero()),
         };
         if let (Some(a), Some(b), Some(k), Some(l0)) = (a, b, k, l0) {
-            checks.push(check(format!("the stiffness of spring `{}`", s.name), k, false));
-            checks.push(check(format!("the length of spring `{}`", s.name), l0, false));
+            checks.push(check(
+                format!("the stiffness of spring `{}`", s.name),
+                k,
+                false,
+            ));
+            checks.push(check(
+                format!("the length of spring `{}`", s.name),
+                l0,
+                false,
+            ));
             let l = length(&mut g, &a, &b);
             let stretch = g.sub(l, l0);
             let s2 = g.powi(stretch, 2);

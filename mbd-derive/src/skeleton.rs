@@ -22,7 +22,9 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
     let n = free.len();
     let d = 2 * n;
     let m = ast.constraints.len() + ast.closures.len() * ast.dim.len();
-    let never = quote!(::core::unreachable!("`#[derive(Mechanism)]` failed: see its error"));
+    let never = quote!(::core::unreachable!(
+        "`#[derive(Mechanism)]` failed: see its error"
+    ));
     let v = |k: usize| quote!(::mbd::__private::Vector<#k>);
     let (vn, vd, vm) = (v(n), v(d), v(m));
     let mat = |r: usize, c: usize| quote!(::mbd::__private::Matrix<#r, #c>);

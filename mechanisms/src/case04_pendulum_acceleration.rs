@@ -106,7 +106,13 @@ fn one_period(model: &Pendulum) -> mbd::Result<Solution<0>> {
         ..Options::default()
     };
     let t0 = -period() / 8.0;
-    Radau5::new(opts).solve(model, t0, Vector::<0>::zeros(), t0 + period(), &model.events())
+    Radau5::new(opts).solve(
+        model,
+        t0,
+        Vector::<0>::zeros(),
+        t0 + period(),
+        &model.events(),
+    )
 }
 
 /// The located extremes `(t, |a|)` of event `which` (0: minima, 1: maxima).
@@ -185,7 +191,12 @@ mod tests {
         for row in &out.rows {
             if row.reference == 0.0 {
                 // t_at_a_max: located, not the start time (the run starts at -T/8).
-                assert!(row.value.abs() < 1e-10 * period(), "{}: {}", row.quantity, row.value);
+                assert!(
+                    row.value.abs() < 1e-10 * period(),
+                    "{}: {}",
+                    row.quantity,
+                    row.value
+                );
             } else {
                 assert_relative_eq!(row.value, row.reference, max_relative = 1e-9);
             }
@@ -246,7 +257,12 @@ mod tests {
         let minima = extremes(&model, &sol, 0).unwrap();
         let [a_min, t_min, ..] = references();
         let quarter = period() / 4.0;
-        let exact = [t_min, 2.0 * quarter - t_min, 2.0 * quarter + t_min, 4.0 * quarter - t_min];
+        let exact = [
+            t_min,
+            2.0 * quarter - t_min,
+            2.0 * quarter + t_min,
+            4.0 * quarter - t_min,
+        ];
         assert_eq!(minima.len(), 4);
         for ((t, a), t_exact) in minima.iter().zip(exact) {
             assert_relative_eq!(*t, t_exact, max_relative = 1e-10);

@@ -2,9 +2,9 @@
 //! them, never a wrong `Ok`; an event that cannot be evaluated stops the integration with
 //! its error; body-fixed offsets are measured from the body frame's origin for every body.
 
+use mbd::Vector;
 use mbd::integrate::{Dopri5, Integrator, Options};
 use mbd::prelude::*;
-use mbd::Vector;
 
 /// One coordinate: `qdd = f / m` with the factors cancelled.
 #[derive(Debug, Mechanism)]
@@ -67,16 +67,34 @@ fn invalid(err: Error) -> (String, f64) {
 
 #[test]
 fn negative_masses_are_refused_by_every_evaluation() {
-    let p = Pendulum { m: -2.0, l: 1.0, g: 9.81 };
-    assert_eq!(invalid(run(&p, p.initial_state()).unwrap_err()), ("the mass of `bob`".into(), -2.0));
-    let two = TwoMasses { m1: 1.0, m2: -0.5, k: 10.0 };
-    assert_eq!(invalid(run(&two, two.initial_state()).unwrap_err()), ("the mass of `b`".into(), -0.5));
+    let p = Pendulum {
+        m: -2.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    assert_eq!(
+        invalid(run(&p, p.initial_state()).unwrap_err()),
+        ("the mass of `bob`".into(), -2.0)
+    );
+    let two = TwoMasses {
+        m1: 1.0,
+        m2: -0.5,
+        k: 10.0,
+    };
+    assert_eq!(
+        invalid(run(&two, two.initial_state()).unwrap_err()),
+        ("the mass of `b`".into(), -0.5)
+    );
     let chain = Chain { m: -1.0 };
     let (what, value) = invalid(run(&chain, chain.initial_state()).unwrap_err());
     assert!(what.starts_with("the mass of `link_"), "{what}");
     assert_eq!(value, -1.0);
     // The same models with sensible parameters run.
-    for m in [Pendulum { m: 2.0, l: 1.0, g: 9.81 }] {
+    for m in [Pendulum {
+        m: 2.0,
+        l: 1.0,
+        g: 9.81,
+    }] {
         run(&m, m.initial_state()).unwrap();
     }
     let chain = Chain { m: 1.0 };
@@ -85,19 +103,37 @@ fn negative_masses_are_refused_by_every_evaluation() {
 
 #[test]
 fn a_nan_parameter_is_named_not_called_a_singular_mass_matrix() {
-    let p = Pendulum { m: 1.0, l: f64::NAN, g: 9.81 };
+    let p = Pendulum {
+        m: 1.0,
+        l: f64::NAN,
+        g: 9.81,
+    };
     let err = run(&p, p.initial_state()).unwrap_err();
     assert_eq!(invalid(err.clone()).0, "parameter `l`");
     assert_eq!(err.to_string(), "parameter `l` is NaN: it must be finite");
-    let two = TwoMasses { m1: f64::INFINITY, m2: 1.0, k: 10.0 };
-    assert_eq!(invalid(run(&two, two.initial_state()).unwrap_err()).0, "parameter `m1`");
+    let two = TwoMasses {
+        m1: f64::INFINITY,
+        m2: 1.0,
+        k: 10.0,
+    };
+    assert_eq!(
+        invalid(run(&two, two.initial_state()).unwrap_err()).0,
+        "parameter `m1`"
+    );
 }
 
 #[test]
 fn element_constants_are_checked_where_no_solve_would_notice() {
-    let two = TwoMasses { m1: 1.0, m2: 1.0, k: -10.0 };
+    let two = TwoMasses {
+        m1: 1.0,
+        m2: 1.0,
+        k: -10.0,
+    };
     let (what, value) = invalid(run(&two, two.initial_state()).unwrap_err());
-    assert_eq!((what.as_str(), value), ("the stiffness of spring `s`", -10.0));
+    assert_eq!(
+        (what.as_str(), value),
+        ("the stiffness of spring `s`", -10.0)
+    );
     let block = Block { mu: -0.3 };
     let (what, _) = invalid(run(&block, block.initial_state()).unwrap_err());
     assert_eq!(what, "the friction coefficient along `x`");
@@ -123,14 +159,22 @@ fn an_event_that_turns_nan_stops_the_run_with_an_error() {
         .solve(&m, 0.0, m.initial_state(), 2.0, &events)
         .unwrap_err();
     match &err {
-        Error::EventFailed { event, t, cause: None } => {
+        Error::EventFailed {
+            event,
+            t,
+            cause: None,
+        } => {
             assert_eq!(event, "odd");
             // theta = 0.5 cos(w t) crosses zero near t = pi / (2 w) with w ~ sqrt(9.81).
             assert!(*t > 0.3 && *t < 0.7, "{t}");
         }
         other => panic!("expected EventFailed, got {other:?}"),
     }
-    assert!(err.to_string().starts_with("event `odd` is NaN or infinite at t = 0."), "{err}");
+    assert!(
+        err.to_string()
+            .starts_with("event `odd` is NaN or infinite at t = 0."),
+        "{err}"
+    );
 }
 
 /// One rule for body-fixed offsets: from the body frame's origin (a tree body's joint, a
@@ -158,9 +202,14 @@ fn offsets_are_measured_from_the_body_frame_origin() {
     let y = Vector::<2>::new(q, 0.0);
     let o = m.outputs(0.0, &y).unwrap();
     // Bar turned by q about the pivot: its point [0, -l] is at l (sin q, -cos q).
-    assert!((o.bar_tip_x - 1.5 * q.sin()).abs() < 1e-14 && (o.bar_tip_y + 1.5 * q.cos()).abs() < 1e-14);
+    assert!(
+        (o.bar_tip_x - 1.5 * q.sin()).abs() < 1e-14 && (o.bar_tip_y + 1.5 * q.cos()).abs() < 1e-14
+    );
     // A point mass welded at the tip (no inertia, still a frame): [0.1, 0] turned by q.
-    let (tx, ty) = (1.5 * q.sin() + 0.1 * q.cos(), -1.5 * q.cos() + 0.1 * q.sin());
+    let (tx, ty) = (
+        1.5 * q.sin() + 0.1 * q.cos(),
+        -1.5 * q.cos() + 0.1 * q.sin(),
+    );
     assert!((o.mass_tip_x - tx).abs() < 1e-14 && (o.mass_tip_y - ty).abs() < 1e-14);
     // A free body's frame is at its `at`.
     assert!((o.free_x - (2.0 + q.cos())).abs() < 1e-14 && (o.free_y - q.sin()).abs() < 1e-14);

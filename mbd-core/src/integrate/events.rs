@@ -212,11 +212,34 @@ mod tests {
         let y = Vector::<1>::new(1.0);
         let nan = Event::new("nan", |_t, _y: &Vector<1>| f64::NAN, Direction::Either);
         let err = nan.value(0.5, &y).unwrap_err();
-        assert_eq!(err, Error::EventFailed { event: "nan".into(), t: 0.5, cause: None });
+        assert_eq!(
+            err,
+            Error::EventFailed {
+                event: "nan".into(),
+                t: 0.5,
+                cause: None
+            }
+        );
         let cause = Error::SingularMassMatrix { t: 0.25 };
-        let failing = Event::fallible("hit", |_t, _y: &Vector<1>| Err(cause.clone()), Direction::Rising);
+        let failing = Event::fallible(
+            "hit",
+            |_t, _y: &Vector<1>| Err(cause.clone()),
+            Direction::Rising,
+        );
         let err = failing.value(0.25, &y).unwrap_err();
-        assert_eq!(err, Error::EventFailed { event: "hit".into(), t: 0.25, cause: Some(Box::new(cause.clone())) });
-        assert!(err.to_string().starts_with("event `hit` could not be evaluated at t = 0.25: singular mass matrix"), "{err}");
+        assert_eq!(
+            err,
+            Error::EventFailed {
+                event: "hit".into(),
+                t: 0.25,
+                cause: Some(Box::new(cause.clone()))
+            }
+        );
+        assert!(
+            err.to_string().starts_with(
+                "event `hit` could not be evaluated at t = 0.25: singular mass matrix"
+            ),
+            "{err}"
+        );
     }
 }
