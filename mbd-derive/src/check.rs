@@ -133,7 +133,7 @@ fn event_flags(attr: &Attribute, errors: &mut Errors) {
     let mut flags: Vec<&Ident> = Vec::new();
     let args = list(attr);
     for f in args.iter().skip(1).filter_map(flag) {
-        if flags.iter().any(|g| *g == f) {
+        if flags.contains(&f) {
             errors.at(f.span(), format!("event option `{f}` given twice"));
         }
         let other = if f == "rising" {
@@ -695,21 +695,6 @@ fn apply(name: &str, a: &[f64]) -> Option<f64> {
     })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn folds_with_defaults() {
-        let env = HashMap::from([("m".to_string(), 1.0)]);
-        let e: Expr = syn::parse_quote!(-m * 2.0 + sqrt(4.0) + PI.sin());
-        assert!((fold(&e, &env).unwrap() - 0.0).abs() < 1e-15);
-        let e: Expr = syn::parse_quote!(m + l);
-        assert_eq!(fold(&e, &env), None);
-        assert!(fold(&syn::parse_quote!(0.0 / 0.0), &env).unwrap().is_nan());
-    }
-}
-
 /// Whether a spatial rotation `rot` (lowered) is one: `R^T R = I` and `det R = 1` at two
 /// sample values of its symbols (parameters at their `defaults` where given). A product of
 /// `rot_x`, `rot_y`, `rot_z` always is; a matrix written out may not be (a scale, a
@@ -744,16 +729,21 @@ pub fn is_rotation(
             for j in 0..3 {
                 let dot: f64 = (0..3).map(|k| m[k][i] * m[k][j]).sum();
                 let want = if i == j { 1.0 } else { 0.0 };
-                if !((dot - want).abs() <= 1e-9) {
+                if !close(dot, want) {
                     return Some(false);
                 }
             }
         }
-        if !((det3(&m) - 1.0).abs() <= 1e-9) {
+        if !close(det3(&m), 1.0) {
             return Some(false);
         }
     }
     Some(true)
+}
+
+/// `a` and `b` agree to 1e-9 (false for NaN).
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9
 }
 
 /// A spring or damper between one end and itself has no length to change (and its
@@ -762,5 +752,20 @@ pub fn same_ends(a: &crate::parse::End, b: &crate::parse::End) -> bool {
     match (a, b) {
         (crate::parse::End::Named(x), crate::parse::End::Named(y)) => x == y,
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folds_with_defaults() {
+        let env = HashMap::from([("m".to_string(), 1.0)]);
+        let e: Expr = syn::parse_quote!(-m * 2.0 + sqrt(4.0) + PI.sin());
+        assert!((fold(&e, &env).unwrap() - 0.0).abs() < 1e-15);
+        let e: Expr = syn::parse_quote!(m + l);
+        assert_eq!(fold(&e, &env), None);
+        assert!(fold(&syn::parse_quote!(0.0 / 0.0), &env).unwrap().is_nan());
     }
 }

@@ -21,7 +21,7 @@ pub fn derive(input: &DeriveInput, source: &str) -> TokenStream {
         Err((err, ast)) => {
             // The model's items still exist, so that uses of them add no errors.
             let errors = err.to_compile_error();
-            let skeleton = ast.as_ref().map(skeleton::emit);
+            let skeleton = ast.as_deref().map(skeleton::emit);
             quote::quote!(#errors #skeleton)
         }
     };
@@ -47,14 +47,14 @@ fn dump(dir: &std::path::Path, name: &str, code: &TokenStream, seconds: f64) {
 }
 
 /// The generated code, or the errors with the parsed model when there is one.
-type Failed = (syn::Error, Option<parse::Mechanism>);
+type Failed = (syn::Error, Option<Box<parse::Mechanism>>);
 
 fn try_expand(input: &DeriveInput) -> Result<TokenStream, Failed> {
     let ast = parse::Mechanism::read(input)?;
     let checked = check::check(input, &ast).and_then(|()| model::derive(&ast));
     match checked {
         Ok(eqs) => Ok(codegen::emit(&ast, &eqs)),
-        Err(e) => Err((e, Some(ast))),
+        Err(e) => Err((e, Some(Box::new(ast)))),
     }
 }
 
@@ -180,7 +180,11 @@ mod tests {
                 q(0),
                 v(1),
                 v(2),
-                if c[3] % 2 == 0 { ", reaction" } else { "" }
+                if c[3].is_multiple_of(2) {
+                    ", reaction"
+                } else {
+                    ""
+                }
             ),
             9 => format!(
                 "#[chain(link, n = {}, joint = revolute, length = {}, mass = {})]",
@@ -227,7 +231,7 @@ mod tests {
             .collect();
         // Half the inputs extend a valid model, so that random additions are also tried
         // on something that would compile.
-        let base = if defaults[0] % 2 == 0 {
+        let base = if defaults[0].is_multiple_of(2) {
             "#[coords(x, y)]\n#[particle(b0, mass = 1.0, at = [x, y])]\n"
         } else {
             ""

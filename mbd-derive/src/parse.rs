@@ -414,7 +414,7 @@ impl Mechanism {
 
     /// [`Self::from_syn`], keeping what was read when there are errors (for the skeleton a
     /// failed derive still emits), unless the input is not a struct of parameters at all.
-    pub fn read(input: &DeriveInput) -> Result<Mechanism, (syn::Error, Option<Mechanism>)> {
+    pub fn read(input: &DeriveInput) -> Result<Mechanism, (syn::Error, Option<Box<Mechanism>>)> {
         let mut errors = Errors::default();
         let params = params(input, &mut errors).map_err(|e| (e, None))?;
         let mut m = Mechanism {
@@ -814,7 +814,7 @@ impl Mechanism {
         }
         match errors.finish() {
             Ok(()) => Ok(m),
-            Err(e) => Err((e, Some(m))),
+            Err(e) => Err((e, Some(Box::new(m)))),
         }
     }
 }
