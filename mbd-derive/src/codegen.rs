@@ -347,7 +347,11 @@ fn rolled_recursion(
 /// and friction coefficient that is not a constant (constants are checked at compile time)
 /// of its sign; `diagnose` puts a failed check in place of the error of a solve it explains
 /// (a NaN parameter is not a "singular mass matrix").
-fn parameter_checks(ast: &Mechanism, eq: &Equations) -> (TokenStream, Option<TokenStream>) {
+fn parameter_checks(
+    ast: &Mechanism,
+    eq: &Equations,
+    recursive: bool,
+) -> (TokenStream, Option<TokenStream>) {
     let finite = ast.params.iter().map(|p| {
         let (id, name) = (&p.name, p.name.to_string());
         quote! {
@@ -357,11 +361,15 @@ fn parameter_checks(ast: &Mechanism, eq: &Equations) -> (TokenStream, Option<Tok
             }
         }
     });
-    let checks = |eager_only: bool| {
+    // `which`: Some(true) the eager checks, Some(false) the others, None all. A value shared
+    // by several bodies (a chain's `m`) is checked once, under the first body's name.
+    let checks = |which: Option<bool>| {
+        let mut seen = std::collections::HashSet::new();
         let checks: Vec<_> = eq
             .checks
             .iter()
-            .filter(|c| eq.g.as_const(c.expr).is_none() && (c.eager || !eager_only))
+            .filter(|c| eq.g.as_const(c.expr).is_none() && which.is_none_or(|e| c.eager == e))
+            .filter(|c| seen.insert((c.expr, c.positive)))
             .collect();
         let roots: Vec<Expr> = checks.iter().map(|c| c.expr).collect();
         let b = Block::new(eq, &roots);
@@ -384,7 +392,19 @@ fn parameter_checks(ast: &Mechanism, eq: &Equations) -> (TokenStream, Option<Tok
         }).collect();
         (!tests.is_empty()).then(|| quote!(#s #(#tests)*))
     };
-    let (all, eager) = (checks(false), checks(true));
+    let (all, eager, masses) = (checks(None), checks(Some(true)), checks(Some(false)));
+    let masses_fn = recursive.then(|| {
+        quote! {
+            /// The mass and inertia checks, for the articulated-body recursion (no pivot sign
+            /// of a mass-matrix solve reveals a negative mass there).
+            #[inline]
+            fn check_masses(&self) -> ::mbd::__private::Result<()> {
+                let t = 0.0_f64;
+                #masses
+                Ok(())
+            }
+        }
+    });
     let eager_fn = eager.as_ref().map(|code| {
         quote! {
             /// The checks no solve would notice (stiffnesses, dampings, friction coefficients).
@@ -407,6 +427,7 @@ fn parameter_checks(ast: &Mechanism, eq: &Equations) -> (TokenStream, Option<Tok
             Ok(())
         }
         #eager_fn
+        #masses_fn
         /// `err`, or the failed parameter check that explains it.
         #[cold]
         fn diagnose(&self, err: ::mbd::__private::Error) -> ::mbd::__private::Error {
@@ -536,10 +557,10 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
     } else if let Some(code) = &recursion {
         quote! {
-            self.check_parameters()?;
+            self.check_masses()?;
             let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
             #code
-            ::mbd::__private::solve::finite(t, qdd)
+            ::mbd::__private::solve::finite(t, qdd).map_err(|e| self.diagnose(e))
         }
     } else if let Some(qdd) = eq.single_qdd {
         let mass = eq.mass[0][0];
@@ -558,7 +579,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         }
     };
 
-    let (check_parameters, check_elements) = parameter_checks(ast, eq);
+    let (check_parameters, check_elements) = parameter_checks(ast, eq, recursion.is_some());
     // A one-coordinate acceleration is a few operations: called out of line from another
     // crate (where integrators and `rhs` are instantiated), the call costs as much as the body.
     let inline_acceleration = eq.single_qdd.is_some().then(|| quote!(#[inline]));
@@ -684,7 +705,8 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     });
     let rhs_body = match &recursion {
         Some(code) => quote! {
-            self.check_parameters()?;
+            self.check_masses()?;
+            #check_elements
             let q = y.fixed_rows::<#n>(0);
             let qd = y.fixed_rows::<#n>(#n);
             let mut dy = ::mbd::__private::Vector::<#d>::from_fn(|i, _| if i < #n { qd[i] } else { 0.0 });
@@ -692,7 +714,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 let mut qdd = dy.fixed_rows_mut::<#n>(#n);
                 #code
             }
-            ::mbd::__private::solve::finite_accelerations::<#n, #d>(t, dy)
+            ::mbd::__private::solve::finite_accelerations::<#n, #d>(t, dy).map_err(|e| self.diagnose(e))
         },
         None => quote! {
             ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| ::mbd::__private::Mechanism::<#n>::acceleration(self, t, q, qd))
