@@ -244,7 +244,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 384, ..ProptestConfig::default() })]
+        #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
         #[test]
         fn random_attribute_sets_give_errors_or_code_never_a_panic(
             attrs in prop::collection::vec((0usize..19, prop::collection::vec(0usize..64, 8)), 1..7),

@@ -86,7 +86,7 @@ impl Coefficients {
         if !(0.0..=1.0).contains(&rho) {
             return Err(Error::InvalidInput {
                 what: "rho_inf",
-                detail: format!("must be in [0, 1], got {rho}"),
+                detail: format!("must be in [0, 1], got {}", crate::error::Num(rho)),
             });
         }
         let alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
