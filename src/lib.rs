@@ -73,7 +73,8 @@
 //!   `rigid3` has its frame at its `at` (its mass centre), turned by its `angle`/`rotation`;
 //!   a tree body (`body`, `chain`) has its frame at its **joint**, so a `chain` link's tip
 //!   is `position(link_1, [0.0, -l])` and its mass centre `[0.0, -l / 2.0]` (= `position(link_1)`).
-//!   A tree body without `inertia` (a point mass) still has its frame. `position(b)` without
+//!   A tree body without `inertia` (a point mass) still has its frame; a free `particle` has
+//!   none, and an offset on it is an error. `position(b)` without
 //!   offset is the mass centre. A spring or damper between bodies acts between their mass
 //!   centres; for another point, name it with `#[point(..)]` or write its position.
 //! - **Signs.** Angles and torques are positive counter-clockwise about the plane's normal

@@ -262,6 +262,11 @@ impl lower::Model for Kin<'_> {
         offset: Option<Vec<Expr>>,
     ) -> Result<Value, String> {
         let b = &self.bodies[body];
+        if offset.is_some() && b.frame_angle.is_none() && b.frame_rot.is_none() {
+            return Err(format!(
+                "a particle has no orientation, so no body-fixed offset: use `{query}(..)` without one, or a `rigid` body"
+            ));
+        }
         match query {
             "position" | "velocity" | "acceleration" => {
                 let mut v = Value::Vector(self.point(g, b, offset.as_deref()));

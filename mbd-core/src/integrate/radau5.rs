@@ -185,7 +185,10 @@ impl Integrator for Radau5 {
             // `atol + rtol |y0|`, which vanishes on a zero component.
             return Err(Error::InvalidInput {
                 what: "atol",
-                detail: format!("Radau5 needs atol > 0, got {}", crate::error::Num(self.opts.atol)),
+                detail: format!(
+                    "Radau5 needs atol > 0, got {}",
+                    crate::error::Num(self.opts.atol)
+                ),
             });
         }
         validate_problem(t0, &y0, t1)?;
