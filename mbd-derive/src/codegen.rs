@@ -552,7 +552,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     };
     let friction_acceleration = (nf > 0).then(|| crate::friction::acceleration(eq));
     let acceleration = if let Some(solve) = &friction_acceleration {
-        quote!(#solve.map(|(qdd, _)| qdd))
+        quote!(#solve.map(|(qdd, _)| qdd).map_err(|e| self.diagnose(e)))
     } else if constrained {
         quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
     } else if let Some(code) = &recursion {

@@ -75,6 +75,7 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
     });
     let friction = (!ast.frictions.is_empty()).then(|| {
         let nf = ast.frictions.len();
+        let nmf = n + m + nf;
         let along = unique(ast.frictions.iter().map(|f| &f.along));
         let sticks = along.iter().map(|c| format_ident!("{}_sticks", c));
         let sliding = format_ident!("{}Sliding", ident);
@@ -89,6 +90,18 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
             pub struct #sliding<'a> { pub model: &'a #ident, pub direction: [f64; #nf] }
             impl ::mbd::__private::OdeSystem<#d> for #sliding<'_> {
                 fn rhs(&self, t: f64, y: &#vd) -> ::mbd::__private::Result<#vd> { #never }
+            }
+            impl ::mbd::__private::Frictional<#n, #m, #nf, #nmf> for #ident {
+                const ALONG: [usize; #nf] = [0; #nf];
+                fn contacts(&self, t: f64, q: &#vn, qd: &#vn) -> ::mbd::__private::Contacts<#n, #m, #nf> { #never }
+            }
+            impl ::mbd::__private::Hybrid<#d> for #ident {
+                type Mode = [::mbd::__private::Slip; #nf];
+                const SWITCHES: usize = #nf;
+                fn rhs_in(&self, t: f64, y: &#vd, mode: &Self::Mode) -> ::mbd::__private::Result<#vd> { #never }
+                fn switching(&self, t: f64, y: &#vd, mode: &Self::Mode, k: usize) -> f64 { #never }
+                fn mode_at(&self, t: f64, y: &#vd) -> ::mbd::__private::Result<Self::Mode> { #never }
+                fn switch(&self, t: f64, y: &mut #vd, mode: &Self::Mode, k: usize) -> ::mbd::__private::Result<Self::Mode> { #never }
             }
         }
     });

@@ -18,4 +18,12 @@ fn main() {
     let _ = b.phi(0.0, &q);
     let _ = b.acceleration_sliding(0.0, &q, &q, &[1.0]);
     let _ = b.x_sticks(0.0, &b.initial_state());
+    let _ = mbd::hybrid::solve(
+        &mbd::integrate::Dopri5::new(Options::default()),
+        &b,
+        0.0,
+        b.initial_state(),
+        1.0,
+        &[],
+    );
 }
