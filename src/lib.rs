@@ -59,11 +59,89 @@
 //! | `#[event(name = expr, rising \| falling, terminal)]` | a zero crossing of `expr`, located on the dense output |
 //! | `#[init(q = value, der(q) = value)]` | initial conditions |
 //!
-//! The derive refuses a wrong model at compile time with an error at the offending tokens:
-//! unknown names and functions, coordinates that move no mass, more constraints than
-//! coordinates, non-smooth functions in kinematics, planar/spatial mismatches, duplicate
-//! names, bodies without mass, a default configuration that violates a constraint, and more
-//! (see `tests/ui/` for the whole list).
+//! # Conventions: frames, offsets, signs, defaults
+//!
+//! - **Units** are the user's: the derive never converts. Use one consistent system (SI).
+//! - **Frames.** Positions, `at` of free bodies and points, `force` values, gravity and
+//!   every vector output (`position`, `velocity`, `acceleration`, a spatial
+//!   `angular_velocity`/`angular_acceleration`) are in the **ground frame**. A tree body's
+//!   `at` is in its parent's frame, its `com`, `prismatic` axis and every body-fixed offset in
+//!   its own.
+//! - **Body-fixed offsets: one rule.** `position(b, [dx, dy])` (and `velocity`,
+//!   `acceleration`, `close`'s `at_a`/`at_b`) is the point `[dx, dy]` of body `b`'s *frame*,
+//!   measured **from the frame's origin** in the frame's axes. A free `particle`, `rigid` or
+//!   `rigid3` has its frame at its `at` (its mass centre), turned by its `angle`/`rotation`;
+//!   a tree body (`body`, `chain`) has its frame at its **joint**, so a `chain` link's tip
+//!   is `position(link_1, [0.0, -l])` and its mass centre `[0.0, -l / 2.0]` (= `position(link_1)`).
+//!   A tree body without `inertia` (a point mass) still has its frame; a free `particle` has
+//!   none, and an offset on it is an error. `position(b)` without
+//!   offset is the mass centre. A spring or damper between bodies acts between their mass
+//!   centres; for another point, name it with `#[point(..)]` or write its position.
+//! - **Signs.** Angles and torques are positive counter-clockwise about the plane's normal
+//!   `z = x × y` (right-handed); spatial rotations are right-handed (`rot_z(a)` turns `x`
+//!   towards `y`), `R` maps body to ground coordinates, and a spatial `torque` value is a
+//!   ground-frame vector. A `chain` angle of zero hangs straight down (`-y` of the parent),
+//!   and each `link_qk` is relative to the link before. `generalized_force` acts along its
+//!   coordinate's positive direction. Multipliers: `M qdd + Phi_q^T lambda = f`, so
+//!   `-Phi_q^T lambda` is the constraint force; `reaction(u)` of a relaxed or driven
+//!   coordinate is `(M qdd - f + Phi_q^T lambda)_u`, the generalised force that must act
+//!   along `u`'s positive direction to keep it on its law (a joint's force on the body, a
+//!   drive's effort).
+//! - **`#[default(v)]`** on a parameter does not make `Default`: it gives the value the
+//!   compile-time checks use. Constants are folded with it (`mass = -m` with
+//!   `#[default(1.0)] m` is refused like `mass = -1.0`), and with every parameter defaulted
+//!   and every coordinate's `init` given, the constraints are checked at that configuration.
+//!   A default must be a finite constant.
+//! - **Named constants**: those of `std::f64::consts`, bare (`PI`, `TAU`, `FRAC_PI_2`, ..) or
+//!   by path (`std::f64::consts::FRAC_PI_2`). **Functions**: `sin cos tan asin acos atan sinh
+//!   cosh tanh exp ln sqrt abs signum atan2 hypot powi powf min max norm dot cross rot_x rot_y
+//!   rot_z diag`, and in outputs and events `der reaction` and the body queries; kinematics
+//!   must be smooth (no `abs`, `signum`, `min`, `max`).
+//! - **Generated names are reserved**: `chain(link, n = 3, ..)` makes bodies `link_1 ..
+//!   link_3` and coordinates `link_q1 .. link_q3`; `body(b, .., reaction)` makes `b_rx`,
+//!   `b_ry` (`b_rz`); the state names velocities `x_dot`. Declaring one of these yourself is
+//!   an error; reading them (`init`, outputs) and driving a chain joint
+//!   (`#[drive(link_q1 = ..)]`) is what they are for.
+//!
+//! # What the derive refuses
+//!
+//! A wrong model is a compile error at the offending tokens, saying what to write instead:
+//! unknown names and functions (with hints such as `pi` -> `PI`), coordinates that move no
+//! mass, more constraints than coordinates, non-smooth functions in kinematics,
+//! planar/spatial mismatches, duplicate and reserved names, repeated or contradicting
+//! attributes (two `gravity`, `planar` with `spatial`, `recursive` with `mass_matrix`,
+//! `rising` with `falling`), physically impossible constants (a non-positive mass, a
+//! negative inertia, stiffness, spring length, damping or friction coefficient, an inertia
+//! tensor that is not positive definite, a rotation that is not one, NaN or infinite
+//! values), a mass or inertia that depends on time, a load or friction along a driven or
+//! relaxed coordinate, a default configuration that violates a constraint, and more (see
+//! `tests/ui/` and `docs/RELIABILITY.md`). A failed derive still defines the items it would
+//! have generated, so only the real errors are reported.
+//!
+//! At run time, what the derive could not fold is checked: `X::check_parameters()` (every
+//! parameter finite; masses, inertias, stiffnesses, lengths, dampings and friction
+//! coefficients of their sign) is reported by the accelerations as
+//! [`Error::InvalidParameter`] naming the parameter or the body; a mass matrix that is not
+//! positive definite is [`Error::MassMatrixNotPositiveDefinite`], never solved; an event
+//! function that fails or turns NaN ends the integration with [`Error::EventFailed`].
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! /// A bar hanging from a pivot: its frame is at the joint, so its tip is `[0, -l]`.
+//! #[derive(Debug, Mechanism)]
+//! #[gravity(0.0, -9.81)]
+//! #[body(bar, joint = revolute(q), com = [0.0, -l / 2.0], mass = m, inertia = m * l * l / 12.0)]
+//! #[output(tip_y = position(bar, [0.0, -l])[1])]
+//! pub struct Bar { pub m: f64, pub l: f64 }
+//!
+//! let bar = Bar { m: 1.0, l: 2.0 };
+//! assert_eq!(bar.outputs(0.0, &mbd::Vector::<2>::zeros())?.tip_y, -2.0);
+//! let wrong = Bar { m: -1.0, l: 2.0 };
+//! let err = wrong.acceleration(0.0, &mbd::Vector::<1>::new(0.1), &mbd::Vector::<1>::zeros());
+//! assert_eq!(err.unwrap_err().to_string(), "the mass of `bar` is -1: it must be positive");
+//! # Ok::<(), mbd::Error>(())
+//! ```
 //!
 //! Big models are welcome (machine-generated potentials of thousands of terms): the derive
 //! runs on its own stack, grown as the lowering recurses, so it never overflows rustc's. Its

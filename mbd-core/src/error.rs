@@ -42,6 +42,50 @@ pub enum Error {
     SingularPosition { t: f64, detail: String },
     /// An option or an argument is out of its domain (`what` names it).
     InvalidInput { what: &'static str, detail: String },
+    /// A model's parameter, or a value made of parameters (`what`: "the mass of `bob`",
+    /// "parameter `m`"), is not what its meaning needs (`requirement`: "finite", "positive").
+    InvalidParameter {
+        what: String,
+        value: f64,
+        requirement: &'static str,
+    },
+    /// The mass matrix is not positive definite at `t` (an `L D L^T` pivot is negative): a
+    /// negative mass or inertia, which no mechanism has.
+    MassMatrixNotPositiveDefinite { t: f64 },
+    /// An event function failed (`cause`) or was NaN or infinite (`cause: None`) at `t`: the
+    /// integration stops rather than never firing the event.
+    EventFailed {
+        event: String,
+        t: f64,
+        cause: Option<Box<Error>>,
+    },
+}
+
+/// A number in a message: up to 6 significant figures, in exponent form when very large or
+/// small (Rust's `{}` writes `1e-300` with 300 digits).
+#[derive(Debug, Clone, Copy)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() {
+            return write!(f, "{v}");
+        }
+        if (1e-4..1e6).contains(&v.abs()) {
+            // 6 significant figures, trailing zeros trimmed.
+            let decimals = (5 - v.abs().log10().floor() as i32).max(0) as usize;
+            let s = format!("{v:.decimals$}");
+            let s = if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                &s
+            };
+            write!(f, "{s}")
+        } else {
+            write!(f, "{v:.5e}")
+        }
+    }
 }
 
 impl fmt::Display for Error {
@@ -53,42 +97,75 @@ impl fmt::Display for Error {
                 residual,
             } => write!(
                 f,
-                "assembly did not converge at t = {t}: residual {residual:.3e} after {iterations} Newton iterations"
+                "assembly did not converge at t = {}: residual {residual:.3e} after {iterations} Newton iterations",
+                Num(*t)
             ),
-            Error::SingularMassMatrix { t } => write!(f, "singular mass matrix at t = {t}"),
+            Error::SingularMassMatrix { t } => write!(
+                f,
+                "singular mass matrix at t = {} (a coordinate that moves no mass, or a zero mass or inertia)",
+                Num(*t)
+            ),
             Error::SingularConstraintJacobian { t } => write!(
                 f,
-                "constraint Jacobian lost rank at t = {t} (toggle or dead-centre position, or redundant constraints)"
+                "constraint Jacobian lost rank at t = {} (toggle or dead-centre position, or redundant constraints)",
+                Num(*t)
             ),
             Error::StepSizeUnderflow { t, h } => {
-                write!(f, "step size underflow at t = {t} (h = {h:.3e})")
+                write!(f, "step size underflow at t = {} (h = {h:.3e})", Num(*t))
             }
-            Error::TooManySteps { t, steps } => {
+            Error::TooManySteps { t, steps } => write!(
+                f,
+                "stopped at t = {} after the limit of {steps} steps (`Options::max_steps`)",
+                Num(*t)
+            ),
+            Error::Stiff { t } => write!(
+                f,
+                "problem is stiff at t = {}: use an implicit method (Radau5)",
+                Num(*t)
+            ),
+            Error::NewtonFailed { t, h } => write!(
+                f,
+                "Newton iteration failed at t = {} even with h = {h:.3e}",
+                Num(*t)
+            ),
+            Error::NonFinite { t } => {
                 write!(
                     f,
-                    "gave up after {steps} steps at t = {t} (is the problem stiff?)"
+                    "a state or derivative became NaN or infinite at t = {}",
+                    Num(*t)
                 )
             }
-            Error::Stiff { t } => write!(f, "problem is stiff at t = {t}: use an implicit method"),
-            Error::NewtonFailed { t, h } => {
-                write!(
-                    f,
-                    "Newton iteration failed at t = {t} even with h = {h:.3e}"
-                )
-            }
-            Error::NonFinite { t } => write!(f, "state became NaN or infinite at t = {t}"),
             Error::StaticsFailed {
                 t,
                 iterations,
                 residual,
             } => write!(
                 f,
-                "static equilibrium not found at t = {t}: residual {residual:.3e} after {iterations} Newton iterations"
+                "static equilibrium not found at t = {}: residual {residual:.3e} after {iterations} Newton iterations",
+                Num(*t)
             ),
             Error::SingularPosition { t, detail } => {
                 write!(f, "singular position of a closed loop at t = {t}: {detail}")
             }
             Error::InvalidInput { what, detail } => write!(f, "invalid `{what}`: {detail}"),
+            Error::InvalidParameter {
+                what,
+                value,
+                requirement,
+            } => write!(f, "{what} is {}: it must be {requirement}", Num(*value)),
+            Error::MassMatrixNotPositiveDefinite { t } => write!(
+                f,
+                "mass matrix not positive definite at t = {} (a negative mass or inertia?)",
+                Num(*t)
+            ),
+            Error::EventFailed { event, t, cause } => match cause {
+                Some(c) => write!(
+                    f,
+                    "event `{event}` could not be evaluated at t = {}: {c}",
+                    Num(*t)
+                ),
+                None => write!(f, "event `{event}` is NaN or infinite at t = {}", Num(*t)),
+            },
         }
     }
 }
@@ -97,3 +174,28 @@ impl std::error::Error for Error {}
 
 /// Shorthand used throughout the runtime.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        assert_eq!(Num(0.1 + 0.2).to_string(), "0.3");
+        assert_eq!(Num(1e-300).to_string(), "1.00000e-300");
+        assert_eq!(Num(123456.7).to_string(), "123457");
+        assert_eq!(Num(2.5e7).to_string(), "2.50000e7");
+        assert_eq!(Num(-2.0).to_string(), "-2");
+        assert_eq!(Num(0.000123456789).to_string(), "0.000123457");
+        let e = Error::StepSizeUnderflow {
+            t: 1.0 / 3.0,
+            h: 1e-300,
+        };
+        assert_eq!(
+            e.to_string(),
+            "step size underflow at t = 0.333333 (h = 1.000e-300)"
+        );
+        let e = Error::TooManySteps { t: 2.5, steps: 100 };
+        assert!(!e.to_string().contains("stiff"), "{e}");
+    }
+}

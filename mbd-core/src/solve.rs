@@ -5,25 +5,36 @@ use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, Vector};
 
-/// `qdd` from `M qdd = f`: `L D L^T` (M is symmetric positive definite for a well-posed
-/// model), with LU as the fallback for a mass matrix that is merely non-singular.
+/// `qdd` from `M qdd = f` by `L D L^T`. A mass matrix is symmetric positive definite; one
+/// that is not is refused, not solved: NaN or infinite entries ([`Error::NonFinite`]), a
+/// singular one, or an indefinite one (a negative mass or inertia,
+/// [`Error::MassMatrixNotPositiveDefinite`]).
 pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) -> Result<Vector<N>> {
     if N == 1 {
         // One coordinate: `f * (1 / m)`, whose reciprocal an integrator loop can hoist
         // when the mass is constant (a pendulum's `m l^2`), as hand-written code does.
         let m = mass[(0, 0)];
-        if m == 0.0 || !m.is_finite() {
-            return Err(Error::SingularMassMatrix { t });
+        if !(m > 0.0 && m.is_finite()) {
+            return Err(not_positive(t, mass));
         }
         return finite(t, f * (1.0 / m));
     }
-    let x = match crate::linalg::solve_spd(mass, f) {
-        Some(x) => x,
-        None => Lu::factor(*mass)
-            .ok_or(Error::SingularMassMatrix { t })?
-            .solve(f),
-    };
-    finite(t, x)
+    match crate::linalg::solve_spd(mass, f) {
+        Some(x) => finite(t, x),
+        None => Err(not_positive(t, mass)),
+    }
+}
+
+/// Why a mass matrix failed `L D L^T` (the error path only).
+#[cold]
+fn not_positive<const N: usize>(t: f64, mass: &Matrix<N, N>) -> Error {
+    if mass.iter().any(|v| !v.is_finite()) {
+        Error::NonFinite { t }
+    } else if Lu::factor(*mass).is_none() {
+        Error::SingularMassMatrix { t }
+    } else {
+        Error::MassMatrixNotPositiveDefinite { t }
+    }
 }
 
 /// The acceleration `a` of a one-coordinate model, computed by generated code as `f / m`
@@ -31,8 +42,8 @@ pub fn solve_mass<const N: usize>(t: f64, mass: &Matrix<N, N>, f: &Vector<N>) ->
 /// not finite, or `a` is not finite.
 #[inline]
 pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
-    if m == 0.0 || !m.is_finite() {
-        return Err(Error::SingularMassMatrix { t });
+    if !(m > 0.0 && m.is_finite()) {
+        return Err(not_positive(t, &Matrix::<1, 1>::new(m)));
     }
     finite(t, Vector::<1>::new(a))
 }
@@ -149,12 +160,36 @@ mod tests {
         let f = Vector::<1>::new(-3.0);
         let x = solve_mass::<1>(0.0, &Matrix::<1, 1>::new(0.5), &f).unwrap();
         assert_eq!(x[0], -6.0);
-        for m in [0.0, f64::NAN, f64::INFINITY] {
-            let err = solve_mass::<1>(2.0, &Matrix::<1, 1>::new(m), &f).unwrap_err();
-            assert_eq!(err, Error::SingularMassMatrix { t: 2.0 });
+        let err = |m: f64| solve_mass::<1>(2.0, &Matrix::<1, 1>::new(m), &f).unwrap_err();
+        assert_eq!(err(0.0), Error::SingularMassMatrix { t: 2.0 });
+        assert_eq!(err(-1.0), Error::MassMatrixNotPositiveDefinite { t: 2.0 });
+        for m in [f64::NAN, f64::INFINITY] {
+            assert_eq!(err(m), Error::NonFinite { t: 2.0 });
         }
         let err = solve_mass::<1>(1.0, &Matrix::<1, 1>::new(1.0), &Vector::<1>::new(f64::NAN));
         assert_eq!(err.unwrap_err(), Error::NonFinite { t: 1.0 });
+    }
+
+    /// An indefinite mass matrix (a negative mass) is refused, not solved by LU; a singular
+    /// one and one with a NaN entry are told apart.
+    #[test]
+    fn mass_matrix_must_be_positive_definite() {
+        let f = Vector::<2>::new(1.0, 1.0);
+        let indefinite = Matrix::<2, 2>::new(2.0, 0.0, 0.0, -1.0);
+        let err = solve_mass::<2>(0.5, &indefinite, &f).unwrap_err();
+        assert_eq!(err, Error::MassMatrixNotPositiveDefinite { t: 0.5 });
+        let singular = Matrix::<2, 2>::new(1.0, 1.0, 1.0, 1.0);
+        assert_eq!(
+            solve_mass::<2>(0.5, &singular, &f).unwrap_err(),
+            Error::SingularMassMatrix { t: 0.5 }
+        );
+        let nan = Matrix::<2, 2>::new(1.0, 0.0, 0.0, f64::NAN);
+        assert_eq!(
+            solve_mass::<2>(0.5, &nan, &f).unwrap_err(),
+            Error::NonFinite { t: 0.5 }
+        );
+        let x = solve_mass::<2>(0.5, &Matrix::<2, 2>::new(2.0, 1.0, 1.0, 2.0), &f).unwrap();
+        assert!((x[0] - 1.0 / 3.0).abs() < 1e-15 && (x[1] - 1.0 / 3.0).abs() < 1e-15);
     }
 
     /// A tree's in-place `y'`: passed on when its accelerations are finite, refused when one
@@ -175,9 +210,17 @@ mod tests {
     #[test]
     fn one_coordinate_checks_the_mass_and_the_result() {
         assert_eq!(one_coordinate(0.0, 2.0, -4.5).unwrap()[0], -4.5);
-        for m in [0.0, f64::NAN, f64::NEG_INFINITY] {
+        assert_eq!(
+            one_coordinate(3.0, 0.0, 1.0).unwrap_err(),
+            Error::SingularMassMatrix { t: 3.0 }
+        );
+        assert_eq!(
+            one_coordinate(3.0, -2.0, 1.0).unwrap_err(),
+            Error::MassMatrixNotPositiveDefinite { t: 3.0 }
+        );
+        for m in [f64::NAN, f64::NEG_INFINITY] {
             let err = one_coordinate(3.0, m, 1.0).unwrap_err();
-            assert_eq!(err, Error::SingularMassMatrix { t: 3.0 });
+            assert_eq!(err, Error::NonFinite { t: 3.0 });
         }
         let err = one_coordinate(1.0, 1.0, f64::INFINITY).unwrap_err();
         assert_eq!(err, Error::NonFinite { t: 1.0 });

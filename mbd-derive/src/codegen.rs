@@ -360,6 +360,100 @@ fn rolled_recursion(
     (quote!(#(#code)*), temporaries)
 }
 
+/// `check_parameters`: every parameter finite, and every mass, inertia, stiffness, damping
+/// and friction coefficient that is not a constant (constants are checked at compile time)
+/// of its sign; `diagnose` puts a failed check in place of the error of a solve it explains
+/// (a NaN parameter is not a "singular mass matrix").
+fn parameter_checks(
+    ast: &Mechanism,
+    eq: &Equations,
+    recursive: bool,
+) -> (TokenStream, Option<TokenStream>) {
+    let finite = ast.params.iter().map(|p| {
+        let (id, name) = (&p.name, p.name.to_string());
+        quote! {
+            if !self.#id.is_finite() {
+                return Err(::mbd::__private::Error::InvalidParameter {
+                    what: ::std::format!("parameter `{}`", #name), value: self.#id, requirement: "finite" });
+            }
+        }
+    });
+    // `which`: Some(true) the eager checks, Some(false) the others, None all. A value shared
+    // by several bodies (a chain's `m`) is checked once, under the first body's name.
+    let checks = |which: Option<bool>| {
+        let mut seen = std::collections::HashSet::new();
+        let checks: Vec<_> = eq
+            .checks
+            .iter()
+            .filter(|c| eq.g.as_const(c.expr).is_none() && which.is_none_or(|e| c.eager == e))
+            .filter(|c| seen.insert((c.expr, c.positive)))
+            .collect();
+        let roots: Vec<Expr> = checks.iter().map(|c| c.expr).collect();
+        let b = Block::new(eq, &roots);
+        let s = b.stmts();
+        let tests: Vec<TokenStream> = checks.iter().map(|c| {
+            let v = b.leaf(c.expr);
+            let what = &c.what;
+            let (ok, requirement) = if c.positive {
+                (quote!(v > 0.0), "positive")
+            } else {
+                (quote!(v >= 0.0), "zero or positive")
+            };
+            quote! {
+                let v: f64 = #v;
+                if !(#ok) {
+                    return Err(::mbd::__private::Error::InvalidParameter {
+                        what: ::std::string::String::from(#what), value: v, requirement: #requirement });
+                }
+            }
+        }).collect();
+        (!tests.is_empty()).then(|| quote!(#s #(#tests)*))
+    };
+    let (all, eager, masses) = (checks(None), checks(Some(true)), checks(Some(false)));
+    let masses_fn = recursive.then(|| {
+        quote! {
+            /// The mass and inertia checks, for the articulated-body recursion (no pivot sign
+            /// of a mass-matrix solve reveals a negative mass there).
+            #[inline]
+            fn check_masses(&self) -> ::mbd::__private::Result<()> {
+                let t = 0.0_f64;
+                #masses
+                Ok(())
+            }
+        }
+    });
+    let eager_fn = eager.as_ref().map(|code| {
+        quote! {
+            /// The checks no solve would notice (stiffnesses, dampings, friction coefficients).
+            #[inline]
+            fn check_elements(&self) -> ::mbd::__private::Result<()> {
+                let t = 0.0_f64;
+                #code
+                Ok(())
+            }
+        }
+    });
+    let code = quote! {
+        /// Whether the parameters mean a mechanism: each finite, and every mass, inertia,
+        /// stiffness, damping and friction coefficient of its sign. The accelerations report
+        /// a failed check (at once for elements, in place of the solve's error for masses).
+        pub fn check_parameters(&self) -> ::mbd::__private::Result<()> {
+            let t = 0.0_f64;
+            #(#finite)*
+            #all
+            Ok(())
+        }
+        #eager_fn
+        #masses_fn
+        /// `err`, or the failed parameter check that explains it.
+        #[cold]
+        fn diagnose(&self, err: ::mbd::__private::Error) -> ::mbd::__private::Error {
+            self.check_parameters().err().unwrap_or(err)
+        }
+    };
+    (code, eager.map(|_| quote!(self.check_elements()?;)))
+}
+
 fn method(f: Func) -> &'static str {
     match f {
         Func::Sin => "sin",
@@ -481,14 +575,15 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     };
     let friction_acceleration = (nf > 0).then(|| crate::friction::acceleration(eq));
     let acceleration = if let Some(solve) = &friction_acceleration {
-        quote!(#solve.map(|(qdd, _)| qdd))
+        quote!(#solve.map(|(qdd, _)| qdd).map_err(|e| self.diagnose(e)))
     } else if constrained {
         quote!(::mbd::__private::Constrained::<#n, #m>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd))
     } else if let Some(code) = &recursion {
         quote! {
+            self.check_masses()?;
             let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
             #code
-            ::mbd::__private::solve::finite(t, qdd)
+            ::mbd::__private::solve::finite(t, qdd).map_err(|e| self.diagnose(e))
         }
     } else if let Some(qdd) = eq.single_qdd {
         let mass = eq.mass[0][0];
@@ -496,17 +591,18 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
         let (s, m, a) = (b.stmts(), b.leaf(mass), b.leaf(qdd));
         quote! {
             #s
-            ::mbd::__private::solve::one_coordinate(t, #m, #a)
+            ::mbd::__private::solve::one_coordinate(t, #m, #a).map_err(|e| self.diagnose(e))
         }
     } else {
         quote! {
             #mf_stmts
             #mass_fill
             #force_fill
-            ::mbd::__private::solve::solve_mass::<#n>(t, &mass, &f)
+            ::mbd::__private::solve::solve_mass::<#n>(t, &mass, &f).map_err(|e| self.diagnose(e))
         }
     };
 
+    let (check_parameters, check_elements) = parameter_checks(ast, eq, recursion.is_some());
     // A one-coordinate acceleration is a few operations: called out of line from another
     // crate (where integrators and `rhs` are instantiated), the call costs as much as the body.
     let inline_acceleration = eq.single_qdd.is_some().then(|| quote!(#[inline]));
@@ -526,6 +622,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             #inline_acceleration
             fn acceleration(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
+                #check_elements
                 #direction
                 // The domain check after the body: its `sin` shares the body's basic block
                 // with the `cos`, so the two become one `sincos` call.
@@ -566,7 +663,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             Some(solve) => solve.clone(),
             None => quote! {
                 #f_s #f_m #f_f #f_pq #f_g
-                ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma)
+                ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
             },
         };
         quote! {
@@ -635,6 +732,8 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     });
     let rhs_body = match &recursion {
         Some(code) => quote! {
+            self.check_masses()?;
+            #check_elements
             let q = y.fixed_rows::<#n>(0);
             let qd = y.fixed_rows::<#n>(#n);
             let mut dy = ::mbd::__private::Vector::<#d>::from_fn(|i, _| if i < #n { qd[i] } else { 0.0 });
@@ -642,7 +741,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 let mut qdd = dy.fixed_rows_mut::<#n>(#n);
                 #code
             }
-            ::mbd::__private::solve::finite_accelerations::<#n, #d>(t, dy)
+            ::mbd::__private::solve::finite_accelerations::<#n, #d>(t, dy).map_err(|e| self.diagnose(e))
         },
         None => quote! {
             ::mbd::__private::solve::second_order_rhs::<#n, #d>(y, |q, qd| ::mbd::__private::Mechanism::<#n>::acceleration(self, t, q, qd))
@@ -728,11 +827,11 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
             };
             let terminal = ev.terminal.then(|| quote!(.terminal()));
             quote! {
-                ::mbd::__private::integrate::Event::new(
+                ::mbd::__private::integrate::Event::fallible(
                     #name,
-                    // An event function that cannot be evaluated (singular position) is NaN:
-                    // the locator then reports no crossing rather than a wrong one.
-                    move |t, y| self.#fname(t, y).unwrap_or(f64::NAN),
+                    // An event function that cannot be evaluated (singular position) stops
+                    // the integration with its error.
+                    move |t, y| self.#fname(t, y),
                     ::mbd::__private::integrate::Direction::#dir,
                 ) #terminal
             }
@@ -818,6 +917,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 /// The accelerations with the friction directions given instead of `sign(qd)`.
                 pub fn acceleration_sliding(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>,
                     direction: &[f64; #nf]) -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
+                    #check_elements
                     #s #mass #f #solve
                 }
                 /// The sliding view of this model (see its type).
@@ -883,6 +983,7 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
                 statements: #statements,
                 constraints: #m,
             };
+            #check_parameters
             /// The initial state `[q; qd]` given by `#[init(..)]` (zero where not given).
             pub fn initial_state(&self) -> ::mbd::__private::Vector<#d> {
                 let t = 0.0_f64;

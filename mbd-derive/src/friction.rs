@@ -69,6 +69,9 @@ pub fn emit(
             type Mode = [#p::Slip; #nf];
             const SWITCHES: usize = #nf;
             fn rhs_in(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode) -> #p::Result<#p::Vector<#d>> {
+                // A negative coefficient or mass passed at run time: no stuck-row solve
+                // would notice it.
+                self.check_parameters()?;
                 // Every contact sliding: the straight-line forces with the directions given
                 // (the sliding view's), no stuck rows to solve.
                 if mode.iter().all(|m| *m != #p::Slip::Stick) {

@@ -7,6 +7,7 @@
 //! exact derivatives), `codegen` (straight-line Rust).
 //! The language itself is documented on the facade crate `mbd`.
 
+mod check;
 mod closure;
 mod codegen;
 mod expand;
@@ -15,6 +16,7 @@ mod guard;
 mod lower;
 mod model;
 mod parse;
+mod skeleton;
 mod spatial;
 mod sym;
 mod tree;

@@ -80,6 +80,54 @@ pub const FUNCTIONS: &[(&str, usize)] = &[
     ("angular_acceleration", 1),
 ];
 
+/// The named constants (those of `std::f64::consts`): written bare (`PI`) or by path
+/// (`std::f64::consts::FRAC_PI_2`, `f64::consts::TAU`).
+pub const CONSTANTS: &[(&str, f64)] = {
+    use std::f64::consts as c;
+    &[
+        ("PI", c::PI),
+        ("E", c::E),
+        ("TAU", c::TAU),
+        ("FRAC_PI_2", c::FRAC_PI_2),
+        ("FRAC_PI_3", c::FRAC_PI_3),
+        ("FRAC_PI_4", c::FRAC_PI_4),
+        ("FRAC_PI_6", c::FRAC_PI_6),
+        ("FRAC_PI_8", c::FRAC_PI_8),
+        ("FRAC_1_PI", c::FRAC_1_PI),
+        ("FRAC_2_PI", c::FRAC_2_PI),
+        ("FRAC_2_SQRT_PI", c::FRAC_2_SQRT_PI),
+        ("SQRT_2", c::SQRT_2),
+        ("FRAC_1_SQRT_2", c::FRAC_1_SQRT_2),
+        ("LN_2", c::LN_2),
+        ("LN_10", c::LN_10),
+        ("LOG2_E", c::LOG2_E),
+        ("LOG10_E", c::LOG10_E),
+        ("LOG2_10", c::LOG2_10),
+        ("LOG10_2", c::LOG10_2),
+    ]
+};
+
+/// A named constant by its bare name (`PI`).
+pub fn named_constant(name: &str) -> Option<f64> {
+    CONSTANTS.iter().find(|c| c.0 == name).map(|c| c.1)
+}
+
+/// A constant by path: `std::f64::consts::PI`, `core::f64::consts::PI`, `f64::consts::PI`,
+/// `consts::PI`.
+pub fn path_constant(path: &syn::Path) -> Option<f64> {
+    let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
+    let (last, prefix) = segs.split_last()?;
+    let ok = matches!(
+        prefix
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>()
+            .as_slice(),
+        ["std" | "core", "f64", "consts"] | ["f64", "consts"] | ["consts"]
+    );
+    if ok { named_constant(last) } else { None }
+}
+
 /// Body queries answered by [`Model::body`] (outputs only).
 const BODY_QUERIES: &[&str] = &[
     "position",
@@ -176,11 +224,18 @@ impl Lowerer<'_> {
         use syn::Expr as E;
         match e {
             E::Lit(l) => match &l.lit {
-                syn::Lit::Float(f) => Ok(Value::Scalar(self.g.constant(
-                    f.base10_parse::<f64>().map_err(|err| {
+                syn::Lit::Float(f) => {
+                    let v = f.base10_parse::<f64>().map_err(|err| {
                         self.errors.push(err);
-                    })?,
-                ))),
+                    })?;
+                    if !v.is_finite() {
+                        return self.fail(
+                            f.span(),
+                            "this number is too large for an `f64` (it would be infinite)",
+                        );
+                    }
+                    Ok(Value::Scalar(self.g.constant(v)))
+                }
                 syn::Lit::Int(i) => Ok(Value::Scalar(self.g.constant(
                     i.base10_parse::<f64>().map_err(|err| {
                         self.errors.push(err);
@@ -201,7 +256,8 @@ impl Lowerer<'_> {
             E::Binary(b) => {
                 let l = self.expr(&b.left, ctx)?;
                 let r = self.expr(&b.right, ctx)?;
-                self.binary(b, l, r)
+                let v = self.binary(b, l, r)?;
+                self.finite_constant(b, v)
             }
             E::Array(a) => {
                 let mut items = Vec::new();
@@ -266,19 +322,40 @@ impl Lowerer<'_> {
     fn path(&mut self, p: &syn::ExprPath, ctx: Context) -> Res {
         let Some(id) = p.path.get_ident() else {
             // `std::f64::consts::PI` and friends.
-            let last = p
-                .path
-                .segments
-                .last()
-                .map(|s| s.ident.to_string())
-                .unwrap_or_default();
-            return match last.as_str() {
-                "PI" => Ok(Value::Scalar(self.g.constant(std::f64::consts::PI))),
-                "E" => Ok(Value::Scalar(self.g.constant(std::f64::consts::E))),
-                _ => self.fail(
-                    p.span(),
-                    "expected a parameter, coordinate or constant name",
-                ),
+            return match path_constant(&p.path) {
+                Some(v) => Ok(Value::Scalar(self.g.constant(v))),
+                None => {
+                    let last = p
+                        .path
+                        .segments
+                        .last()
+                        .map(|s| s.ident.to_string())
+                        .unwrap_or_default();
+                    let why = if [
+                        "NAN",
+                        "INFINITY",
+                        "NEG_INFINITY",
+                        "MAX",
+                        "MIN",
+                        "EPSILON",
+                        "MIN_POSITIVE",
+                    ]
+                    .contains(&last.as_str())
+                    {
+                        format!("`{last}` is not a value a model can mean: use a finite number")
+                    } else {
+                        format!(
+                            "expected a parameter, coordinate or constant name; the constants are `{}` (also as `std::f64::consts::..`)",
+                            CONSTANTS
+                                .iter()
+                                .map(|c| c.0)
+                                .collect::<Vec<_>>()
+                                .join("`, `")
+                        )
+                    };
+                    self.errors.over(p, why);
+                    Err(())
+                }
             };
         };
         let name = id.to_string();
@@ -290,24 +367,57 @@ impl Lowerer<'_> {
             Some(Binding::Value(v)) => Ok(v.clone()),
             Some(Binding::Coord(c)) => {
                 if ctx == Context::Constant {
-                    self.fail(id.span(), format!("`{name}` is a coordinate: not allowed here (only `t` and parameters)"))
+                    self.fail(
+                        id.span(),
+                        format!(
+                            "`{name}` is a coordinate: not allowed here (only `t` and parameters)"
+                        ),
+                    )
                 } else {
                     Ok(Value::Scalar(*c))
                 }
             }
-            Some(Binding::Body(_)) => {
-                self.fail(id.span(), format!("`{name}` is a body: use `position({name})`, `velocity({name})`, ..."))
-            }
-            None => match name.as_str() {
-                "PI" => Ok(Value::Scalar(self.g.constant(std::f64::consts::PI))),
-                _ => self.fail(
-                    id.span(),
-                    format!(
-                        "unknown name `{name}`: not a parameter (field) of `{}`, a coordinate, a point or a body",
-                        self.struct_name
-                    ),
-                ),
+            Some(Binding::Body(_)) => self.fail(
+                id.span(),
+                format!("`{name}` is a body: use `position({name})`, `velocity({name})`, ..."),
+            ),
+            None => match named_constant(&name) {
+                Some(v) => Ok(Value::Scalar(self.g.constant(v))),
+                None => {
+                    let upper = name.to_uppercase();
+                    let hint = if named_constant(&upper).is_some() {
+                        format!(": did you mean the constant `{upper}`?")
+                    } else {
+                        String::new()
+                    };
+                    self.fail(
+                        id.span(),
+                        format!(
+                            "unknown name `{name}`: not a parameter (field) of `{}`, a coordinate, a point or a body{hint}",
+                            self.struct_name
+                        ),
+                    )
+                }
             },
+        }
+    }
+
+    /// A constant that folded to NaN or infinity (`0.0 / 0.0`, `1.0 / (2.0 - 2.0)`) is a
+    /// mistake: refused here rather than emitted into the code.
+    fn finite_constant(&mut self, e: &syn::ExprBinary, v: Value) -> Res {
+        let bad = match &v {
+            Value::Scalar(s) => self.g.as_const(*s).filter(|x| !x.is_finite()),
+            _ => None,
+        };
+        match bad {
+            Some(x) => {
+                let msg = format!(
+                    "this constant expression is {x}, not a finite number (a division by zero?)"
+                );
+                self.errors.over(e, msg);
+                Err(())
+            }
+            None => Ok(v),
         }
     }
 

@@ -69,9 +69,14 @@ struct BodyKin {
     angle: Option<Expr>,
     /// Spatial rotation (world from body).
     rot: Option<[[Expr; 3]; 3]>,
-    /// Spatial angular velocity in the body's frame, when a joint tree composed it (else it
-    /// is derived from `rot`).
-    omega: Option<[Expr; 3]>,
+    /// The body frame, which body-fixed offsets (`position(b, [..])`) are measured in and
+    /// from: origin, and planar angle or spatial rotation (with its angular velocity when a
+    /// tree composed it; else it is derived from the rotation). A free body's frame is at its mass centre (`at`); a tree body's at
+    /// its joint. Present even when the body has no rotational inertia.
+    origin: Vec<Expr>,
+    frame_angle: Option<Expr>,
+    frame_rot: Option<[[Expr; 3]; 3]>,
+    frame_omega: Option<[Expr; 3]>,
 }
 
 /// A spatial tree body's frame: origin and rotation (ground from body), and its angular
@@ -90,6 +95,21 @@ pub struct FrictionEq {
     pub mu_static: Expr,
     pub normal: Expr,
     pub span: Span,
+}
+
+/// A value of parameters alone whose sign the mechanics needs (a mass, an inertia, a
+/// stiffness, ..): checked at run time by the generated `check_parameters` when it did not
+/// fold to a constant at compile time (a constant is checked by the `check` stage).
+pub struct ParamCheck {
+    /// What it is, for the message: "the mass of `bob`".
+    pub what: String,
+    pub expr: Expr,
+    /// `> 0` (else `>= 0`).
+    pub positive: bool,
+    /// Checked on every acceleration: no solve would notice it (a negative stiffness,
+    /// damping or friction coefficient), where a wrong mass or inertia makes the mass matrix
+    /// fail its `L D L^T` and is named on that error path only.
+    pub eager: bool,
 }
 
 pub struct OutputEq {
@@ -144,6 +164,8 @@ pub struct Equations {
     /// Minimal coordinates of a closed loop (closure.rs): the `asin`/`acos` arguments the
     /// generated code checks, `None` when the model is not one (no loop, or augmented).
     pub closure_domain: Option<Vec<closure::Domain>>,
+    /// Parameter values to check at run time.
+    pub checks: Vec<ParamCheck>,
     zero: Expr,
     one: Expr,
 }
@@ -190,35 +212,37 @@ impl Kin<'_> {
         }
     }
 
-    /// Position of a body-fixed point (`offset` in body axes; `None`: the mass centre).
+    /// Position of a body-fixed point (`offset` in the body frame's axes, from the body
+    /// frame's origin; `None`: the mass centre).
     fn point(&self, g: &mut Graph, b: &BodyKin, offset: Option<&[Expr]>) -> Vec<Expr> {
         let Some(d) = offset else { return b.r.clone() };
-        match (self.dim, b.angle, b.rot) {
+        let r = &b.origin;
+        match (self.dim, b.frame_angle, b.frame_rot) {
             (Dim::Planar, Some(phi), _) => {
                 let (c, s) = (g.call(Func::Cos, phi), g.call(Func::Sin, phi));
                 let (xc, ys) = (g.mul(c, d[0]), g.mul(s, d[1]));
                 let (xs, yc) = (g.mul(s, d[0]), g.mul(c, d[1]));
                 let dx = g.sub(xc, ys);
                 let dy = g.add(xs, yc);
-                vec![g.add(b.r[0], dx), g.add(b.r[1], dy)]
+                vec![g.add(r[0], dx), g.add(r[1], dy)]
             }
             (Dim::Spatial, _, Some(rot)) => (0..3)
                 .map(|i| {
                     let rd = g.dot(&rot[i], d);
-                    g.add(b.r[i], rd)
+                    g.add(r[i], rd)
                 })
                 .collect(),
-            _ => b.r.iter().zip(d).map(|(r, d)| g.add(*r, *d)).collect(),
+            _ => r.iter().zip(d).map(|(r, d)| g.add(*r, *d)).collect(),
         }
     }
 
     /// Body-frame angular velocity `vee(R^T dR/dt)` of a spatial body.
     /// A spatial body's angular velocity in its own frame: the tree's, or `vee(R^T R')`.
     fn omega_body(&self, g: &mut Graph, b: &BodyKin) -> Vec<Expr> {
-        if let Some(w) = b.omega {
+        if let Some(w) = b.frame_omega {
             return w.to_vec();
         }
-        let rot = b.rot.expect("a spatial body");
+        let rot = b.frame_rot.expect("a spatial body");
         let rdot = rot.map(|row| row.map(|x| self.tder(g, x)));
         let mut s = [[g.zero(); 3]; 3];
         for (i, row) in s.iter_mut().enumerate() {
@@ -245,6 +269,11 @@ impl lower::Model for Kin<'_> {
         offset: Option<Vec<Expr>>,
     ) -> Result<Value, String> {
         let b = &self.bodies[body];
+        if offset.is_some() && b.frame_angle.is_none() && b.frame_rot.is_none() {
+            return Err(format!(
+                "a particle has no orientation, so no body-fixed offset: use `{query}(..)` without one, or a `rigid` body"
+            ));
+        }
         match query {
             "position" | "velocity" | "acceleration" => {
                 let mut v = Value::Vector(self.point(g, b, offset.as_deref()));
@@ -257,7 +286,7 @@ impl lower::Model for Kin<'_> {
                 }
                 Ok(v)
             }
-            "angle" if b.rot.is_some() => Err(
+            "angle" if b.frame_rot.is_some() => Err(
                 "`angle` is planar: a spatial body has `angular_velocity` and `angular_acceleration`"
                     .to_string(),
             ),
@@ -266,7 +295,7 @@ impl lower::Model for Kin<'_> {
                     .iter()
                     .position(|q| *q == query)
                     .unwrap_or(0);
-                Ok(match (b.angle, b.rot) {
+                Ok(match (b.frame_angle, b.frame_rot) {
                     (Some(phi), _) => {
                         let mut v = Value::Scalar(phi);
                         for _ in 0..order {
@@ -393,6 +422,20 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             );
         }
     }
+
+    // Parameters' defaults by name, for checks at the default values.
+    let param_names: std::collections::HashSet<String> =
+        ast.params.iter().map(|p| p.name.to_string()).collect();
+    let defaults: HashMap<String, f64> = ast
+        .params
+        .iter()
+        .filter_map(|p| {
+            Some((
+                p.name.to_string(),
+                crate::check::fold(p.default.as_ref()?, &HashMap::new())?,
+            ))
+        })
+        .collect();
 
     // Coordinates: free, driven, relaxed.
     let mut coords: Vec<Coord> = Vec::new();
@@ -541,7 +584,14 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
                 }
                 match &b.orientation {
                     Some(e) => match lw.lower(e, Context::Kinematics) {
-                        Some(Value::Matrix(m)) => rot = Some(m),
+                        Some(Value::Matrix(m)) => {
+                            if crate::check::is_rotation(lw.g, &m, &defaults, &param_names)
+                                == Some(false)
+                            {
+                                lw.errors.over(e, format!("the rotation of `{}` is not a rotation (R^T R = I, det R = 1): build it from `rot_x`, `rot_y`, `rot_z`", b.name));
+                            }
+                            rot = Some(m)
+                        }
                         Some(_) => lw.errors.at(
                             e.span(),
                             "a rotation is a product of `rot_x`, `rot_y`, `rot_z` or a 3x3 matrix",
@@ -560,10 +610,13 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             bodies.push(BodyKin {
                 mass,
                 inertia,
+                origin: r.clone(),
                 r,
                 angle,
                 rot,
-                omega: None,
+                frame_angle: angle,
+                frame_rot: rot,
+                frame_omega: None,
             });
             declare(&mut names, &mut errors, &b.name, Binding::Body(idx));
         }
@@ -656,7 +709,10 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             r: com_world.to_vec(),
             angle: rigid.then_some(angle),
             rot: None,
-            omega: None,
+            origin: origin.to_vec(),
+            frame_angle: Some(angle),
+            frame_rot: None,
+            frame_omega: None,
         });
         declare(
             &mut names,
@@ -809,10 +865,13 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         bodies.push(BodyKin {
             mass,
             rot: inertia.is_some().then_some(rot),
-            omega: inertia.is_some().then_some(omega),
             inertia,
             r,
             angle: None,
+            origin: origin.to_vec(),
+            frame_angle: None,
+            frame_rot: Some(rot),
+            frame_omega: Some(omega),
         });
         declare(
             &mut names,
@@ -890,6 +949,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     }
     errors.finish()?;
     let mut errors = Errors::default();
+    let mut checks = body_checks(&names, &bodies);
 
     let mut reactions: Vec<(usize, Expr)> = Vec::new();
     let zero = g.zero();
@@ -1082,6 +1142,16 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             None => Some(lw.g.zero()),
         };
         if let (Some(a), Some(b), Some(k), Some(l0)) = (a, b, k, l0) {
+            checks.push(check(
+                format!("the stiffness of spring `{}`", s.name),
+                k,
+                false,
+            ));
+            checks.push(check(
+                format!("the length of spring `{}`", s.name),
+                l0,
+                false,
+            ));
             let l = length(&mut g, &a, &b);
             let stretch = g.sub(l, l0);
             let s2 = g.powi(stretch, 2);
@@ -1122,6 +1192,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         })
         .scalar(&d.c, Context::Constant);
         if let (Some(a), Some(b), Some(c)) = (a, b, c) {
+            checks.push(check(format!("the damping of `{}`", d.name), c, false));
             // Rayleigh dissipation D = c ldot^2 / 2; Q_j = -dD/dzd_j = -c ldot dldot/dzd_j.
             let l = length(&mut g, &a, &b);
             let ldot = kin.tder(&mut g, l);
@@ -1674,6 +1745,9 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
             }
             if let (Some(mu), Some(mu_static), Some(normal)) = (mu, mu_static, normal) {
                 crate::friction::check_coefficients(&g, mu, mu_static, f, &mut errors);
+                let what = format!("friction coefficient along `{}`", f.along);
+                checks.push(check(format!("the {what}"), mu, false));
+                checks.push(check(format!("the static {what}"), mu_static, false));
                 frictions.push(FrictionEq {
                     coord: a,
                     mu,
@@ -1887,6 +1961,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         init_q,
         init_qd,
         closure_domain,
+        checks,
     })
 }
 
@@ -2201,6 +2276,53 @@ fn tree_vector(lw: &mut Lowerer<'_>, e: &Option<syn::Expr>, len: usize) -> Optio
 }
 
 /// A tree body's mass, with a spanned error when it is a constant that is not positive.
+/// A check of an element's constant (stiffness, damping, friction): eager.
+fn check(what: String, expr: Expr, positive: bool) -> ParamCheck {
+    ParamCheck {
+        what,
+        expr,
+        positive,
+        eager: true,
+    }
+}
+
+/// Every body's mass (> 0) and diagonal inertias (>= 0: a zero one of a free body makes the
+/// mass matrix singular, which the solve reports; a tree body's zero inertia is a point
+/// mass), named by the body.
+fn body_checks(names: &Names, bodies: &[BodyKin]) -> Vec<ParamCheck> {
+    let mut by_index: Vec<(usize, &String)> = names
+        .iter()
+        .filter_map(|(n, b)| match b {
+            Binding::Body(i) => Some((*i, n)),
+            _ => None,
+        })
+        .collect();
+    by_index.sort();
+    let mut out = Vec::new();
+    for (i, name) in by_index {
+        let b = &bodies[i];
+        out.push(ParamCheck {
+            eager: false,
+            ..check(format!("the mass of `{name}`"), b.mass, true)
+        });
+        if let Some(inertia) = &b.inertia {
+            let axes = if b.rot.is_some() { 3 } else { 1 };
+            for (k, row) in inertia.iter().enumerate().take(axes) {
+                let what = if axes == 1 {
+                    format!("the inertia of `{name}`")
+                } else {
+                    format!("the inertia of `{name}` about its axis {k}")
+                };
+                out.push(ParamCheck {
+                    eager: false,
+                    ..check(what, row[k], false)
+                });
+            }
+        }
+    }
+    out
+}
+
 fn tree_mass(lw: &mut Lowerer<'_>, tb: &parse::TreeBody) -> Option<Expr> {
     let e = tb.mass.as_ref()?;
     let m = lw.scalar(e, Context::Constant)?;

@@ -420,9 +420,16 @@ fn ident_list(attr: &Attribute, errors: &mut Errors) -> Vec<Ident> {
 }
 
 impl Mechanism {
+    #[cfg(test)]
     pub fn from_syn(input: &DeriveInput) -> syn::Result<Mechanism> {
+        Self::read(input).map_err(|(e, _)| e)
+    }
+
+    /// [`Self::from_syn`], keeping what was read when there are errors (for the skeleton a
+    /// failed derive still emits), unless the input is not a struct of parameters at all.
+    pub fn read(input: &DeriveInput) -> Result<Mechanism, (syn::Error, Option<Box<Mechanism>>)> {
         let mut errors = Errors::default();
-        let params = params(input, &mut errors)?;
+        let params = params(input, &mut errors).map_err(|e| (e, None))?;
         let mut m = Mechanism {
             ident: input.ident.clone(),
             params,
@@ -824,8 +831,10 @@ impl Mechanism {
                 );
             }
         }
-        errors.finish()?;
-        Ok(m)
+        match errors.finish() {
+            Ok(()) => Ok(m),
+            Err(e) => Err((e, Some(Box::new(m)))),
+        }
     }
 }
 

@@ -14,17 +14,14 @@
 //! `g θ_0^2`), where `cos^2 ω_n t = 1/(2 θ_0^2)` (the minimum), and at `t = T/4` (a local
 //! maximum, `g θ_0`).
 //!
-//! **Model.** No free coordinate: A is a particle (1 kg, immaterial) carried on the
-//! prescribed law, `A = l (sin θ(t), −cos θ(t))` with `θ(t) = θ_0 sin(sqrt(g/l) t)` written
-//! into its position. (The natural `#[drive(theta = ..)]` cannot be used: `der(..)` of an
-//! acceleration of a driven coordinate is silently zero in the derive, see
-//! `/work/notes/derive-bugs.md`; the law of time in the position is differentiated exactly.)
-//! The extremes of |a| are events on `der(|a|^2)`, located over one period (the model has no
-//! state, so RK4 serves as the clock: the adaptive methods cannot step a state-free model,
-//! see `/work/notes/derive-bugs.md`): the first upward crossing is the minimum. At the start, t = 0, `der(|a|^2)`
-//! is zero and A passes the bottom with the largest |a|: `a_max` is the output there (the
-//! downward crossing at T/2, the next bottom passage, repeats it). The angle at the minimum is
-//! the model's `atan2(x_A, −y_A)`, in degrees as in the table.
+//! **Model.** No free coordinate: OA's angle θ is driven by the law,
+//! `#[drive(theta = θ_0 sin(sqrt(g/l) t))]`, and A is a particle (1 kg, immaterial) at
+//! `l (sin θ, −cos θ)`. The extremes of |a| are the events on `der(|a|^2)`: an upward
+//! crossing is a minimum, a downward one a maximum. The run starts an eighth of a period
+//! *before* t = 0 and lasts one period, so the bottom passage at t = 0 (the largest |a|) is a
+//! crossing like the others and is located, not assumed: `a_max` is the largest |a| over the
+//! located maxima and `t_at_a_max` its time. The angle at the minimum is the model's
+//! `atan2(x_A, −y_A)`, in degrees as in the table.
 //!
 //! **Reference (exact).** `t_min = acos(1/(θ_0 sqrt 2))/ω_n = 0.236882040733337 s`,
 //! `a_min = g θ_0 sqrt(1 − 1/(4 θ_0^2)) = 9.02638731167727 m/s^2`,
@@ -41,16 +38,16 @@
 //! 60°, min 8.010 at 48.19°; started at the bottom with `θ' = θ_0 ω_n`, min 8.370 at
 //! 52.97°). mbd is judged against the exact 9.02638731168.
 
+use crate::sim;
 use crate::validation::{Outcome, Plot, Row};
-use mbd::integrate::{Integrator, Rk4, Solution};
+use mbd::integrate::{Integrator, Options, Radau5, Solution};
 use mbd::prelude::*;
 
-/// A pendulum of length `l` carried on the law `θ = theta_0 sin(sqrt(g/l) t)` from the
+/// A pendulum of length `l` driven on the law `θ = theta_0 sin(sqrt(g/l) t)` from the
 /// downward vertical.
 #[derive(Debug, Clone, Mechanism)]
-#[particle(bob, mass = m,
-           at = [l * sin(theta_0 * sin(sqrt(g / l) * t)),
-                 -l * cos(theta_0 * sin(sqrt(g / l) * t))])]
+#[drive(theta = theta_0 * sin(sqrt(g / l) * t))]
+#[particle(bob, mass = m, at = [l * sin(theta), -l * cos(theta)])]
 #[output(a = norm(acceleration(bob)))]
 #[output(theta_deg = atan2(position(bob)[0], -position(bob)[1]) * 180.0 / PI)]
 #[output(a_sq_rate = der(dot(acceleration(bob), acceleration(bob))))]
@@ -92,36 +89,70 @@ pub fn references() -> [f64; 5] {
 }
 
 /// How the case is measured.
-const METHOD: &str = "events on the prescribed motion (RK4 as the clock, h = T/200)";
+const METHOD: &str = "events on der(|a|^2) of the driven motion, Radau IIA 5 over [-T/8, 7T/8]";
 
-/// Run the model's clock over one period `T = 2π/ω_n` and locate its events. The model has no state, so
-/// the event functions depend on t alone and the integrator only supplies the time axis; RK4
-/// stands in for `sim::integrate` because the adaptive methods cannot step a state-free
-/// model (their error norm is 0/0: `/work/notes/derive-bugs.md`).
+/// The period `T = 2π/ω_n`.
+fn period() -> f64 {
+    2.0 * std::f64::consts::PI / natural_frequency()
+}
+
+/// One period from `-T/8`, with the events located. The model has no state: the events
+/// depend on t alone, and the integrator's steps bracket their crossings.
 fn one_period(model: &Pendulum) -> mbd::Result<Solution<0>> {
-    let period = 2.0 * std::f64::consts::PI / natural_frequency();
-    Rk4::new(period / 200.0).solve(model, 0.0, Vector::<0>::zeros(), period, &model.events())
+    let opts = Options {
+        rtol: sim::TOL,
+        atol: sim::TOL,
+        h_max: Some(period() / 64.0),
+        ..Options::default()
+    };
+    let t0 = -period() / 8.0;
+    Radau5::new(opts).solve(
+        model,
+        t0,
+        Vector::<0>::zeros(),
+        t0 + period(),
+        &model.events(),
+    )
+}
+
+/// The located extremes `(t, |a|)` of event `which` (0: minima, 1: maxima).
+fn extremes(model: &Pendulum, sol: &Solution<0>, which: usize) -> mbd::Result<Vec<(f64, f64)>> {
+    sol.events
+        .iter()
+        .filter(|e| e.event == which)
+        .map(|e| Ok((e.t, model.outputs(e.t, &Vector::<0>::zeros())?.a)))
+        .collect()
+}
+
+fn none_found(what: &str) -> mbd::Error {
+    mbd::Error::InvalidInput {
+        what: "case 04",
+        detail: format!("|a| had no {what} in a period"),
+    }
 }
 
 pub fn run() -> mbd::Result<Outcome> {
     let model = MODEL;
     let none = Vector::<0>::zeros();
-    let period = 2.0 * std::f64::consts::PI / natural_frequency();
     let sol = one_period(&model)?;
-    let at_min = sol
-        .events
-        .iter()
-        .find(|e| e.event == 0)
-        .ok_or(mbd::Error::InvalidInput {
-            what: "case 04",
-            detail: "|a| had no minimum in a period".into(),
-        })?;
-    let min = model.outputs(at_min.t, &none)?;
-    let t_start = sol.t[0];
-    let start = model.outputs(t_start, &none)?;
+    // The manual's minimum is the first after t = 0 (the motion is periodic and symmetric:
+    // every minimum has the same |a|); its maximum is the largest located maximum, first
+    // reached at the bottom passage t = 0 (and again at T/2).
+    let (t_min_found, a_min_found) = extremes(&model, &sol, 0)?
+        .into_iter()
+        .find(|(t, _)| *t > 0.0)
+        .ok_or_else(|| none_found("minimum after t = 0"))?;
+    let maxima = extremes(&model, &sol, 1)?;
+    let a_hi = maxima.iter().map(|m| m.1).fold(f64::NEG_INFINITY, f64::max);
+    let (t_hi, _) = maxima
+        .into_iter()
+        .find(|m| m.1 >= a_hi * (1.0 - 1e-9))
+        .ok_or_else(|| none_found("maximum"))?;
+    let min = model.outputs(t_min_found, &none)?;
+    let t0 = sol.t[0];
     let points = (0..=200)
         .map(|i| {
-            let t = period * f64::from(i) / 200.0;
+            let t = t0 + period() * f64::from(i) / 200.0;
             Ok((t, model.outputs(t, &none)?.a))
         })
         .collect::<mbd::Result<Vec<_>>>()?;
@@ -134,17 +165,17 @@ pub fn run() -> mbd::Result<Outcome> {
     };
     Ok(Outcome {
         rows: vec![
-            row("a_min", min.a, a_min),
-            row("t_at_a_min", at_min.t, t_min),
+            row("a_min", a_min_found, a_min),
+            row("t_at_a_min", t_min_found, t_min),
             row("theta_at_a_min", min.theta_deg, theta_min),
-            row("a_max", start.a, a_max),
-            row("t_at_a_max", t_start, t_max),
+            row("a_max", a_hi, a_max),
+            row("t_at_a_max", t_hi, t_max),
         ],
         plot: Plot {
             x_label: "t [s]",
             y_label: "acceleration of A |a| [m/s²]",
             points,
-            mark: Some((at_min.t, min.a)),
+            mark: Some((t_min_found, a_min_found)),
         },
     })
 }
@@ -158,7 +189,17 @@ mod tests {
     fn case04_matches_the_exact_values() {
         let out = run().unwrap();
         for row in &out.rows {
-            assert_relative_eq!(row.value, row.reference, max_relative = 1e-9);
+            if row.reference == 0.0 {
+                // t_at_a_max: located, not the start time (the run starts at -T/8).
+                assert!(
+                    row.value.abs() < 1e-10 * period(),
+                    "{}: {}",
+                    row.quantity,
+                    row.value
+                );
+            } else {
+                assert_relative_eq!(row.value, row.reference, max_relative = 1e-9);
+            }
         }
     }
 
@@ -190,30 +231,42 @@ mod tests {
 
     #[test]
     fn case04_maxima_over_a_period() {
-        // The downward crossings of der(|a|^2) in (0, T): local maxima g θ_0 at T/4 and 3T/4,
-        // and the bottom passage at T/2, which repeats the start's a_max = g θ_0^2.
+        // The downward crossings of der(|a|^2) in (-T/8, 7T/8): the bottom passages at 0 and
+        // T/2 (g θ_0^2) and the local maxima g θ_0 at T/4 and 3T/4, all located.
         let model = MODEL;
-        let none = Vector::<0>::zeros();
-        let period = 2.0 * std::f64::consts::PI / natural_frequency();
         let sol = one_period(&model).unwrap();
-        let maxima: Vec<(f64, f64)> = sol
-            .events
-            .iter()
-            .filter(|e| e.event == 1)
-            .map(|e| (e.t / period, model.outputs(e.t, &none).unwrap().a))
-            .collect();
+        let maxima = extremes(&model, &sol, 1).unwrap();
         let Pendulum { g, theta_0, .. } = model;
-        assert_eq!(maxima.len(), 3);
-        for ((phase, a), (exact_phase, exact_a)) in maxima.iter().zip([
+        assert_eq!(maxima.len(), 4);
+        for ((t, a), (exact_phase, exact_a)) in maxima.iter().zip([
+            (0.0, g * theta_0 * theta_0),
             (0.25, g * theta_0),
             (0.5, g * theta_0 * theta_0),
             (0.75, g * theta_0),
         ]) {
-            assert_relative_eq!(*phase, exact_phase, max_relative = 1e-9);
+            assert!((t / period() - exact_phase).abs() < 1e-10, "{t}");
             assert_relative_eq!(*a, exact_a, max_relative = 1e-12);
         }
-        // At the start der(|a|^2) is zero: t = 0 is an extreme.
-        let start = model.outputs(0.0, &none).unwrap();
-        assert!(start.a_sq_rate.abs() < 1e-12 * start.a * start.a * natural_frequency());
+    }
+
+    #[test]
+    fn case04_minima_over_a_period() {
+        // Upward crossings where cos^2(w t) = 1 / (2 θ_0^2): four per period, one |a|.
+        let model = MODEL;
+        let sol = one_period(&model).unwrap();
+        let minima = extremes(&model, &sol, 0).unwrap();
+        let [a_min, t_min, ..] = references();
+        let quarter = period() / 4.0;
+        let exact = [
+            t_min,
+            2.0 * quarter - t_min,
+            2.0 * quarter + t_min,
+            4.0 * quarter - t_min,
+        ];
+        assert_eq!(minima.len(), 4);
+        for ((t, a), t_exact) in minima.iter().zip(exact) {
+            assert_relative_eq!(*t, t_exact, max_relative = 1e-10);
+            assert_relative_eq!(*a, a_min, max_relative = 1e-12);
+        }
     }
 }

@@ -54,7 +54,10 @@ impl NewtonOptions {
         if !(self.tol > 0.0 && self.tol.is_finite()) {
             return Err(crate::Error::InvalidInput {
                 what: "tol",
-                detail: format!("must be positive and finite, got {}", self.tol),
+                detail: format!(
+                    "must be positive and finite, got {}",
+                    crate::error::Num(self.tol)
+                ),
             });
         }
         if self.max_iterations == 0 {

@@ -151,7 +151,7 @@ impl Integrator for Dopri5 {
         let mut rec = Recorder::new(events, t0, y0, opts).observed(observer);
         let mut stats = Stats::default();
         if t1 == t0 {
-            return Ok(rec.finish(stats));
+            return rec.finish(stats);
         }
         let (rtol, atol) = (opts.rtol, opts.atol);
         let h_max = opts.h_max.unwrap_or(t1 - t0);
@@ -237,6 +237,6 @@ impl Integrator for Dopri5 {
             }
             h = h_new;
         }
-        Ok(rec.finish(stats))
+        rec.finish(stats)
     }
 }

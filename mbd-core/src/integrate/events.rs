@@ -1,6 +1,7 @@
 //! Events: zero crossings of a scalar function `g(t, y)` located on the dense output.
 
 use super::dense::Segment;
+use crate::error::{Error, Result};
 use crate::model::Vector;
 use std::fmt;
 
@@ -30,8 +31,9 @@ impl Direction {
     }
 }
 
-/// The signature of an event function `g(t, y)`.
-pub type EventFn<'a, const D: usize> = dyn Fn(f64, &Vector<D>) -> f64 + 'a;
+/// The signature of an event function `g(t, y)`: an error (a singular position where `g`
+/// needs the accelerations) stops the integration with [`Error::EventFailed`].
+pub type EventFn<'a, const D: usize> = dyn Fn(f64, &Vector<D>) -> Result<f64> + 'a;
 
 /// A named event function `g(t, y)`; the event happens where `g` crosses zero in `direction`.
 /// A terminal event ends the integration there.
@@ -53,11 +55,36 @@ impl<'a, const D: usize> Event<'a, D> {
         g: impl Fn(f64, &Vector<D>) -> f64 + 'a,
         direction: Direction,
     ) -> Self {
+        Self::fallible(name, move |t, y| Ok(g(t, y)), direction)
+    }
+
+    /// An event whose function can fail (generated models' events, which may solve for the
+    /// accelerations): its error, or a NaN or infinite value, ends the integration with
+    /// [`Error::EventFailed`] rather than hiding a crossing.
+    pub fn fallible(
+        name: impl Into<String>,
+        g: impl Fn(f64, &Vector<D>) -> Result<f64> + 'a,
+        direction: Direction,
+    ) -> Self {
         Event {
             name: name.into(),
             g: Box::new(g),
             direction,
             terminal: false,
+        }
+    }
+
+    /// `g(t, y)`, finite, or why not.
+    pub fn value(&self, t: f64, y: &Vector<D>) -> Result<f64> {
+        let failed = |cause| Error::EventFailed {
+            event: self.name.clone(),
+            t,
+            cause,
+        };
+        match (self.g)(t, y) {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(_) => Err(failed(None)),
+            Err(e) => Err(failed(Some(Box::new(e)))),
         }
     }
 
@@ -99,14 +126,20 @@ pub const EVENT_TIME_TOL: f64 = 1e-12;
 ///
 /// Regula falsi with the Illinois modification (Dowell & Jarratt 1971, BIT 11, 168–174):
 /// when the same end is kept twice its `g` is halved, which makes convergence superlinear.
-/// A secant point outside the bracket (or a non-finite `g`) falls back to bisection. The
+/// A secant point outside the bracket falls back to bisection; a failed or non-finite `g`
+/// is the caller's error. The
 /// bracket is shrunk until its width is at most [`EVENT_TIME_TOL`]` (|t| + 1)`; the end
 /// returned is the one past the crossing, so `g` there has the new sign (or is zero).
-pub fn locate<const D: usize>(g: &EventFn<'_, D>, seg: &Segment<D>, g0: f64, g1: f64) -> f64 {
+pub fn locate<const D: usize>(
+    g: &dyn Fn(f64, &Vector<D>) -> Result<f64>,
+    seg: &Segment<D>,
+    g0: f64,
+    g1: f64,
+) -> Result<f64> {
     let (mut a, mut ga) = (seg.t0, g0);
     let (mut b, mut gb) = (seg.t1(), g1);
     if gb == 0.0 {
-        return b;
+        return Ok(b);
     }
     // -1: b moved last, +1: a moved last (for the Illinois halving).
     let mut last = 0i8;
@@ -118,16 +151,9 @@ pub fn locate<const D: usize>(g: &EventFn<'_, D>, seg: &Segment<D>, g0: f64, g1:
         if !(c > a && c < b) {
             c = 0.5 * (a + b);
         }
-        let mut gc = g(c, &seg.eval(c));
-        if !gc.is_finite() {
-            c = 0.5 * (a + b);
-            gc = g(c, &seg.eval(c));
-            if !gc.is_finite() {
-                break;
-            }
-        }
+        let gc = g(c, &seg.eval(c))?;
         if gc == 0.0 {
-            return c;
+            return Ok(c);
         }
         if (gc > 0.0) == (gb > 0.0) {
             b = c;
@@ -145,7 +171,7 @@ pub fn locate<const D: usize>(g: &EventFn<'_, D>, seg: &Segment<D>, g0: f64, g1:
             last = 1;
         }
     }
-    b
+    Ok(b)
 }
 
 #[cfg(test)]
@@ -173,10 +199,47 @@ mod tests {
             h: 2.0,
             coeffs: [z, Vector::<1>::new(2.0), z, z, z, z, z, z],
         };
-        let g = |_t: f64, y: &Vector<1>| y[0].powi(3) - 2.0;
-        let t = locate(&g, &seg, -2.0, 6.0);
+        let g = |_t: f64, y: &Vector<1>| Ok(y[0].powi(3) - 2.0);
+        let t = locate(&g, &seg, -2.0, 6.0).unwrap();
         let exact = 2f64.cbrt();
         assert!((t - exact).abs() <= 1e-12 * (exact + 1.0));
         assert!(t >= exact);
+    }
+
+    /// A failing or NaN event function is an error naming the event, never a silent miss.
+    #[test]
+    fn failed_event_functions_are_errors() {
+        let y = Vector::<1>::new(1.0);
+        let nan = Event::new("nan", |_t, _y: &Vector<1>| f64::NAN, Direction::Either);
+        let err = nan.value(0.5, &y).unwrap_err();
+        assert_eq!(
+            err,
+            Error::EventFailed {
+                event: "nan".into(),
+                t: 0.5,
+                cause: None
+            }
+        );
+        let cause = Error::SingularMassMatrix { t: 0.25 };
+        let failing = Event::fallible(
+            "hit",
+            |_t, _y: &Vector<1>| Err(cause.clone()),
+            Direction::Rising,
+        );
+        let err = failing.value(0.25, &y).unwrap_err();
+        assert_eq!(
+            err,
+            Error::EventFailed {
+                event: "hit".into(),
+                t: 0.25,
+                cause: Some(Box::new(cause.clone()))
+            }
+        );
+        assert!(
+            err.to_string().starts_with(
+                "event `hit` could not be evaluated at t = 0.25: singular mass matrix"
+            ),
+            "{err}"
+        );
     }
 }

@@ -247,7 +247,7 @@ impl Integrator for Gauss {
             Recorder::with(events, t0, y0, self.dense, self.record.clone()).observed(observer);
         let mut stats = Stats::default();
         if t1 == t0 {
-            return Ok(rec.finish(stats));
+            return rec.finish(stats);
         }
         let n = ((t1 - t0) / self.h * (1.0 - 1e-12)).ceil().max(1.0);
         if n > self.max_steps as f64 {
@@ -359,6 +359,6 @@ impl Integrator for Gauss {
                 break;
             }
         }
-        Ok(rec.finish(stats))
+        rec.finish(stats)
     }
 }

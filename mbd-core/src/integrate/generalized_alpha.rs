@@ -86,7 +86,7 @@ impl Coefficients {
         if !(0.0..=1.0).contains(&rho) {
             return Err(Error::InvalidInput {
                 what: "rho_inf",
-                detail: format!("must be in [0, 1], got {rho}"),
+                detail: format!("must be in [0, 1], got {}", crate::error::Num(rho)),
             });
         }
         let alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
@@ -289,7 +289,7 @@ impl GeneralizedAlpha {
             Recorder::with(events, t0, y0, self.dense, self.record.clone()).observed(observer);
         let mut stats = Stats::default();
         if h == 0.0 {
-            return Ok(recorder.finish(stats));
+            return recorder.finish(stats);
         }
         let (mut q, mut qd, mut qdd, mut a, mut z) = (q0, qd0, qdd0, qdd0, z0);
         let (bh2, scale) = (c.beta * h * h, 1.0 / (c.beta * h * h));
@@ -390,7 +390,7 @@ impl GeneralizedAlpha {
                 break;
             }
         }
-        Ok(recorder.finish(stats))
+        recorder.finish(stats)
     }
 
     fn validate(&self) -> Result<()> {

@@ -34,7 +34,7 @@ pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use solution::{Flow, Observer, Record, Recorder, Solution, Step};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::model::{OdeSystem, Vector};
 
 /// A time-integration method: advance `sys` from `(t0, y0)` to `t1`, locating `events`.
@@ -137,7 +137,7 @@ pub(crate) fn positive_finite(what: &'static str, value: f64) -> Result<()> {
     } else {
         Err(Error::InvalidInput {
             what,
-            detail: format!("must be positive and finite, got {value}"),
+            detail: format!("must be positive and finite, got {}", Num(value)),
         })
     }
 }
@@ -156,7 +156,7 @@ impl Options {
         if !(self.atol >= 0.0 && self.atol.is_finite()) {
             return bad(
                 "atol",
-                format!("must be non-negative and finite, got {}", self.atol),
+                format!("must be non-negative and finite, got {}", Num(self.atol)),
             );
         }
         if let Some(h) = self.h0 {
@@ -185,13 +185,13 @@ pub fn validate_problem<const D: usize>(t0: f64, y0: &Vector<D>, t1: f64) -> Res
     if !(t0.is_finite() && t1.is_finite()) {
         return Err(Error::InvalidInput {
             what: "t0/t1",
-            detail: format!("must be finite, got t0 = {t0}, t1 = {t1}"),
+            detail: format!("must be finite, got t0 = {}, t1 = {}", Num(t0), Num(t1)),
         });
     }
     if t1 < t0 {
         return Err(Error::InvalidInput {
             what: "t1",
-            detail: format!("must not precede t0 = {t0}, got {t1}"),
+            detail: format!("must not precede t0 = {}, got {}", Num(t0), Num(t1)),
         });
     }
     if !y0.iter().all(|v| v.is_finite()) {

@@ -185,7 +185,10 @@ impl Integrator for Radau5 {
             // `atol + rtol |y0|`, which vanishes on a zero component.
             return Err(Error::InvalidInput {
                 what: "atol",
-                detail: format!("Radau5 needs atol > 0, got {}", self.opts.atol),
+                detail: format!(
+                    "Radau5 needs atol > 0, got {}",
+                    crate::error::Num(self.opts.atol)
+                ),
             });
         }
         validate_problem(t0, &y0, t1)?;
@@ -194,7 +197,7 @@ impl Integrator for Radau5 {
         if t1 > t0 {
             Run::new(sys, &self.opts, &mut stats).integrate(t0, y0, t1, &mut recorder)?;
         }
-        Ok(recorder.finish(stats))
+        recorder.finish(stats)
     }
 }
 
@@ -729,7 +732,7 @@ mod tests {
         let mut run = Run::new(&VanDerPol, &opts, &mut stats);
         run.error_scale = ErrorScale::Start;
         run.integrate(0.0, y0, 2.0, &mut recorder).unwrap();
-        let sol = recorder.finish(stats);
+        let sol = recorder.finish(stats).unwrap();
         let s = sol.stats;
         assert_eq!(
             (s.n_steps, s.n_accepted, s.n_jac, s.n_lu, s.n_rhs),

@@ -146,6 +146,8 @@ pub struct Recorder<'r, 'e, const D: usize> {
     steps: usize,
     observer: Option<&'r mut Observer<'r, D>>,
     sol: Solution<D>,
+    /// An event function that failed: the record ends and [`Self::finish`] returns it.
+    failed: Option<Error>,
 }
 
 impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
@@ -164,13 +166,23 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         dense: bool,
         record: Record,
     ) -> Self {
-        let g_prev: Vec<f64> = events.iter().map(|e| (e.g)(t0, &y0)).collect();
+        let mut failed = None;
+        let g_prev: Vec<f64> = events
+            .iter()
+            .map(|e| {
+                e.value(t0, &y0).unwrap_or_else(|err| {
+                    failed.get_or_insert(err);
+                    f64::NAN
+                })
+            })
+            .collect();
         // Output times at t0 are the initial state, already kept.
         let next_time = match &record {
             Record::Times(ts) => ts.partition_point(|&t| t <= t0),
             _ => 0,
         };
         Recorder {
+            failed,
             events,
             g_next: vec![0.0; events.len()],
             g_prev,
@@ -223,11 +235,17 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         y1: &Vector<D>,
         segment: impl FnOnce() -> Segment<D>,
     ) -> Flow {
+        if self.failed.is_some() {
+            return Flow::Stop;
+        }
         if !self.needs_segment() {
             return self.accept_point(t1, y1);
         }
         let seg = segment();
         let stop = self.locate_events(&seg, t1, y1);
+        if self.failed.is_some() {
+            return Flow::Stop;
+        }
         match stop {
             None => self.push_step(Some(seg), t1, *y1),
             Some((ts, i)) => {
@@ -255,10 +273,21 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         }
         let mut crossings: Vec<(f64, usize)> = Vec::new();
         for (i, ev) in self.events.iter().enumerate() {
-            let g1 = (ev.g)(t1, y1);
-            self.g_next[i] = g1;
-            if ev.direction.crossed(self.g_prev[i], g1) {
-                crossings.push((locate(&*ev.g, seg, self.g_prev[i], g1), i));
+            let located = ev.value(t1, y1).and_then(|g1| {
+                self.g_next[i] = g1;
+                if !ev.direction.crossed(self.g_prev[i], g1) {
+                    return Ok(None);
+                }
+                locate(&|t, y| ev.value(t, y), seg, self.g_prev[i], g1).map(Some)
+            });
+            match located {
+                Ok(Some(t)) => crossings.push((t, i)),
+                Ok(None) => {}
+                Err(e) => {
+                    // The caller sees `failed` and stops.
+                    self.failed = Some(e);
+                    return None;
+                }
             }
         }
         std::mem::swap(&mut self.g_prev, &mut self.g_next);
@@ -323,14 +352,18 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         self.sol.y.push(y);
     }
 
-    /// The finished record with the method's work counters; the final state closes `t`
-    /// and `y` when the record did not already end there.
-    pub fn finish(mut self, stats: Stats) -> Solution<D> {
+    /// The finished record with the method's work counters (the final state closes `t`
+    /// and `y` when the record did not already end there), or the error of an event
+    /// function that failed.
+    pub fn finish(mut self, stats: Stats) -> Result<Solution<D>> {
+        if let Some(e) = self.failed.take() {
+            return Err(e);
+        }
         let (t_end, y_end) = (self.sol.t_end, self.sol.y_end);
         if self.sol.t.last() != Some(&t_end) {
             self.keep(t_end, y_end);
         }
-        Solution { stats, ..self.sol }
+        Ok(Solution { stats, ..self.sol })
     }
 }
 

@@ -1,0 +1,11 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[coords(x)]
+#[particle(bob, mass = m, at = [x, 0.0])]
+pub struct Slider {
+    #[default(0.0 / 0.0)]
+    m: f64,
+}
+
+fn main() {}

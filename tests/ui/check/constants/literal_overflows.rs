@@ -1,0 +1,8 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[coords(x)]
+#[particle(bob, mass = 1e400, at = [x, 0.0])]
+pub struct Slider {}
+
+fn main() {}

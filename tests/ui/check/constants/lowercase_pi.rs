@@ -1,0 +1,8 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[coords(th)]
+#[rigid(disc, mass = 1.0, inertia = 0.5, at = [0.0, 0.0], angle = th + pi / 2.0)]
+pub struct Disc {}
+
+fn main() {}

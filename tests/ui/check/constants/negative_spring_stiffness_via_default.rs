@@ -1,0 +1,12 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[coords(x)]
+#[particle(bob, mass = 1.0, at = [x, 0.0])]
+#[spring(s, from = [0.0, 0.0], to = bob, k = k, length = 0.5)]
+pub struct Oscillator {
+    #[default(-10.0)]
+    k: f64,
+}
+
+fn main() {}

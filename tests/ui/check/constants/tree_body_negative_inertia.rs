@@ -1,0 +1,8 @@
+use mbd::Mechanism;
+
+#[derive(Mechanism)]
+#[gravity(0.0, -9.81)]
+#[body(arm, parent = ground, joint = revolute(th), com = [0.0, -0.5], mass = 1.0, inertia = -0.1)]
+pub struct Arm {}
+
+fn main() {}
