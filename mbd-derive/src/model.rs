@@ -2082,22 +2082,26 @@ fn minimal_coordinates(
         e
     };
     for b in bodies.iter_mut() {
-        let rot = b.rot.iter().flatten().flatten();
-        let mut roots: Vec<Expr> = b.r.iter().chain(&b.angle).chain(rot).copied().collect();
-        roots.extend(b.omega.iter().flatten());
-        let images: Vec<Expr> = roots.iter().map(|&e| close(g, e)).collect();
-        let mut image = images.into_iter();
-        for e in b.r.iter_mut().chain(b.angle.iter_mut()) {
-            *e = image.next().expect("one image per root");
-        }
-        for e in b
-            .rot
+        let BodyKin {
+            r,
+            angle,
+            rot,
+            origin,
+            frame_angle,
+            frame_rot,
+            frame_omega,
+            ..
+        } = b;
+        let kinematics = r
             .iter_mut()
-            .flatten()
-            .flatten()
-            .chain(b.omega.iter_mut().flatten())
-        {
-            *e = image.next().expect("one image per root");
+            .chain(angle.iter_mut())
+            .chain(rot.iter_mut().flatten().flatten())
+            .chain(origin.iter_mut())
+            .chain(frame_angle.iter_mut())
+            .chain(frame_rot.iter_mut().flatten().flatten())
+            .chain(frame_omega.iter_mut().flatten());
+        for e in kinematics {
+            *e = close(g, *e);
         }
     }
     for binding in names.values_mut() {
