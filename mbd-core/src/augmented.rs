@@ -195,6 +195,10 @@ pub struct SaddleSolution<const N: usize, const M: usize> {
     /// Whether the coarse (large) weight was needed: a near-singular position, where the
     /// multipliers carry only about `COARSE * eps` relative accuracy (`x` keeps full accuracy).
     pub coarse: bool,
+    /// Whether the iteration stopped before the constraint rows were met to rounding (see
+    /// [`AugmentedLagrangian::solve_regularized`]): `x` is then the penalty-regularised
+    /// solution and `lambda` the penalty forces, not exact multipliers.
+    pub regularized: bool,
 }
 
 /// Where an iteration ended: converged, or not (with the last iterate).
@@ -319,6 +323,29 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
             .map_err(|_| Error::SingularConstraintJacobian { t: self.t })
     }
 
+    /// As [`Self::solve`], but where the iteration does not meet the constraint rows to
+    /// rounding (`Phi_q` nearly rank-deficient and `b` carrying the drift of an integrated
+    /// state in its vanishing directions), the last iterate: the solution of the penalty
+    /// formulation `(M + alpha Phi_q^T Phi_q) x = u + alpha Phi_q^T b - Phi_q^T lambda`,
+    /// which stays bounded and continuous through a singular position, where the exact
+    /// solve divides the drift by a vanishing singular value. The right-hand side of a
+    /// closed loop uses it; the result says `regularized`.
+    pub fn solve_regularized(&self, u: &Vector<N>, b: &Vector<M>) -> Result<SaddleSolution<N, M>> {
+        match self.both(u, b) {
+            Ok(s) => Ok(s),
+            Err((x, lambda)) if x.iter().chain(lambda.iter()).all(|v| v.is_finite()) => {
+                Ok(SaddleSolution {
+                    x,
+                    lambda,
+                    iterations: FINE_ITERATIONS + MAX_ITERATIONS,
+                    coarse: true,
+                    regularized: true,
+                })
+            }
+            Err(_) => Err(Error::NonFinite { t: self.t }),
+        }
+    }
+
     /// As [`Self::solve`], but when `b` lies outside the range of a rank-deficient `Phi_q`,
     /// the `x` the iteration reached (it tends to the `M`-weighted least-squares solution
     /// while the multipliers grow): a Gauss–Newton projection step at a singular position.
@@ -385,6 +412,7 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
                 lambda,
                 iterations,
                 coarse: false,
+                regularized: false,
             };
             // Rounding level of an `N`-term sum; or stopped shrinking near the weight's floor.
             if (size <= 4.0 * f64::EPSILON * (N as f64).sqrt() && consistent) || scale == 0.0 {

@@ -41,7 +41,11 @@ pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
 /// the augmented Lagrangian of [`crate::augmented`]: it stays regular where `Phi_q` loses rank
 /// (singular positions, redundant constraints; `lambda` is then the minimum-norm one) and
 /// where `M` alone is singular (massless coordinates fixed by constraints), and costs the
-/// profile of `M + Phi_q^T Phi_q`, not `(N + M)^3`.
+/// profile of `M + Phi_q^T Phi_q`, not `(N + M)^3`. Near a singular position, where the
+/// exact solve would divide the state's drift by a vanishing singular value of `Phi_q`, the
+/// penalty-regularised solution ([`AugmentedLagrangian::solve_regularized`]): bounded and
+/// continuous, so an integrator steps through; the projection after each step restores
+/// the constraints.
 pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     t: f64,
     mass: &Matrix<N, N>,
@@ -50,7 +54,7 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     gamma: &Vector<M>,
 ) -> Result<(Vector<N>, Vector<M>)> {
     const { assert!(A == N + M, "augmented size must be N + M") };
-    let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve(f, gamma)?;
+    let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve_regularized(f, gamma)?;
     Ok((finite(t, s.x)?, finite(t, s.lambda)?))
 }
 
@@ -126,7 +130,7 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
     let solve = |r: &Matrix<N, N>, c: &Matrix<M, N>| -> Result<Matrix<N, N>> {
         let mut out = Matrix::<N, N>::zeros();
         for j in 0..N {
-            let s = al.solve(&(-r.column(j)), &(-c.column(j)))?;
+            let s = al.solve_regularized(&(-r.column(j)), &(-c.column(j)))?;
             out.set_column(j, &s.x);
         }
         Ok(out)
