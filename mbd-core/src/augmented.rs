@@ -209,6 +209,13 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
     /// Factor `A = M + alpha Phi_q^T Phi_q`. [`Error::SingularMassMatrix`] when `A` is not
     /// positive definite: `M` does not move mass in some motion the constraints allow.
     pub fn new(t: f64, mass: &'a Matrix<N, N>, phi_q: &Matrix<M, N>) -> Result<Self> {
+        let mut al = Self::unfactored(t, mass, phi_q)?;
+        al.fine = al.factor(FINE).ok_or(Error::SingularMassMatrix { t })?;
+        Ok(al)
+    }
+
+    /// The profile and scales of `(M, Phi_q)`, before any factorisation.
+    fn unfactored(t: f64, mass: &'a Matrix<N, N>, phi_q: &Matrix<M, N>) -> Result<Self> {
         let rows = SparseRows::new(phi_q);
         let mass_first: Vec<usize> = (0..N)
             .map(|i| (0..i).find(|&j| mass[(j, i)] != 0.0).unwrap_or(i))
@@ -234,7 +241,7 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
         if !(m_norm.is_finite() && p_norm.is_finite()) {
             return Err(Error::NonFinite { t });
         }
-        let mut al = AugmentedLagrangian {
+        Ok(AugmentedLagrangian {
             mass,
             mass_first,
             first,
@@ -250,9 +257,7 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
             },
             coarse: std::cell::OnceCell::new(),
             t,
-        };
-        al.fine = al.factor(FINE).ok_or(Error::SingularMassMatrix { t })?;
-        Ok(al)
+        })
     }
 
     fn alpha(&self, weight: f64) -> f64 {
@@ -437,6 +442,39 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
             lambda += (viol - b) * alpha;
         }
         Err((x, lambda))
+    }
+}
+
+/// The factored penalty matrix `T = M + w Phi_q^T Phi_q` with `w = weight max M_ii /
+/// max |row of Phi_q|^2`: the (approximate) Newton matrix of the index-3 augmented
+/// Lagrangian integrator, positive definite also where `Phi_q` loses rank.
+#[derive(Debug)]
+pub struct PenaltyMatrix<const N: usize> {
+    env: Envelope,
+    /// The absolute `w`.
+    pub w: f64,
+}
+
+impl<const N: usize> PenaltyMatrix<N> {
+    /// Factor `T` in its envelope; [`Error::SingularMassMatrix`] when it is not positive
+    /// definite.
+    pub fn new<const M: usize>(
+        t: f64,
+        mass: &Matrix<N, N>,
+        phi_q: &Matrix<M, N>,
+        weight: f64,
+    ) -> Result<Self> {
+        let al = AugmentedLagrangian::unfactored(t, mass, phi_q)?;
+        let env = al.factor(weight).ok_or(Error::SingularMassMatrix { t })?;
+        Ok(PenaltyMatrix {
+            env,
+            w: al.alpha(weight),
+        })
+    }
+
+    /// `T^-1 b`.
+    pub fn solve(&self, b: &Vector<N>) -> Vector<N> {
+        self.env.solve(b)
     }
 }
 
