@@ -46,7 +46,7 @@ pub struct Ali3 {
 }
 
 impl Ali3 {
-    /// Step `h`, weight `1e6`, `tol = 1e-9`, 50 iterations, `1e7` steps. Near a singular
+    /// Step `h`, weight `1e6`, `tol = 1e-9`, 400 iterations, `1e7` steps. Near a singular
     /// position the updates in the directions `Phi_q` lost shrink only sublinearly (the
     /// constraint is quadratic there), so `tol` bounds what is left, not rounding.
     pub fn new(h: f64) -> Self {
@@ -54,7 +54,7 @@ impl Ali3 {
             h,
             weight: 1e6,
             tol: 1e-9,
-            max_iterations: 50,
+            max_iterations: 400,
             max_steps: 10_000_000,
         }
     }
