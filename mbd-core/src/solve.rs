@@ -54,8 +54,45 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     gamma: &Vector<M>,
 ) -> Result<(Vector<N>, Vector<M>)> {
     const { assert!(A == N + M, "augmented size must be N + M") };
+    if A <= DENSE_MAX
+        && let Some(qdd_lambda) = dense_saddle_point::<N, M, A>(mass, f, phi_q, gamma)
+    {
+        return Ok(qdd_lambda);
+    }
     let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve_regularized(f, gamma)?;
     Ok((finite(t, s.x)?, finite(t, s.lambda)?))
+}
+
+/// Saddle-point systems up to this size (`N + M`) are first tried by one dense LU on the
+/// stack: for a small loop (a slider-crank's 5) it costs less than the augmented
+/// Lagrangian's profile setup and allocations.
+const DENSE_MAX: usize = 24;
+/// The LU answers only while its pivots stay within this ratio: a nearly singular
+/// system (a singular position, redundant rows) goes to the rank-robust solve.
+const DENSE_PIVOT_RATIO: f64 = 1e-8;
+
+/// `(qdd, lambda)` by dense LU of `[M Phi_q^T; Phi_q 0]` when it is well conditioned
+/// (pivot ratio above [`DENSE_PIVOT_RATIO`]) and the result finite; `None` otherwise.
+fn dense_saddle_point<const N: usize, const M: usize, const A: usize>(
+    mass: &Matrix<N, N>,
+    f: &Vector<N>,
+    phi_q: &Matrix<M, N>,
+    gamma: &Vector<M>,
+) -> Option<(Vector<N>, Vector<M>)> {
+    let k = Matrix::<A, A>::from_fn(|i, j| match (i < N, j < N) {
+        (true, true) => mass[(i, j)],
+        (true, false) => phi_q[(j - N, i)],
+        (false, true) => phi_q[(i - N, j)],
+        (false, false) => 0.0,
+    });
+    let lu = Lu::factor(k)?;
+    if lu.pivot_ratio() < DENSE_PIVOT_RATIO {
+        return None;
+    }
+    let z = lu.solve(&Vector::<A>::from_fn(|i, _| if i < N { f[i] } else { gamma[i - N] }));
+    let qdd = Vector::<N>::from_fn(|i, _| z[i]);
+    let lambda = Vector::<M>::from_fn(|i, _| z[N + i]);
+    z.iter().all(|v| v.is_finite()).then_some((qdd, lambda))
 }
 
 /// `x`, or [`Error::NonFinite`] if any entry is NaN or infinite: no NaN reaches the user.
