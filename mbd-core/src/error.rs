@@ -35,6 +35,11 @@ pub enum Error {
         iterations: usize,
         residual: f64,
     },
+    /// A closed loop reached a position where its closure has no regular solution: in
+    /// minimal coordinates, an `asin`/`acos` argument of the closed form reached or left
+    /// `[-1, 1]` (the loop cannot assemble there, or sits at a toggle or limit position
+    /// where two branches meet). `detail` names the coordinate and the configuration.
+    SingularPosition { t: f64, detail: String },
     /// An option or an argument is out of its domain (`what` names it).
     InvalidInput { what: &'static str, detail: String },
 }
@@ -80,6 +85,9 @@ impl fmt::Display for Error {
                 f,
                 "static equilibrium not found at t = {t}: residual {residual:.3e} after {iterations} Newton iterations"
             ),
+            Error::SingularPosition { t, detail } => {
+                write!(f, "singular position of a closed loop at t = {t}: {detail}")
+            }
             Error::InvalidInput { what, detail } => write!(f, "invalid `{what}`: {detail}"),
         }
     }

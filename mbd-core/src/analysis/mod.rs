@@ -12,6 +12,7 @@ pub mod dynamics;
 pub mod kinematics;
 pub mod projection;
 pub mod redundancy;
+pub mod singular;
 pub mod statics;
 
 pub use assembly::{assemble, consistent_velocities};
@@ -19,6 +20,7 @@ pub use dynamics::{Reactions, inverse_dynamics};
 pub use kinematics::{KinematicState, kinematic_sweep, kinematics};
 pub use projection::{constraint_drift, project_positions, project_state, project_velocities};
 pub use redundancy::{rank_and_redundant, redundant_constraints};
+pub use singular::check_passages;
 pub use statics::{static_equilibrium, static_equilibrium_constrained};
 
 use crate::model::{Matrix, Vector};
