@@ -89,7 +89,9 @@ fn dense_saddle_point<const N: usize, const M: usize, const A: usize>(
     if lu.pivot_ratio() < DENSE_PIVOT_RATIO {
         return None;
     }
-    let z = lu.solve(&Vector::<A>::from_fn(|i, _| if i < N { f[i] } else { gamma[i - N] }));
+    let z = lu.solve(&Vector::<A>::from_fn(|i, _| {
+        if i < N { f[i] } else { gamma[i - N] }
+    }));
     let qdd = Vector::<N>::from_fn(|i, _| z[i]);
     let lambda = Vector::<M>::from_fn(|i, _| z[N + i]);
     z.iter().all(|v| v.is_finite()).then_some((qdd, lambda))

@@ -47,7 +47,11 @@ pub fn check_passages<S: Constrained<N, M>, const N: usize, const M: usize, cons
         // Normalised by `|rows|_F^N`: scale-free, and small exactly when the smallest
         // singular value is small against the largest (a row norm would vanish with
         // the row at a position where a whole row of `Phi_q` vanishes).
-        let frobenius = rows.iter().map(|&r| p.row(r).norm_squared()).sum::<f64>().sqrt();
+        let frobenius = rows
+            .iter()
+            .map(|&r| p.row(r).norm_squared())
+            .sum::<f64>()
+            .sqrt();
         let norms = frobenius.powi(N as i32);
         nalgebra::DMatrix::<f64>::from_fn(N, N, |i, j| p[(rows[i], j)]).determinant() / norms
     };
@@ -98,8 +102,7 @@ pub fn check_passages<S: Constrained<N, M>, const N: usize, const M: usize, cons
 /// branches through a change point the determinant touches zero without changing sign).
 /// Returns the interpolated minimum of `|det|`.
 fn passage((d0, s0): (f64, f64), (d1, s1): (f64, f64), h: f64) -> Option<f64> {
-    if !(d0.is_finite() && d1.is_finite()) || d0 == 0.0 || d1 == 0.0 || d0.signum() != d1.signum()
-    {
+    if !(d0.is_finite() && d1.is_finite()) || d0 == 0.0 || d1 == 0.0 || d0.signum() != d1.signum() {
         return Some(0.0);
     }
     // |det| falling at the start and rising at the end: a minimum inside.
@@ -117,7 +120,11 @@ fn passage((d0, s0): (f64, f64), (d1, s1): (f64, f64), h: f64) -> Option<f64> {
                 + (x3 - x2) * m1
         })
         .fold(f64::INFINITY, |m, p| {
-            if p.signum() != d0.signum() { 0.0f64.min(m) } else { m.min(p.abs()) }
+            if p.signum() != d0.signum() {
+                0.0f64.min(m)
+            } else {
+                m.min(p.abs())
+            }
         });
     (min <= 1e-3 * d0.abs().max(d1.abs())).then_some(min)
 }

@@ -102,7 +102,8 @@ impl Ali3 {
             } else {
                 t0 + (k + 1) as f64 * h
             };
-            let (q1, qd1, qdd1) = self.step(sys, t_next, h, (&q, &qd, &qdd), &mut lambda, &mut stats)?;
+            let (q1, qd1, qdd1) =
+                self.step(sys, t_next, h, (&q, &qd, &qdd), &mut lambda, &mut stats)?;
             let y1 = stack(&q1, &qd1);
             if !y1.iter().chain(qdd1.iter()).all(|v| v.is_finite()) {
                 return Err(Error::NonFinite { t: t_next });
@@ -145,7 +146,12 @@ impl Ali3 {
         let factor = |q1: &Vector<N>, stats: &mut Stats| {
             stats.n_jac += 1;
             stats.n_lu += 1;
-            PenaltyMatrix::new(t1, &sys.mass_matrix(t1, q1), &sys.phi_q(t1, q1), self.weight)
+            PenaltyMatrix::new(
+                t1,
+                &sys.mass_matrix(t1, q1),
+                &sys.phi_q(t1, q1),
+                self.weight,
+            )
         };
         let mut tangent = factor(&q1, stats)?;
         let alpha = 4.0 * tangent.w / (h * h);

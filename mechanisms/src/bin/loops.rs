@@ -43,10 +43,10 @@ fn row(
 ) {
     // `--only NAME` runs one method's rows.
     let args: Vec<String> = std::env::args().collect();
-    if let Some(k) = args.iter().position(|a| a == "--only") {
-        if args.get(k + 1).is_some_and(|only| only != name) {
-            return;
-        }
+    if let Some(k) = args.iter().position(|a| a == "--only")
+        && args.get(k + 1).is_some_and(|only| only != name)
+    {
+        return;
     }
     let start = Instant::now();
     let out = run();
