@@ -195,6 +195,10 @@ pub struct SaddleSolution<const N: usize, const M: usize> {
     /// Whether the coarse (large) weight was needed: a near-singular position, where the
     /// multipliers carry only about `COARSE * eps` relative accuracy (`x` keeps full accuracy).
     pub coarse: bool,
+    /// Whether the iteration stopped before the constraint rows were met to rounding (see
+    /// [`AugmentedLagrangian::solve_regularized`]): `x` is then the penalty-regularised
+    /// solution and `lambda` the penalty forces, not exact multipliers.
+    pub regularized: bool,
 }
 
 /// Where an iteration ended: converged, or not (with the last iterate).
@@ -205,6 +209,13 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
     /// Factor `A = M + alpha Phi_q^T Phi_q`. [`Error::SingularMassMatrix`] when `A` is not
     /// positive definite: `M` does not move mass in some motion the constraints allow.
     pub fn new(t: f64, mass: &'a Matrix<N, N>, phi_q: &Matrix<M, N>) -> Result<Self> {
+        let mut al = Self::unfactored(t, mass, phi_q)?;
+        al.fine = al.factor(FINE).ok_or(Error::SingularMassMatrix { t })?;
+        Ok(al)
+    }
+
+    /// The profile and scales of `(M, Phi_q)`, before any factorisation.
+    fn unfactored(t: f64, mass: &'a Matrix<N, N>, phi_q: &Matrix<M, N>) -> Result<Self> {
         let rows = SparseRows::new(phi_q);
         let mass_first: Vec<usize> = (0..N)
             .map(|i| (0..i).find(|&j| mass[(j, i)] != 0.0).unwrap_or(i))
@@ -230,7 +241,7 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
         if !(m_norm.is_finite() && p_norm.is_finite()) {
             return Err(Error::NonFinite { t });
         }
-        let mut al = AugmentedLagrangian {
+        Ok(AugmentedLagrangian {
             mass,
             mass_first,
             first,
@@ -246,9 +257,7 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
             },
             coarse: std::cell::OnceCell::new(),
             t,
-        };
-        al.fine = al.factor(FINE).ok_or(Error::SingularMassMatrix { t })?;
-        Ok(al)
+        })
     }
 
     fn alpha(&self, weight: f64) -> f64 {
@@ -319,6 +328,29 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
             .map_err(|_| Error::SingularConstraintJacobian { t: self.t })
     }
 
+    /// As [`Self::solve`], but where the iteration does not meet the constraint rows to
+    /// rounding (`Phi_q` nearly rank-deficient and `b` carrying the drift of an integrated
+    /// state in its vanishing directions), the last iterate: the solution of the penalty
+    /// formulation `(M + alpha Phi_q^T Phi_q) x = u + alpha Phi_q^T b - Phi_q^T lambda`,
+    /// which stays bounded and continuous through a singular position, where the exact
+    /// solve divides the drift by a vanishing singular value. The right-hand side of a
+    /// closed loop uses it; the result says `regularized`.
+    pub fn solve_regularized(&self, u: &Vector<N>, b: &Vector<M>) -> Result<SaddleSolution<N, M>> {
+        match self.both(u, b) {
+            Ok(s) => Ok(s),
+            Err((x, lambda)) if x.iter().chain(lambda.iter()).all(|v| v.is_finite()) => {
+                Ok(SaddleSolution {
+                    x,
+                    lambda,
+                    iterations: FINE_ITERATIONS + MAX_ITERATIONS,
+                    coarse: true,
+                    regularized: true,
+                })
+            }
+            Err(_) => Err(Error::NonFinite { t: self.t }),
+        }
+    }
+
     /// As [`Self::solve`], but when `b` lies outside the range of a rank-deficient `Phi_q`,
     /// the `x` the iteration reached (it tends to the `M`-weighted least-squares solution
     /// while the multipliers grow): a Gauss–Newton projection step at a singular position.
@@ -385,6 +417,7 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
                 lambda,
                 iterations,
                 coarse: false,
+                regularized: false,
             };
             // Rounding level of an `N`-term sum; or stopped shrinking near the weight's floor.
             if (size <= 4.0 * f64::EPSILON * (N as f64).sqrt() && consistent) || scale == 0.0 {
@@ -409,6 +442,39 @@ impl<'a, const N: usize, const M: usize> AugmentedLagrangian<'a, N, M> {
             lambda += (viol - b) * alpha;
         }
         Err((x, lambda))
+    }
+}
+
+/// The factored penalty matrix `T = M + w Phi_q^T Phi_q` with `w = weight max M_ii /
+/// max |row of Phi_q|^2`: the (approximate) Newton matrix of the index-3 augmented
+/// Lagrangian integrator, positive definite also where `Phi_q` loses rank.
+#[derive(Debug)]
+pub struct PenaltyMatrix<const N: usize> {
+    env: Envelope,
+    /// The absolute `w`.
+    pub w: f64,
+}
+
+impl<const N: usize> PenaltyMatrix<N> {
+    /// Factor `T` in its envelope; [`Error::SingularMassMatrix`] when it is not positive
+    /// definite.
+    pub fn new<const M: usize>(
+        t: f64,
+        mass: &Matrix<N, N>,
+        phi_q: &Matrix<M, N>,
+        weight: f64,
+    ) -> Result<Self> {
+        let al = AugmentedLagrangian::unfactored(t, mass, phi_q)?;
+        let env = al.factor(weight).ok_or(Error::SingularMassMatrix { t })?;
+        Ok(PenaltyMatrix {
+            env,
+            w: al.alpha(weight),
+        })
+    }
+
+    /// `T^-1 b`.
+    pub fn solve(&self, b: &Vector<N>) -> Vector<N> {
+        self.env.solve(b)
     }
 }
 

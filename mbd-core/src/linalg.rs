@@ -50,6 +50,16 @@ impl<T: ComplexField<RealField = f64> + Copy, const N: usize> Lu<T, N> {
         Some(Lu { lu: a, perm })
     }
 
+    /// `min |U_ii| / max |U_ii|`: small when `A` is nearly singular (a cheap condition
+    /// indicator; the pivots of a partially pivoted LU).
+    pub fn pivot_ratio(&self) -> f64 {
+        let (lo, hi) = (0..N).fold((f64::INFINITY, 0.0f64), |(lo, hi), i| {
+            let p = self.lu[(i, i)].modulus();
+            (lo.min(p), hi.max(p))
+        });
+        if hi > 0.0 { lo / hi } else { 0.0 }
+    }
+
     /// Solve `A x = b` with the stored factors.
     pub fn solve(&self, b: &SVector<T, N>) -> SVector<T, N> {
         let mut x = SVector::<T, N>::from_fn(|i, _| b[self.perm[i]]);

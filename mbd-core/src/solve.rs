@@ -52,7 +52,11 @@ pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
 /// the augmented Lagrangian of [`crate::augmented`]: it stays regular where `Phi_q` loses rank
 /// (singular positions, redundant constraints; `lambda` is then the minimum-norm one) and
 /// where `M` alone is singular (massless coordinates fixed by constraints), and costs the
-/// profile of `M + Phi_q^T Phi_q`, not `(N + M)^3`.
+/// profile of `M + Phi_q^T Phi_q`, not `(N + M)^3`. Near a singular position, where the
+/// exact solve would divide the state's drift by a vanishing singular value of `Phi_q`, the
+/// penalty-regularised solution ([`AugmentedLagrangian::solve_regularized`]): bounded and
+/// continuous, so an integrator steps through; the projection after each step restores
+/// the constraints.
 pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     t: f64,
     mass: &Matrix<N, N>,
@@ -61,8 +65,47 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     gamma: &Vector<M>,
 ) -> Result<(Vector<N>, Vector<M>)> {
     const { assert!(A == N + M, "augmented size must be N + M") };
-    let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve(f, gamma)?;
+    if A <= DENSE_MAX
+        && let Some(qdd_lambda) = dense_saddle_point::<N, M, A>(mass, f, phi_q, gamma)
+    {
+        return Ok(qdd_lambda);
+    }
+    let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve_regularized(f, gamma)?;
     Ok((finite(t, s.x)?, finite(t, s.lambda)?))
+}
+
+/// Saddle-point systems up to this size (`N + M`) are first tried by one dense LU on the
+/// stack: for a small loop (a slider-crank's 5) it costs less than the augmented
+/// Lagrangian's profile setup and allocations.
+const DENSE_MAX: usize = 24;
+/// The LU answers only while its pivots stay within this ratio: a nearly singular
+/// system (a singular position, redundant rows) goes to the rank-robust solve.
+const DENSE_PIVOT_RATIO: f64 = 1e-8;
+
+/// `(qdd, lambda)` by dense LU of `[M Phi_q^T; Phi_q 0]` when it is well conditioned
+/// (pivot ratio above [`DENSE_PIVOT_RATIO`]) and the result finite; `None` otherwise.
+fn dense_saddle_point<const N: usize, const M: usize, const A: usize>(
+    mass: &Matrix<N, N>,
+    f: &Vector<N>,
+    phi_q: &Matrix<M, N>,
+    gamma: &Vector<M>,
+) -> Option<(Vector<N>, Vector<M>)> {
+    let k = Matrix::<A, A>::from_fn(|i, j| match (i < N, j < N) {
+        (true, true) => mass[(i, j)],
+        (true, false) => phi_q[(j - N, i)],
+        (false, true) => phi_q[(i - N, j)],
+        (false, false) => 0.0,
+    });
+    let lu = Lu::factor(k)?;
+    if lu.pivot_ratio() < DENSE_PIVOT_RATIO {
+        return None;
+    }
+    let z = lu.solve(&Vector::<A>::from_fn(|i, _| {
+        if i < N { f[i] } else { gamma[i - N] }
+    }));
+    let qdd = Vector::<N>::from_fn(|i, _| z[i]);
+    let lambda = Vector::<M>::from_fn(|i, _| z[N + i]);
+    z.iter().all(|v| v.is_finite()).then_some((qdd, lambda))
 }
 
 /// `x`, or [`Error::NonFinite`] if any entry is NaN or infinite: no NaN reaches the user.
@@ -137,7 +180,7 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
     let solve = |r: &Matrix<N, N>, c: &Matrix<M, N>| -> Result<Matrix<N, N>> {
         let mut out = Matrix::<N, N>::zeros();
         for j in 0..N {
-            let s = al.solve(&(-r.column(j)), &(-c.column(j)))?;
+            let s = al.solve_regularized(&(-r.column(j)), &(-c.column(j)))?;
             out.set_column(j, &s.x);
         }
         Ok(out)

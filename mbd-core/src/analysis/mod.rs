@@ -13,6 +13,7 @@ pub mod kinematics;
 pub mod linear;
 pub mod projection;
 pub mod redundancy;
+pub mod singular;
 pub mod statics;
 
 pub use assembly::{assemble, consistent_velocities};
@@ -21,6 +22,7 @@ pub use kinematics::{KinematicState, kinematic_sweep, kinematics};
 pub use linear::{Mode, ModeKind, NormalMode, constrained_modes, linearize, modes, undamped_modes};
 pub use projection::{constraint_drift, project_positions, project_state, project_velocities};
 pub use redundancy::{rank_and_redundant, redundant_constraints};
+pub use singular::check_passages;
 pub use statics::{static_equilibrium, static_equilibrium_constrained};
 
 use crate::model::{Matrix, Vector};

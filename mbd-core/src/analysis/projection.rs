@@ -30,7 +30,7 @@ pub fn constraint_drift<S: Constrained<N, M>, const N: usize, const M: usize>(
 /// The `M`-orthogonal correction `dx = -M^-1 J^T (J M^-1 J^T)^-1 r` that makes `J (x + dx) = J x - r`,
 /// as the saddle-point system `[M J^T; J 0] [dx; mu] = [0; -r]` solved by the augmented
 /// Lagrangian: where `J` lost rank, the `M`-weighted least-squares correction.
-fn metric_correction<S: Constrained<N, M>, const N: usize, const M: usize>(
+pub(crate) fn metric_correction<S: Constrained<N, M>, const N: usize, const M: usize>(
     sys: &S,
     t: f64,
     q: &Vector<N>,

@@ -9,6 +9,7 @@
 //! Memory is bounded by what is kept: `Record::Final` (or `Every(k)`, or `Times`) with
 //! `dense = false` holds a few states whatever the number of steps.
 
+pub mod ali3;
 pub mod auto;
 pub mod control;
 pub mod dense;
@@ -23,6 +24,7 @@ pub mod rk4;
 pub mod solution;
 pub mod tableau;
 
+pub use ali3::Ali3;
 pub use auto::Auto;
 pub use dense::Segment;
 pub use dop853::Dop853;

@@ -3,9 +3,9 @@
 //! every method, with the error of crank 0's tip against the one-coordinate reference and
 //! how far the cranks drifted from a parallelogram.
 //!
-//! `cargo run --release -p mechanisms --bin loops [-- --quick]`
+//! `cargo run --release -p mechanisms --bin loops [-- --quick] [--only DOPRI5|Radau5|ALI3-P|gen-a]`
 
-use mbd::integrate::{GeneralizedAlpha, Integrator, Radau5};
+use mbd::integrate::{Ali3, GeneralizedAlpha, Integrator, Radau5};
 use mbd::{Dopri5, OdeSystem, Options, Solution};
 use mechanisms::fourbar_assembly::{self as fa, FourBarAssembly};
 use std::time::Instant;
@@ -41,6 +41,13 @@ fn row(
     r: &Solution<2>,
     run: impl FnOnce() -> mbd::Result<Solution<{ fa::D }>>,
 ) {
+    // `--only NAME` runs one method's rows.
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(k) = args.iter().position(|a| a == "--only")
+        && args.get(k + 1).is_some_and(|only| only != name)
+    {
+        return;
+    }
     let start = Instant::now();
     let out = run();
     let secs = start.elapsed().as_secs_f64();
@@ -100,6 +107,18 @@ fn main() {
         };
         row("Radau5", &format!("{tol:.0e}"), &a, &reference, || {
             Radau5::new(opts).solve(&a, 0.0, y0, T1, &[])
+        });
+    }
+    let ali3: &[f64] = if quick {
+        &[1e-2, 1e-3]
+    } else {
+        &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
+    };
+    for &h in ali3 {
+        let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
+        let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
+        row("ALI3-P", &format!("h={h:.0e}"), &a, &reference, || {
+            Ali3::new(h).solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
         });
     }
     let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };

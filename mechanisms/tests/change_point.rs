@@ -1,0 +1,117 @@
+//! A change-point four-bar (crank a = 1, coupler b = 2, rocker c = 1.5, ground d = 2.5:
+//! s + l = p + q = 3.5) driven through its change point by `phi = phi0 + omega t`.
+//!
+//! At `phi = pi` the crank points away from the rocker's pivot, `|A D| = a + d = b + c`,
+//! and all four links lie on one line: the coupler along `+x` (`theta = 0`) and the rocker
+//! along `-x` (`psi = pi`). There `Phi_q` with respect to `(theta, psi)`,
+//! `[[-b sin theta, c sin psi], [b cos theta, -c cos psi]]`, has determinant
+//! `b c sin(theta - psi) = 0`: the two assembly branches cross, and the driven mechanism
+//! (no degree of freedom) may continue on either. Started at `phi0 = pi - 0.5` with
+//! `omega = 1`, the change point is at `t = 0.5`. Whatever the method, the run must not
+//! pass it silently: [`check_passages`] reports it as [`Error::SingularPosition`] at the
+//! first recorded time at or after `t = 0.5` (DOPRI5 and Radau5 creep up to it and turn
+//! back on the reflected branch, RK4 steps onto it and across), and finds nothing on a run that stops before it.
+
+use mbd::analysis::{NewtonOptions, check_passages, kinematics};
+use mbd::integrate::{Ali3, Integrator, Radau5, Rk4};
+use mbd::prelude::*;
+use mbd::{Dopri5, Error, Options, Solution};
+use std::f64::consts::PI;
+
+#[derive(Debug, Mechanism)]
+#[mechanism(planar)]
+#[coords(theta, psi)]
+#[drive(phi = phi0 + omega * t)]
+#[constraint(a * cos(phi) + b * cos(theta) == d + c * cos(psi))]
+#[constraint(a * sin(phi) + b * sin(theta) == c * sin(psi))]
+#[rigid(crank, mass = m, inertia = m * a * a / 12.0,
+        at = [a / 2.0 * cos(phi), a / 2.0 * sin(phi)], angle = phi)]
+#[rigid(coupler, mass = m, inertia = m * b * b / 12.0,
+        at = [a * cos(phi) + b / 2.0 * cos(theta), a * sin(phi) + b / 2.0 * sin(theta)],
+        angle = theta)]
+#[rigid(rocker, mass = m, inertia = m * c * c / 12.0,
+        at = [d + c / 2.0 * cos(psi), c / 2.0 * sin(psi)], angle = psi)]
+pub struct ChangePoint {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub d: f64,
+    pub phi0: f64,
+    pub omega: f64,
+    pub m: f64,
+}
+
+const T_CHANGE: f64 = 0.5;
+
+fn mechanism() -> ChangePoint {
+    ChangePoint {
+        a: 1.0,
+        b: 2.0,
+        c: 1.5,
+        d: 2.5,
+        phi0: PI - T_CHANGE,
+        omega: 1.0,
+        m: 1.0,
+    }
+}
+
+/// The assembled start on the branch with the coupler above the ground line.
+fn start(m: &ChangePoint) -> (mbd::Vector<2>, mbd::Vector<2>) {
+    let k = kinematics(
+        m,
+        0.0,
+        &mbd::Vector::<2>::new(0.3, 2.6),
+        &NewtonOptions::default(),
+    )
+    .unwrap();
+    assert!(m.phi(0.0, &k.q).amax() < 1e-12);
+    (k.q, k.qd)
+}
+
+fn runs(t1: f64) -> Vec<(&'static str, mbd::Result<Solution<4>>)> {
+    let m = mechanism();
+    let (q0, qd0) = start(&m);
+    let y0 = mbd::Vector::<4>::new(q0[0], q0[1], qd0[0], qd0[1]);
+    let o = Options {
+        rtol: 1e-8,
+        atol: 1e-8,
+        ..Default::default()
+    };
+    vec![
+        ("DOPRI5", Dopri5::new(o.clone()).solve(&m, 0.0, y0, t1, &[])),
+        ("Radau5", Radau5::new(o).solve(&m, 0.0, y0, t1, &[])),
+        ("RK4", Rk4::new(1e-3).solve(&m, 0.0, y0, t1, &[])),
+        (
+            "ALI3-P",
+            Ali3::new(1e-3).solve::<_, 2, 2, 4>(&m, 0.0, q0, qd0, t1, &[]),
+        ),
+    ]
+}
+
+#[test]
+fn every_method_reports_the_change_point() {
+    let m = mechanism();
+    for (name, run) in runs(1.0) {
+        let verdict = run.and_then(|sol| check_passages::<_, 2, 2, 4>(&m, &sol));
+        eprintln!("{name}: {verdict:?}");
+        match verdict {
+            Err(Error::SingularPosition { t, detail }) => {
+                assert!(
+                    (T_CHANGE..T_CHANGE + 0.2).contains(&t),
+                    "{name}: at t = {t}"
+                );
+                assert!(detail.contains("q = "), "{detail}");
+            }
+            other => panic!("{name}: expected SingularPosition, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn no_passage_before_the_change_point() {
+    let m = mechanism();
+    for (name, run) in runs(0.45) {
+        let sol = run.unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(check_passages::<_, 2, 2, 4>(&m, &sol), Ok(()), "{name}");
+    }
+}
