@@ -91,7 +91,7 @@ impl Ali3 {
         let mut recorder = Recorder::new(events, t0, y0, &Options::default());
         let mut stats = Stats::default();
         if h == 0.0 {
-            return Ok(recorder.finish(stats));
+            return recorder.finish(stats);
         }
         let (mut qdd, mut lambda) = sys.acceleration_and_multipliers(t0, &q0, &qd0)?;
         let (mut q, mut qd) = (q0, qd0);
@@ -123,7 +123,7 @@ impl Ali3 {
                 break;
             }
         }
-        Ok(recorder.finish(stats))
+        recorder.finish(stats)
     }
 
     /// One step to `t1`: Newton on `q1` with multiplier updates, then the velocity and
