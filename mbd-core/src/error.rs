@@ -145,7 +145,11 @@ impl fmt::Display for Error {
                 Num(*t)
             ),
             Error::SingularPosition { t, detail } => {
-                write!(f, "singular position of a closed loop at t = {t}: {detail}")
+                write!(
+                    f,
+                    "singular position of a closed loop at t = {}: {detail}",
+                    Num(*t)
+                )
             }
             Error::InvalidInput { what, detail } => write!(f, "invalid `{what}`: {detail}"),
             Error::InvalidParameter {

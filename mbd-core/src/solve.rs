@@ -54,9 +54,9 @@ pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
 /// where `M` alone is singular (massless coordinates fixed by constraints), and costs the
 /// profile of `M + Phi_q^T Phi_q`, not `(N + M)^3`. Near a singular position, where the
 /// exact solve would divide the state's drift by a vanishing singular value of `Phi_q`, the
-/// penalty-regularised solution ([`AugmentedLagrangian::solve_regularized`]): bounded and
-/// continuous, so an integrator steps through; the projection after each step restores
-/// the constraints.
+/// penalty-regularised solution ([`AugmentedLagrangian::solve_regularized`]) while it meets
+/// the constraints closely (an integrator steps through; the projection after each step
+/// restores them), else [`crate::Error::SingularPosition`].
 pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     t: f64,
     mass: &Matrix<N, N>,

@@ -100,7 +100,14 @@ fn every_method_reports_the_change_point() {
                     (T_CHANGE..T_CHANGE + 0.2).contains(&t),
                     "{name}: at t = {t}"
                 );
-                assert!(detail.contains("q = "), "{detail}");
+                // Found along the solution, the report names the configuration; found by
+                // the right-hand side (the solve cannot meet the constraints there), the
+                // residual it reached.
+                assert!(
+                    detail.contains("q = ")
+                        || detail.contains("constraint equations are met only to"),
+                    "{detail}"
+                );
             }
             other => panic!("{name}: expected SingularPosition, got {other:?}"),
         }

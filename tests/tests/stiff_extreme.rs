@@ -731,6 +731,7 @@ fn stops_at_the_singular_position<const D: usize>(
         let e = r.expect_err("must not pass the singular position");
         let t = match e {
             Error::SingularConstraintJacobian { t }
+            | Error::SingularPosition { t, .. }
             | Error::StepSizeUnderflow { t, .. }
             | Error::NewtonFailed { t, .. }
             | Error::AssemblyFailed { t, .. }
