@@ -133,8 +133,8 @@ impl OdeSystem<2> for VanDerPol {
 
 /// rtol = atol = 1e-6. radau5.f's tolerance map (`rtol' = 0.1 rtol^(2/3)`) is designed so
 /// that the global error meets the requested tolerance: we ask `|y(2) − ref| < rtol |ref|`
-/// componentwise (measured: below 2e-7, see the report printed by `--nocapture`). MATH.md
-/// notes a good Radau code needs a few hundred steps here; the brief's bound is 10⁴.
+/// componentwise (measured: below 2e-7, see the report printed by `--nocapture`). Hairer
+/// and Wanner's radau5 needs a few hundred steps here; the test allows 10⁴.
 fn vdp(y0: Vector<2>) -> Solution<2> {
     radau(1e-6, 1e-6)
         .solve(&VanDerPol { eps: 1e-6 }, 0.0, y0, 2.0, &[])

@@ -5,7 +5,7 @@
 //! law `s(t)` (with `s'`, `s''`), a relaxed one becomes 0. Reducing after differentiating
 //! keeps every time derivative exact, and the rows of the full equations that belong to
 //! driven and relaxed coordinates are exactly their reactions:
-//! `r_u = (M zdd - f + Phi_z^T lambda)_u` (Kane's projection form; see MATH.md).
+//! `r_u = (M zdd - f + Phi_z^T lambda)_u` (Kane's projection form; docs/ARCHITECTURE.md, Mechanics).
 
 use crate::closure;
 use crate::lower::{self, Binding, Context, Lowerer, Value};

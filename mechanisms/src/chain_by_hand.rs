@@ -250,7 +250,7 @@ pub fn explicit_source(name: &str, n: usize) -> String {
     src
 }
 
-/// The same chain in the joint-tree language (`#[chain]`, issue 7).
+/// The same chain in the joint-tree language (`#[chain]`).
 pub fn chain_source(name: &str, n: usize) -> String {
     format!(
         "#[derive(Debug, Clone, Mechanism)]\n#[gravity(0.0, -g)]\n\

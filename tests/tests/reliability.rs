@@ -1,4 +1,4 @@
-//! Run-time validation (issue 17): parameters that no mechanism has are typed errors naming
+//! Run-time validation: parameters that no mechanism has are typed errors naming
 //! them, never a wrong `Ok`; an event that cannot be evaluated stops the integration with
 //! its error; body-fixed offsets are measured from the body frame's origin for every body.
 
