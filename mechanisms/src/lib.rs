@@ -6,6 +6,7 @@
 //! discrepancy found in the manual; its tests run with `cargo test -p mechanisms caseNN`.
 
 pub mod accuracy;
+pub mod bricard;
 pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
