@@ -536,9 +536,8 @@ fn block_under_a_periodic_push_switches_at_the_closed_form_times() {
     let t_end = 10.0;
     let reference = shaken_reference(&b, t_end);
     assert!(reference.len() >= 6, "{reference:?}");
-    // Stuck, the state is constant while the push varies: the methods see no error and
-    // would step over a breakaway (switching functions are checked at step ends), so the
-    // step is bounded below the push's period 2 pi / w = 2.1 s.
+    // With the step bounded below the push's period 2 pi / w = 2.1 s; the same without
+    // `h_max` is `block_under_a_periodic_push_breaks_away_without_h_max`.
     let opts = Options {
         rtol: 1e-12,
         atol: 1e-12,
@@ -666,7 +665,7 @@ fn block_under_a_periodic_push_breaks_away_without_h_max() {
         .filter(|p| p[0].1 == Slip::Stick)
         .count();
     assert!(breakaways >= 5, "{reference:?}");
-for (tol, stop_tol) in [(1e-6, 1e-4), (1e-12, 1e-9)] {
+    for (tol, stop_tol) in [(1e-6, 1e-4), (1e-12, 1e-9)] {
         let opts = Options {
             rtol: tol,
             atol: tol,
