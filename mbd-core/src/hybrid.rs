@@ -159,17 +159,18 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
         let steps = part.t.len() - 1;
         let stopped = part.stopped_by;
         append(&mut out, part, events.len());
-        let (k, ts) = match (stopped, inside) {
-            (Some(i), _) if i < events.len() => {
-                out.stopped_by = Some(i);
-                break;
-            }
-            (Some(i), _) => (i - events.len(), None),
-            (None, Some((k, ts))) => {
+        // A crossing inside the step comes before any located at its (possibly cut) end.
+        let (k, ts) = match (inside, stopped) {
+            (Some((k, ts)), _) => {
                 // User events past the switch did not happen.
                 out.events.retain(|e| e.t <= ts);
                 (k, Some(ts))
             }
+            (None, Some(i)) if i < events.len() => {
+                out.stopped_by = Some(i);
+                break;
+            }
+            (None, Some(i)) => (i - events.len(), None),
             (None, None) => break,
         };
         // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
@@ -390,11 +391,9 @@ fn hidden<const D: usize>(
         let g1 = (gp - gm) / (2.0 * delta);
         let g2 = ((gp - ga) + (gm - ga)) / (delta * delta);
         let s = spacing(ga, g1, g2);
-        if !(s.is_finite() || s == f64::INFINITY) {
-            return None;
-        }
+        // NaN: the function could not be evaluated; infinite: it is flat to the end.
         let b = a + s.max(floor);
-        if !(b < t1) {
+        if s.is_nan() || b >= t1 {
             return None;
         }
         let gb = at(b);
@@ -491,6 +490,30 @@ mod tests {
         let y0 = Vector::<1>::zeros();
         let err = solve_with(&Rk4::new(0.3), &Thermostat, 0.0, y0, 10.0, &[], &settings);
         assert!(matches!(err, Err(Error::TooManySteps { .. })));
+    }
+
+    /// A function of `t` alone that dips below zero many times inside one long segment:
+    /// `0.5 - sin(10 t)` on `[0, 100]` first crosses at `asin(0.5) / 10`; a constant one
+    /// costs three evaluations.
+    #[test]
+    fn hidden_crossings_are_found_inside_a_long_step() {
+        let z = Vector::<1>::zeros();
+        let seg = Segment {
+            t0: 0.0,
+            h: 100.0,
+            coeffs: [z; 8],
+        };
+        let g = |t: f64, _y: &Vector<1>| 0.5 - (10.0 * t).sin();
+        let (a, b) = hidden(&g, &seg).expect("a crossing");
+        let t = bracketed(&g, &seg, a, b);
+        assert!((t - 0.5f64.asin() / 10.0).abs() <= 1e-15, "{t}");
+        let calls = std::cell::Cell::new(0);
+        let flat = |_t: f64, _y: &Vector<1>| {
+            calls.set(calls.get() + 1);
+            1.0
+        };
+        assert!(hidden(&flat, &seg).is_none());
+        assert_eq!(calls.get(), 3);
     }
 
     /// The refinement finds the crossing of `y - 1/3` on `y = t` to adjacent doubles.
