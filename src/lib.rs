@@ -173,9 +173,11 @@
 //! stopping where a sliding velocity reaches zero or a holding force reaches `mu_s |n|`
 //! (located on the dense output to adjacent doubles), choosing the next mode there as above,
 //! and restarting. While stuck, `s'' = 0` exactly. Stops and breakaways are found where a
-//! switching function changes sign between step ends: when a body is stuck under a load
-//! that varies in time, its state is constant and the steps grow, so bound them
-//! (`Options::h_max`) below the load's time scale. One `friction` per coordinate. The friction
+//! switching function changes sign between step ends and, inside each step, at samples
+//! spaced by the function's own slope and curvature: a body stuck under a load that varies
+//! in time has a constant state, so its steps grow, and a breakaway that comes and goes
+//! within one step is still found, without `Options::h_max` (a pulse shorter than the
+//! sample spacing its approach allows is the limit). One `friction` per coordinate. The friction
 //! of a joint is written on the joint's coordinate: a prismatic joint's slide, or a revolute
 //! joint's angle with `mu` a friction radius times the coefficient (a torque `mu r |n|`);
 //! with `#[body(.., reaction)]` the normal force can be the joint's force projected across

@@ -6,9 +6,15 @@
 //! `t`. At the switch the system picks the next mode ([`Hybrid::switch`]) and the
 //! integrator restarts there. No step crosses a discontinuity, so no step size collapses at
 //! one; the price is the restart (a new initial step) per switch, reported in [`Switch`].
+//!
+//! A sign change at step ends is not enough: in a mode where the state is constant while a
+//! switching function varies (a body stuck under a time-dependent push), the method sees no
+//! error and its steps grow without bound, and the function can cross zero and come back
+//! within one step. So every accepted step is also sampled inside ([`hidden`]), at a
+//! spacing set by the function's own slope and curvature there; no `h_max` is needed.
 
 use crate::error::{Error, Result};
-use crate::integrate::{Direction, Event, Integrator, Segment, Solution, Stats};
+use crate::integrate::{Direction, Event, Flow, Integrator, Segment, Solution, Stats, Step};
 use crate::model::{Hybrid, OdeSystem, Vector};
 
 /// Switches allowed by default before [`Error::TooManySteps`] (an accumulation of
@@ -80,11 +86,10 @@ impl<S: Hybrid<D>, const D: usize> OdeSystem<D> for InMode<'_, S, S::Mode> {
 /// switching functions cross zero. `events` are the user's (indices in the result refer to
 /// this slice); a terminal one ends the run as usual.
 ///
-/// Switching functions, like all events, are checked for a sign change at step ends. In a
-/// mode where the state does not change while a switching function does (a body stuck
-/// under a time-dependent push), the method sees no error and its steps grow without
-/// bound, so it could step over a breakaway: bound the step (`Options::h_max`) below the
-/// time scale of such loads.
+/// Switching functions are checked for a sign change at step ends and sampled inside each
+/// accepted step ([`hidden`]): a breakaway under a load that rises above the bound and falls
+/// back within one long step (a stuck body's state is constant, so nothing bounds its steps)
+/// is found without `Options::h_max`.
 pub fn solve<I: Integrator, S: Hybrid<D>, const D: usize>(
     integrator: &I,
     sys: &S,
@@ -140,21 +145,39 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
             .terminal()
         }));
         let view = InMode { sys, mode };
-        let part = integrator.solve(&view, t, y, t1, &all)?;
+        // A crossing inside a step that its ends did not show: (function, time).
+        let mut inside: Option<(usize, f64)> = None;
+        let mut watch =
+            |step: &Step<'_, D>| match step.segment.and_then(|s| first_inside(sys, &current, s)) {
+                Some(hit) => {
+                    inside = Some(hit);
+                    Flow::Stop
+                }
+                None => Flow::Continue,
+            };
+        let part = integrator.solve_observed(&view, t, y, t1, &all, Some(&mut watch))?;
         let steps = part.t.len() - 1;
         let stopped = part.stopped_by;
         append(&mut out, part, events.len());
-        let Some(i) = stopped else { break };
-        if i < events.len() {
-            out.stopped_by = Some(i);
-            break;
-        }
-        let k = i - events.len();
+        // A crossing inside the step comes before any located at its (possibly cut) end.
+        let (k, ts) = match (inside, stopped) {
+            (Some((k, ts)), _) => {
+                // User events past the switch did not happen.
+                out.events.retain(|e| e.t <= ts);
+                (k, Some(ts))
+            }
+            (None, Some(i)) if i < events.len() => {
+                out.stopped_by = Some(i);
+                break;
+            }
+            (None, Some(i)) => (i - events.len(), None),
+            (None, None) => break,
+        };
         // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
         // segment down to adjacent floating-point times.
         let g = |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k);
         if let Some(seg) = out.segments.last_mut() {
-            let ts = refine(&g, seg);
+            let ts = ts.unwrap_or_else(|| refine(&g, seg));
             if ts < seg.t1() {
                 *seg = seg.truncated(ts);
                 *out.t.last_mut().expect("a step") = ts;
@@ -269,10 +292,22 @@ fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>)
     if ga.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         (a, ga) = (seg.t0, at(seg.t0));
     }
-    let (mut b, mut gb) = (b0, at(b0));
+    let (b, gb) = (b0, at(b0));
     if !(ga > 0.0 && gb <= 0.0) {
         return b0;
     }
+    bracketed(g, seg, (a, ga), (b, gb))
+}
+
+/// The first time in `[a, b]` where `g` is no longer positive, given `g(a) > 0 >= g(b)`, to
+/// adjacent doubles (regula falsi, Illinois, bisection where the secant leaves the bracket).
+fn bracketed<const D: usize>(
+    g: &impl Fn(f64, &Vector<D>) -> f64,
+    seg: &Segment<D>,
+    (mut a, mut ga): (f64, f64),
+    (mut b, mut gb): (f64, f64),
+) -> f64 {
+    let at = |t: f64| g(t, &seg.eval(t));
     let mut kept_a = 0u8;
     let mut kept_b = 0u8;
     for _ in 0..200 {
@@ -303,6 +338,92 @@ fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>)
         }
     }
     b
+}
+
+/// Samples of one switching function per accepted step, at most: the spacing never falls
+/// below `h / MAX_SAMPLES` of the step `h`.
+pub const MAX_SAMPLES: usize = 4096;
+
+/// The earliest crossing inside `seg` of any switching function of `mode` that the step's
+/// ends did not show, located to adjacent doubles: `(function, time)`.
+fn first_inside<S: Hybrid<D>, const D: usize>(
+    sys: &S,
+    mode: &S::Mode,
+    seg: &Segment<D>,
+) -> Option<(usize, f64)> {
+    (0..S::SWITCHES)
+        .filter_map(|k| {
+            let g = |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k);
+            hidden(&g, seg).map(|(a, b)| (k, bracketed(&g, seg, a, b)))
+        })
+        .min_by(|x, y| x.1.total_cmp(&y.1))
+}
+
+/// A bracket `((a, g(a) > 0), (b, g(b) <= 0))` of a zero of `g` inside `seg` (before its
+/// end), or `None`.
+///
+/// The rule: from each sample `a` (`g > 0`), the slope `g1` and curvature `g2` are taken by
+/// central differences (spacing `1e-4 h`) on the dense output, and the next sample is the
+/// farthest `s` where this local model cannot reach zero, `|g1| s + |g2| s^2 / 2 <= g`;
+/// where the model falls monotonically through zero at `tau`, the next sample is at
+/// `1.5 tau` instead, so that a transversal crossing is reached in a few samples rather
+/// than approached forever. A constant function costs three evaluations per step; a load
+/// that nears the bound is sampled more densely as it nears it. Limits: the model is local,
+/// so a change that begins and ends between two samples (a pulse shorter than the spacing
+/// the function's derivatives allowed at the sample before it) is not seen, nor a dip below
+/// zero shorter than `h / MAX_SAMPLES`; the derivatives are only as good as the dense
+/// output, within the method's tolerance.
+fn hidden<const D: usize>(
+    g: &impl Fn(f64, &Vector<D>) -> f64,
+    seg: &Segment<D>,
+) -> Option<((f64, f64), (f64, f64))> {
+    let (t0, t1) = (seg.t0, seg.t1());
+    let h = t1 - t0;
+    let at = |t: f64| g(t, &seg.eval(t));
+    let (mut a, mut ga) = (t0, at(t0));
+    if !(h > 0.0 && ga > 0.0 && ga.is_finite()) {
+        return None;
+    }
+    let delta = 1e-4 * h;
+    let floor = h / MAX_SAMPLES as f64;
+    loop {
+        let (gm, gp) = (at(a - delta), at(a + delta));
+        let g1 = (gp - gm) / (2.0 * delta);
+        let g2 = ((gp - ga) + (gm - ga)) / (delta * delta);
+        let s = spacing(ga, g1, g2);
+        // NaN: the function could not be evaluated; infinite: it is flat to the end.
+        let b = a + s.max(floor);
+        if s.is_nan() || b >= t1 {
+            return None;
+        }
+        let gb = at(b);
+        if gb <= 0.0 {
+            return Some(((a, ga), (b, gb)));
+        }
+        if !gb.is_finite() {
+            return None;
+        }
+        (a, ga) = (b, gb);
+    }
+}
+
+/// How far the local model `g + g1 s + g2 s^2 / 2` (`g > 0`) may be followed ([`hidden`]).
+fn spacing(g: f64, g1: f64, g2: f64) -> f64 {
+    let (b, c) = (g1.abs(), g2.abs());
+    let safe = if b == 0.0 && c == 0.0 {
+        f64::INFINITY
+    } else {
+        2.0 * g / (b + (b * b + 2.0 * c * g).sqrt())
+    };
+    // The model's first zero, and whether it falls all the way to 1.5 times that.
+    let disc = g1 * g1 - 2.0 * g2 * g;
+    if g1 < 0.0 && disc >= 0.0 {
+        let tau = 2.0 * g / (-g1 + disc.sqrt());
+        if g1 + g2 * 1.5 * tau < 0.0 {
+            return safe.max(1.5 * tau);
+        }
+    }
+    safe
 }
 
 #[cfg(test)]
@@ -369,6 +490,30 @@ mod tests {
         let y0 = Vector::<1>::zeros();
         let err = solve_with(&Rk4::new(0.3), &Thermostat, 0.0, y0, 10.0, &[], &settings);
         assert!(matches!(err, Err(Error::TooManySteps { .. })));
+    }
+
+    /// A function of `t` alone that dips below zero many times inside one long segment:
+    /// `0.5 - sin(10 t)` on `[0, 100]` first crosses at `asin(0.5) / 10`; a constant one
+    /// costs three evaluations.
+    #[test]
+    fn hidden_crossings_are_found_inside_a_long_step() {
+        let z = Vector::<1>::zeros();
+        let seg = Segment {
+            t0: 0.0,
+            h: 100.0,
+            coeffs: [z; 8],
+        };
+        let g = |t: f64, _y: &Vector<1>| 0.5 - (10.0 * t).sin();
+        let (a, b) = hidden(&g, &seg).expect("a crossing");
+        let t = bracketed(&g, &seg, a, b);
+        assert!((t - 0.5f64.asin() / 10.0).abs() <= 1e-15, "{t}");
+        let calls = std::cell::Cell::new(0);
+        let flat = |_t: f64, _y: &Vector<1>| {
+            calls.set(calls.get() + 1);
+            1.0
+        };
+        assert!(hidden(&flat, &seg).is_none());
+        assert_eq!(calls.get(), 3);
     }
 
     /// The refinement finds the crossing of `y - 1/3` on `y = t` to adjacent doubles.

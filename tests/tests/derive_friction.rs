@@ -536,9 +536,8 @@ fn block_under_a_periodic_push_switches_at_the_closed_form_times() {
     let t_end = 10.0;
     let reference = shaken_reference(&b, t_end);
     assert!(reference.len() >= 6, "{reference:?}");
-    // Stuck, the state is constant while the push varies: the methods see no error and
-    // would step over a breakaway (switching functions are checked at step ends), so the
-    // step is bounded below the push's period 2 pi / w = 2.1 s.
+    // With the step bounded below the push's period 2 pi / w = 2.1 s; the same without
+    // `h_max` is `block_under_a_periodic_push_breaks_away_without_h_max`.
     let opts = Options {
         rtol: 1e-12,
         atol: 1e-12,
@@ -640,4 +639,72 @@ fn prismatic_joint_friction_stops_the_sled_like_the_crate() {
     let (_, y) = run.solution.last();
     assert_relative_eq!(y[0], s_stop, max_relative = 1e-12);
     assert_eq!(y[1], 0.0);
+}
+
+/// The periodic push of [`block_under_a_periodic_push_switches_at_the_closed_form_times`]
+/// without `h_max`: stuck, the state is constant, so the methods' steps grow without bound
+/// and the push can rise above `mu_s m g` and fall back within one step; the driver samples
+/// the switching functions inside each step and must still find every breakaway, at loose
+/// and tight tolerances. A breakaway from rest depends on `t` alone (the stuck state is
+/// exact), so its time is held to the closed form to 1e-9 at any tolerance; the stops
+/// (the end of a slide) carry the method's error, so the loose runs hold them to 1e-4 s.
+#[test]
+fn block_under_a_periodic_push_breaks_away_without_h_max() {
+    let b = Shaken {
+        m: 1.0,
+        g: 9.81,
+        mu_k: 0.3,
+        mu_s: 0.5,
+        p: 5.5,
+        w: 3.0,
+    };
+    let t_end = 40.0;
+    let reference = shaken_reference(&b, t_end);
+    let breakaways = reference
+        .windows(2)
+        .filter(|p| p[0].1 == Slip::Stick)
+        .count();
+    assert!(breakaways >= 5, "{reference:?}");
+    for (tol, stop_tol) in [(1e-6, 1e-4), (1e-12, 1e-9)] {
+        let opts = Options {
+            rtol: tol,
+            atol: tol,
+            ..Options::default()
+        };
+        let y0 = b.initial_state();
+        for (name, run) in [
+            (
+                "DOPRI5",
+                mbd::hybrid::solve(&Dopri5::new(opts.clone()), &b, 0.0, y0, t_end, &[]),
+            ),
+            (
+                "Radau5",
+                mbd::hybrid::solve(&Radau5::new(opts.clone()), &b, 0.0, y0, t_end, &[]),
+            ),
+        ] {
+            let run = run.unwrap_or_else(|e| panic!("{name} {tol:e}: {e:?}"));
+            let got: Vec<(f64, Slip)> = run.switches.iter().map(|s| (s.t, s.to[0])).collect();
+            assert_eq!(
+                got.len(),
+                reference.len(),
+                "{name} {tol:e}: {got:?} vs {reference:?}"
+            );
+            let mut from = Slip::Stick;
+            for (g, r) in got.iter().zip(&reference) {
+                assert_eq!(g.1, r.1, "{name} {tol:e}: {got:?} vs {reference:?}");
+                let allowed = if from == Slip::Stick {
+                    1e-9 * r.0
+                } else {
+                    stop_tol
+                };
+                assert!(
+                    (g.0 - r.0).abs() <= allowed,
+                    "{name} {tol:e}: {} vs {} (from {from:?})",
+                    g.0,
+                    r.0
+                );
+                from = r.1;
+            }
+        }
+    }
 }

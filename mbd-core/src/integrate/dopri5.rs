@@ -51,7 +51,10 @@ impl Dopri5 {
 ///    either is below `1e-5`; `h = min(h, h_max)`.
 /// 2. One explicit Euler step gives `f1 = f(t0 + h, y0 + h f0)` and `d2 = ||(f1 - f0) / sk|| / h`.
 /// 3. `h1 = (0.01 / max(d1, d2))^(1/order)`, or `max(1e-6, 1e-3 h)` when that max is below
-///    `1e-15`; the guess is `min(100 h, h1, h_max)`.
+///    `1e-15`; the guess is `min(100 h, h1, h_max)`, raised to `1024 eps |t0|` (a state
+///    that is nearly zero against `atol`, such as a position left at 1e-13 by a stop, would
+///    otherwise give a guess below the `16 eps |t|` at which the methods stop with
+///    `StepSizeUnderflow`; the step control takes it from there).
 ///
 /// Makes one `rhs` call.
 #[allow(
@@ -97,7 +100,8 @@ pub fn initial_step<S: OdeSystem<D>, const D: usize>(
     } else {
         (0.01 / der12).powf(1.0 / order as f64)
     };
-    Ok((100.0 * h).min(h1).min(h_max))
+    let floor = (1024.0 * f64::EPSILON * t0.abs()).min(h_max);
+    Ok((100.0 * h).min(h1).min(h_max).max(floor))
 }
 
 /// Hairer's continuous extension of a DOPRI5 step (`dopri5.f` `CONTD5`),
