@@ -529,7 +529,43 @@ fn tensor(e: &Expr, body: &Ident, definite: bool, env: &HashMap<String, f64>, er
             ""
         };
         errors.over(e, format!("the inertia of `{body}` is not {need}{with}"));
+        return;
     }
+    // A mass distribution has `I = tr(S) E - S` with `S = sum m r r^T` positive
+    // semi-definite, so `S = tr(I)/2 E - I` must be too: each principal moment is at most the
+    // sum of the other two (the triangle inequality).
+    let half = (m[0][0] + m[1][1] + m[2][2]) / 2.0;
+    let s = [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { half } else { 0.0 } - m[i][j]));
+    if !semi_definite(&s, tol) {
+        let with = if mentions_param(e, env) {
+            " (with the parameters' defaults)"
+        } else {
+            ""
+        };
+        errors.over(
+            e,
+            format!(
+                "the principal moments of inertia of `{body}` break the triangle inequality{with}: \
+                 no body has them (each must be at most the sum of the other two)"
+            ),
+        );
+    }
+}
+
+/// Every eigenvalue of the symmetric `m` at least `-tol` (relative to `m`'s scale): the
+/// coefficients of its characteristic polynomial (trace, sum of principal 2x2 minors,
+/// determinant) are then all non-negative.
+fn semi_definite(m: &[[f64; 3]; 3], tol: f64) -> bool {
+    let scale = m
+        .iter()
+        .flatten()
+        .fold(0.0f64, |a, v| a.max(v.abs()))
+        .max(tol);
+    let trace = m[0][0] + m[1][1] + m[2][2];
+    let minors = (m[0][0] * m[1][1] - m[0][1] * m[1][0])
+        + (m[0][0] * m[2][2] - m[0][2] * m[2][0])
+        + (m[1][1] * m[2][2] - m[1][2] * m[2][1]);
+    trace >= -tol && minors >= -tol * scale && det3(m) >= -tol * scale * scale
 }
 
 fn det3(m: &[[f64; 3]; 3]) -> f64 {
