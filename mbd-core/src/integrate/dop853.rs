@@ -2,7 +2,7 @@
 
 use super::control::{PiController, StiffnessDetector};
 use super::dop853_tableau::{DOP853, DOP853_BHH, DOP853_DENSE_A, DOP853_DENSE_C, DOP853_DENSE_D};
-use super::dopri5::initial_step;
+use super::dopri5::first_stage;
 use super::non_finite;
 use super::tableau::Erk;
 use super::{
@@ -148,18 +148,8 @@ impl Integrator for Dop853 {
         // k[0..12] the step's stages, k[12] = f(t + h, y1), k[13..16] the dense stages.
         let mut k = [Vector::<D>::zeros(); 16];
         let mut z = [Vector::<D>::zeros(); 12];
-        k[0] = sys.rhs(t0, &y0)?;
-        stats.n_rhs += 1;
-        if non_finite(&k[0]) {
-            return Err(Error::NonFinite { t: t0 });
-        }
-        let mut h = match opts.h0 {
-            Some(h0) => h0.min(h_max),
-            None => {
-                stats.n_rhs += 1;
-                initial_step(sys, t0, &y0, &k[0], 8, h_max, rtol, atol)?
-            }
-        };
+        let mut h;
+        (k[0], h) = first_stage(sys, t0, &y0, 8, opts, h_max, &mut stats)?;
 
         let mut control = Self::controller();
         let (mut t, mut y) = (t0, y0);

@@ -104,6 +104,32 @@ pub fn initial_step<S: OdeSystem<D>, const D: usize>(
     Ok((100.0 * h).min(h1).min(h_max).max(floor))
 }
 
+/// The first stage `f(t0, y0)` of an explicit pair of order `order`, and its first step:
+/// `Options::h0` where given, else [`initial_step`]. Counts its `rhs` calls in `stats`.
+pub(super) fn first_stage<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t0: f64,
+    y0: &Vector<D>,
+    order: i32,
+    opts: &Options,
+    h_max: f64,
+    stats: &mut Stats,
+) -> Result<(Vector<D>, f64)> {
+    let f0 = sys.rhs(t0, y0)?;
+    stats.n_rhs += 1;
+    if non_finite(&f0) {
+        return Err(Error::NonFinite { t: t0 });
+    }
+    let h = match opts.h0 {
+        Some(h0) => h0.min(h_max),
+        None => {
+            stats.n_rhs += 1;
+            initial_step(sys, t0, y0, &f0, order, h_max, opts.rtol, opts.atol)?
+        }
+    };
+    Ok((f0, h))
+}
+
 /// Hairer's continuous extension of a DOPRI5 step (`dopri5.f` `CONTD5`),
 /// `y0 + theta (r2 + (1-theta) (r3 + theta (r4 + (1-theta) r5)))` with `r2 = y1 - y0`,
 /// `r3 = h k1 - r2`, `r4 = r2 - h k7 - r3`, `r5 = h sum d_i k_i`, expanded into monomials:
@@ -162,18 +188,8 @@ impl Integrator for Dopri5 {
 
         let mut k = [Vector::<D>::zeros(); 7];
         let mut z = [Vector::<D>::zeros(); 7];
-        k[0] = sys.rhs(t0, &y0)?;
-        stats.n_rhs += 1;
-        if non_finite(&k[0]) {
-            return Err(Error::NonFinite { t: t0 });
-        }
-        let mut h = match opts.h0 {
-            Some(h0) => h0.min(h_max),
-            None => {
-                stats.n_rhs += 1;
-                initial_step(sys, t0, &y0, &k[0], 5, h_max, rtol, atol)?
-            }
-        };
+        let mut h;
+        (k[0], h) = first_stage(sys, t0, &y0, 5, opts, h_max, &mut stats)?;
 
         let mut control = PiController::new();
         let (mut t, mut y) = (t0, y0);
