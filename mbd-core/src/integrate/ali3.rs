@@ -20,7 +20,9 @@
 //! [`crate::augmented`]): the projected accelerations are the ones nearest the rule's, not
 //! a minimum-norm solution that jumps at the singular instant.
 
-use super::{Options, Recorder, Segment, Solution, Stats, positive_finite, validate_problem};
+use super::{
+    Options, Recorder, Solution, Stats, positive_finite, second_order_end, stack, validate_problem,
+};
 use crate::augmented::PenaltyMatrix;
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
@@ -74,9 +76,6 @@ impl Ali3 {
         positive_finite("h", self.h)?;
         positive_finite("weight", self.weight)?;
         positive_finite("tol", self.tol)?;
-        let stack = |q: &Vector<N>, qd: &Vector<N>| {
-            Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { qd[i - N] })
-        };
         let y0 = stack(&q0, &qd0);
         validate_problem(t0, &y0, t1)?;
         let steps = ((t1 - t0) / self.h).ceil().max(1.0);
@@ -104,20 +103,9 @@ impl Ali3 {
             };
             let (q1, qd1, qdd1) =
                 self.step(sys, t_next, h, (&q, &qd, &qdd), &mut lambda, &mut stats)?;
-            let y1 = stack(&q1, &qd1);
-            if !y1.iter().chain(qdd1.iter()).all(|v| v.is_finite()) {
-                return Err(Error::NonFinite { t: t_next });
-            }
+            let (y1, seg) = second_order_end(t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
             stats.n_steps += 1;
             stats.n_accepted += 1;
-            let seg = Segment::hermite(
-                t,
-                t_next - t,
-                &stack(&q, &qd),
-                &stack(&qd, &qdd),
-                &y1,
-                &stack(&qd1, &qdd1),
-            );
             (q, qd, qdd) = (q1, qd1, qdd1);
             if recorder.accept(seg, &y1) == Flow::Stop {
                 break;

@@ -23,8 +23,8 @@
 //! if Newton is slow). Positions and velocities converge with order 2; the position
 //! constraints hold to the Newton tolerance at every step (no drift).
 
-use super::positive_finite;
-use super::{Observer, Record, Recorder, Segment, Solution, Stats, validate_problem};
+use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
+use super::{positive_finite, second_order_end, stack};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
@@ -267,12 +267,6 @@ impl GeneralizedAlpha {
         const { assert!(K >= N, "the unknowns start with q1") };
         let c = Coefficients::from_rho_inf(self.rho_inf)?;
         self.validate()?;
-        let stack = |q: &Vector<N>, qd: &Vector<N>| {
-            let mut y = Vector::<D>::zeros();
-            y.fixed_rows_mut::<N>(0).copy_from(q);
-            y.fixed_rows_mut::<N>(N).copy_from(qd);
-            y
-        };
         let y0 = stack(&q0, &qd0);
         validate_problem(t0, &y0, t1)?;
         let steps = ((t1 - t0) / self.h).ceil().max(1.0);
@@ -371,20 +365,9 @@ impl GeneralizedAlpha {
                 return Err(failed);
             }
             let (q1, a1, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
-            let y1 = stack(&q1, &qd1);
-            if !y1.iter().chain(qdd1.iter()).all(|v| v.is_finite()) {
-                return Err(Error::NonFinite { t: t_next });
-            }
+            let (y1, seg) = second_order_end(t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
             stats.n_steps += 1;
             stats.n_accepted += 1;
-            let seg = Segment::hermite(
-                t,
-                t_next - t,
-                &stack(&q, &qd),
-                &stack(&qd, &qdd),
-                &y1,
-                &stack(&qd1, &qdd1),
-            );
             (q, qd, qdd, a) = (q1, qd1, qdd1, a1);
             if recorder.accept(seg, &y1) == Flow::Stop {
                 break;

@@ -149,6 +149,34 @@ pub(crate) fn non_finite<const D: usize>(v: &Vector<D>) -> bool {
     !v.iter().all(|x| x.is_finite())
 }
 
+/// `[q; qd]`, the first-order state of a second-order integrator.
+pub(crate) fn stack<const N: usize, const D: usize>(q: &Vector<N>, qd: &Vector<N>) -> Vector<D> {
+    Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { qd[i - N] })
+}
+
+/// The end of a second-order step from `t` to `t1`: the state `[q1; qd1]` and the cubic
+/// Hermite segment through both ends, or [`Error::NonFinite`] at `t1`.
+pub(crate) fn second_order_end<const N: usize, const D: usize>(
+    t: f64,
+    t1: f64,
+    (q, qd, qdd): (&Vector<N>, &Vector<N>, &Vector<N>),
+    (q1, qd1, qdd1): (&Vector<N>, &Vector<N>, &Vector<N>),
+) -> Result<(Vector<D>, Segment<D>)> {
+    let y1 = stack(q1, qd1);
+    if non_finite(&y1) || non_finite(qdd1) {
+        return Err(Error::NonFinite { t: t1 });
+    }
+    let seg = Segment::hermite(
+        t,
+        t1 - t,
+        &stack(q, qd),
+        &stack(qd, qdd),
+        &y1,
+        &stack(qd1, qdd1),
+    );
+    Ok((y1, seg))
+}
+
 impl Options {
     /// Reject options outside their domain: `rtol > 0` and `atol >= 0` finite, `h0` and
     /// `h_max` finite and positive when given, `max_steps >= 1`.
