@@ -1,0 +1,207 @@
+//! Constraints: the user's equations and the loop-closing joints in full coordinates
+//! (`gather`), then, reduced, their Jacobians and `gamma` in the free coordinates
+//! (`in_free_coordinates`) and what makes a set of them unusable (`check`).
+
+use super::kinematics::{Frame, Kinematics};
+use super::scope::Scope;
+use super::{Coord, Role};
+use crate::closure;
+use crate::lower::Context;
+use crate::parse::{Dim, Mechanism};
+use crate::sym::{Expr, Sym};
+use crate::tree;
+use proc_macro2::TokenStream;
+use syn::Ident;
+
+/// The constraint equations `Phi = 0` with the tokens each error is reported over.
+pub(super) struct Constraints<'a> {
+    pub phi: Vec<Expr>,
+    pub tokens: Vec<&'a TokenStream>,
+}
+
+/// The reduced constraints in the free coordinates, with a multiplier symbol each.
+pub(super) struct InFree {
+    pub phi_q: Vec<Vec<Expr>>,
+    pub phi_t: Vec<Expr>,
+    pub gamma: Vec<Expr>,
+    pub lambdas: Vec<Expr>,
+}
+
+/// `#[constraint(..)]`s, then two (planar) or three (spatial) equations per closing joint.
+pub(super) fn gather<'a>(
+    ast: &'a Mechanism,
+    scope: &mut Scope,
+    kin: &Kinematics,
+) -> Constraints<'a> {
+    let mut out = Constraints {
+        phi: Vec::new(),
+        tokens: Vec::new(),
+    };
+    for c in &ast.constraints {
+        let mut lw = scope.lowerer(None);
+        if let (Some(l), Some(r)) = (
+            lw.scalar(&c.lhs, Context::Kinematics),
+            lw.scalar(&c.rhs, Context::Kinematics),
+        ) {
+            out.phi.push(scope.g.sub(l, r));
+            out.tokens.push(&c.tokens);
+        }
+    }
+    // Loop-closing joints: two coincident points; two equations (planar: a revolute joint),
+    // three (spatial: a spherical joint).
+    for cl in &ast.closures {
+        let pa = closure_point(scope, kin, &cl.a, &cl.at_a);
+        let pb = closure_point(scope, kin, &cl.b, &cl.at_b);
+        if let (Some(pa), Some(pb)) = (pa, pb) {
+            for (a, b) in pa.into_iter().zip(pb) {
+                out.phi.push(scope.g.sub(a, b));
+                out.tokens.push(&cl.tokens);
+            }
+        }
+    }
+    out
+}
+
+/// A point of a tree body (`None`: the ground) at `at` in its frame.
+fn closure_point(
+    scope: &mut Scope,
+    kin: &Kinematics,
+    body: &Option<Ident>,
+    at: &Option<syn::Expr>,
+) -> Option<Vec<Expr>> {
+    let dim = scope.dim;
+    let local = match at {
+        Some(e) => scope
+            .lowerer(None)
+            .vector(e, Context::Constant, dim.len())?,
+        None => vec![scope.g.zero(); dim.len()],
+    };
+    let unknown = |scope: &mut Scope, b: &Ident| {
+        scope.errors.at(
+            b.span(),
+            format!("unknown tree body `{b}`: a closure joins `body`/`chain` bodies or `ground`"),
+        );
+    };
+    let g = &mut scope.g;
+    match (body, dim) {
+        (None, _) => Some(local),
+        (Some(b), Dim::Planar) => {
+            let Some(&i) = kin.planar.node_of.get(&b.to_string()) else {
+                unknown(scope, b);
+                return None;
+            };
+            let node = &kin.planar.nodes[i];
+            let arm = tree::rotate(g, node.angle, [local[0], local[1]]);
+            let origin = node.origin;
+            Some(vec![g.add(origin[0], arm[0]), g.add(origin[1], arm[1])])
+        }
+        (Some(b), Dim::Spatial) => {
+            let Some(&i) = kin.spatial.frame_of.get(&b.to_string()) else {
+                unknown(scope, b);
+                return None;
+            };
+            let Frame { origin, rot, .. } = kin.spatial.frames[i];
+            Some(
+                (0..3)
+                    .map(|k| {
+                        let arm = g.dot(&rot[k], &local);
+                        g.add(origin[k], arm)
+                    })
+                    .collect(),
+            )
+        }
+    }
+}
+
+/// `Phi_q`, `Phi_t` and `gamma = -(d/dt (Phi_q q' + Phi_t))|_{q''=0}` of the reduced `phi`
+/// over free coordinates `free_idx`, and a multiplier per constraint.
+pub(super) fn in_free_coordinates(
+    scope: &mut Scope,
+    coords: &[Coord],
+    free_idx: &[usize],
+    qsyms: &[Sym],
+    phi: &[Expr],
+) -> InFree {
+    let g = &mut scope.g;
+    let ts = g.as_sym(scope.t).expect("symbol");
+    let phi_q: Vec<Vec<Expr>> = phi
+        .iter()
+        .map(|p| qsyms.iter().map(|s| g.diff(*p, *s)).collect())
+        .collect();
+    let phi_t: Vec<Expr> = phi.iter().map(|p| g.diff(*p, ts)).collect();
+    let qd: Vec<Expr> = free_idx.iter().map(|&i| coords[i].zd).collect();
+    let mut gamma = Vec::new();
+    for (k, row) in phi_q.iter().enumerate() {
+        let phidot0 = g.dot(row, &qd);
+        let phidot = g.add(phidot0, phi_t[k]);
+        let mut terms: Vec<Expr> = qsyms
+            .iter()
+            .zip(&qd)
+            .map(|(s, v)| {
+                let d = g.diff(phidot, *s);
+                g.mul(d, *v)
+            })
+            .collect();
+        terms.push(g.diff(phidot, ts));
+        let s = g.sum(terms);
+        gamma.push(g.neg(s));
+    }
+    let lambdas: Vec<Expr> = (0..phi.len())
+        .map(|k| {
+            let s = scope.g.symbol(&format!("lambda:{k}"));
+            scope.role(s, Role::Lambda(k));
+            s
+        })
+        .collect();
+    InFree {
+        phi_q,
+        phi_t,
+        gamma,
+        lambdas,
+    }
+}
+
+/// Constraints that over-determine, repeat, contradict or miss the coordinates, and free
+/// coordinates that neither move a mass nor are constrained.
+pub(super) fn check(
+    scope: &mut Scope,
+    coords: &[Coord],
+    free_idx: &[usize],
+    (phi, tokens): (&[Expr], &[&TokenStream]),
+    qsyms: &[Sym],
+    mass: &[Vec<Expr>],
+) {
+    let (n, m_con) = (free_idx.len(), phi.len());
+    let (g, errors) = (&mut scope.g, &mut scope.errors);
+    if m_con > n {
+        for tokens in &tokens[n..] {
+            errors.over(tokens, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
+        }
+    }
+    for (k, how) in closure::constant_dependence(g, phi, qsyms) {
+        if m_con > n && k >= n {
+            continue; // already an over-determining constraint
+        }
+        let why = match how {
+            closure::Dependence::NoCoordinate => "the coordinate terms of this constraint cancel: it relates only parameters and `t`, so it cannot hold the mechanism".to_string(),
+            closure::Dependence::Redundant => "this constraint repeats earlier ones (a combination of them with constant coefficients): the constraint Jacobian would be singular everywhere; remove it".to_string(),
+            closure::Dependence::Contradictory(v) => format!("this constraint contradicts earlier ones: its coordinate part is a constant combination of theirs but its constant part differs by {v}"),
+            closure::Dependence::Dependent => "this constraint's coordinate part is a constant combination of earlier constraints': it is redundant or contradicts them (depending on the parameters), and the constraint Jacobian would be singular everywhere".to_string(),
+        };
+        errors.over(tokens[k], why);
+    }
+    for (k, p) in phi.iter().enumerate() {
+        if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
+            errors.over(tokens[k], "this constraint involves no coordinate: it relates only parameters and `t`, so it cannot hold the mechanism");
+        }
+    }
+    for (a, &i) in free_idx.iter().enumerate() {
+        let in_constraint = phi.iter().any(|p| g.depends_on(*p, qsyms[a]));
+        if g.is_zero(mass[a][a]) && !in_constraint {
+            errors.at(
+                coords[i].name.span(),
+                format!("coordinate `{}` moves no mass and no constraint fixes it: the mass matrix would be singular", coords[i].name),
+            );
+        }
+    }
+}

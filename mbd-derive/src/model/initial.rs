@@ -1,0 +1,41 @@
+//! Initial positions and velocities of the free coordinates (parameters allowed); a
+//! dependent coordinate's follow from the closure.
+
+use super::scope::Scope;
+use super::{Coord, CoordKind};
+use crate::lower::Context;
+use crate::parse::Mechanism;
+use crate::sym::Expr;
+
+pub(super) fn initial_conditions(
+    ast: &Mechanism,
+    scope: &mut Scope,
+    coords: &[Coord],
+    free_idx: &[usize],
+) -> (Vec<Expr>, Vec<Expr>) {
+    let zero = scope.g.zero();
+    let n = free_idx.len();
+    let mut init_q = vec![zero; n];
+    let mut init_qd = vec![zero; n];
+    for i in &ast.inits {
+        let dependent = |c: &Coord| matches!(c.kind, CoordKind::Dependent(_));
+        if coords.iter().any(|c| c.name == i.coord && dependent(c)) {
+            continue;
+        }
+        let Some(a) = free_idx.iter().position(|&j| coords[j].name == i.coord) else {
+            scope.errors.at(
+                i.coord.span(),
+                format!("`{}` is not a free coordinate", i.coord),
+            );
+            continue;
+        };
+        if let Some(v) = scope.lowerer(None).scalar(&i.value, Context::Constant) {
+            if i.velocity {
+                init_qd[a] = v
+            } else {
+                init_q[a] = v
+            }
+        }
+    }
+    (init_q, init_qd)
+}

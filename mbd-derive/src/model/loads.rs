@@ -1,0 +1,270 @@
+//! Applied forces as generalised forces in full coordinates: springs and potentials by
+//! `-dV/dz`, dampers by `-dD/dz'` (Rayleigh), forces and torques by virtual work, gravity
+//! last (its potential enters only the energy).
+
+use super::checks::check;
+use super::kinematics::{Kin, Kinematics};
+use super::scope::Scope;
+use super::{CoordKind, ParamCheck};
+use crate::lower::{Binding, Context, Value};
+use crate::parse::{End, Load, Mechanism};
+use crate::sym::{Expr, Func, Graph, Sym};
+
+/// The generalised forces, with and without gravity, and the potential energy.
+pub(super) struct Forces {
+    /// All applied forces, gravity included.
+    pub q_full: Vec<Expr>,
+    /// Applied forces other than gravity: the joint efforts of the recursive evaluation.
+    pub q_applied: Vec<Expr>,
+    pub gravity: Option<Vec<Expr>>,
+    /// Springs' and potentials' energy.
+    pub potential: Expr,
+    pub gravity_energy: Expr,
+}
+
+/// The symbols forces are projected on.
+struct Axes {
+    z: Vec<Sym>,
+    zd: Vec<Sym>,
+}
+
+impl Axes {
+    /// Virtual work `F . dr/dz_j` of `force` at `at`.
+    fn add_force_at(&self, g: &mut Graph, q: &mut [Expr], at: &[Expr], force: &[Expr]) {
+        for (j, zs) in self.z.iter().enumerate() {
+            let col: Vec<Expr> = at.iter().map(|x| g.diff(*x, *zs)).collect();
+            let w = g.dot(force, &col);
+            q[j] = g.add(q[j], w);
+        }
+    }
+}
+
+pub(super) fn generalized(
+    ast: &Mechanism,
+    scope: &mut Scope,
+    kinematics: &Kinematics,
+    reactions: &mut Vec<(usize, Expr)>,
+    checks: &mut Vec<ParamCheck>,
+) -> Forces {
+    let zero = scope.g.zero();
+    let nz = kinematics.coords.len();
+    let mut kin = kinematics.kin(scope.t, scope.dim, reactions);
+    let axes = Axes {
+        z: kinematics.z_syms(&scope.g),
+        zd: kinematics.zd_syms(&scope.g),
+    };
+    let gravity = match &ast.gravity {
+        Some(e) => {
+            let len = scope.dim.len();
+            scope.lowerer(None).vector(e, Context::Constant, len)
+        }
+        None => None,
+    };
+    let mut q_full = vec![zero; nz];
+    let potential = springs_and_potentials(ast, scope, kinematics, checks);
+    for (j, zs) in axes.z.iter().enumerate() {
+        let dv = scope.g.diff(potential, *zs);
+        q_full[j] = scope.g.sub(q_full[j], dv);
+    }
+    dampers(ast, scope, (kinematics, &kin), &axes, &mut q_full, checks);
+    for load in &ast.loads {
+        apply_load(load, scope, &mut kin, &axes, &mut q_full);
+    }
+    let q_applied = q_full.clone();
+    let mut gravity_energy = zero;
+    if let Some(grav) = &gravity {
+        let g = &mut scope.g;
+        for b in &kinematics.bodies {
+            let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
+            axes.add_force_at(g, &mut q_full, &b.r, &w);
+            let h = g.dot(&w, &b.r);
+            gravity_energy = g.sub(gravity_energy, h);
+        }
+    }
+    Forces {
+        q_full,
+        q_applied,
+        gravity,
+        potential,
+        gravity_energy,
+    }
+}
+
+/// A spring's or damper's end: a named point or body, or a position.
+fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End) -> Option<Vec<Expr>> {
+    match end {
+        End::Named(id) => match scope.names.get(&id.to_string()) {
+            Some(Binding::Value(Value::Vector(v))) => Some(v.clone()),
+            Some(Binding::Body(b)) => Some(kinematics.bodies[*b].r.clone()),
+            _ => {
+                scope
+                    .errors
+                    .at(id.span(), format!("unknown point or body `{id}`"));
+                None
+            }
+        },
+        End::At(e) => {
+            let len = scope.dim.len();
+            scope.lowerer(None).vector(e, Context::Kinematics, len)
+        }
+    }
+}
+
+fn length(g: &mut Graph, a: &[Expr], b: &[Expr]) -> Expr {
+    let d: Vec<Expr> = a.iter().zip(b).map(|(x, y)| g.sub(*y, *x)).collect();
+    let s = g.dot(&d, &d);
+    g.call(Func::Sqrt, s)
+}
+
+/// `V = sum k (l - l0)^2 / 2` over the springs plus the user's potentials.
+fn springs_and_potentials(
+    ast: &Mechanism,
+    scope: &mut Scope,
+    kinematics: &Kinematics,
+    checks: &mut Vec<ParamCheck>,
+) -> Expr {
+    let mut potential = scope.g.zero();
+    for s in &ast.springs {
+        let (a, b) = (
+            end_position(scope, kinematics, &s.from),
+            end_position(scope, kinematics, &s.to),
+        );
+        let mut lw = scope.lowerer(None);
+        let k = lw.scalar(&s.k, Context::Constant);
+        let l0 = match &s.length {
+            Some(e) => lw.scalar(e, Context::Constant),
+            None => Some(lw.g.zero()),
+        };
+        if let (Some(a), Some(b), Some(k), Some(l0)) = (a, b, k, l0) {
+            checks.push(check(
+                format!("the stiffness of spring `{}`", s.name),
+                k,
+                false,
+            ));
+            checks.push(check(
+                format!("the length of spring `{}`", s.name),
+                l0,
+                false,
+            ));
+            let g = &mut scope.g;
+            let l = length(g, &a, &b);
+            let stretch = g.sub(l, l0);
+            let s2 = g.powi(stretch, 2);
+            let half = g.constant(0.5);
+            let half_k = g.mul(half, k);
+            let v = g.mul(half_k, s2);
+            potential = g.add(potential, v);
+        }
+    }
+    for p in &ast.potentials {
+        if let Some(v) = scope.lowerer(None).scalar(p, Context::Kinematics) {
+            potential = scope.g.add(potential, v);
+        }
+    }
+    potential
+}
+
+/// Rayleigh dissipation `D = c l'^2 / 2`: `Q_j -= dD/dz'_j = c l' dl'/dz'_j`.
+fn dampers(
+    ast: &Mechanism,
+    scope: &mut Scope,
+    (kinematics, kin): (&Kinematics, &Kin<'_>),
+    axes: &Axes,
+    q_full: &mut [Expr],
+    checks: &mut Vec<ParamCheck>,
+) {
+    for d in &ast.dampers {
+        let (a, b) = (
+            end_position(scope, kinematics, &d.from),
+            end_position(scope, kinematics, &d.to),
+        );
+        let c = scope.lowerer(None).scalar(&d.c, Context::Constant);
+        if let (Some(a), Some(b), Some(c)) = (a, b, c) {
+            checks.push(check(format!("the damping of `{}`", d.name), c, false));
+            let g = &mut scope.g;
+            let l = length(g, &a, &b);
+            let ldot = kin.tder(g, l);
+            let cl = g.mul(c, ldot);
+            for (j, zds) in axes.zd.iter().enumerate() {
+                let dl = g.diff(ldot, *zds);
+                let w = g.mul(cl, dl);
+                q_full[j] = g.sub(q_full[j], w);
+            }
+        }
+    }
+}
+
+/// A force at a point, a torque on a body, or a generalised force along a coordinate.
+fn apply_load(load: &Load, scope: &mut Scope, kin: &mut Kin<'_>, axes: &Axes, q_full: &mut [Expr]) {
+    let dim = scope.dim;
+    match load {
+        Load::Force { at, value } => {
+            let mut lw = scope.lowerer(Some(kin));
+            let at = lw.vector(at, Context::Kinematics, dim.len());
+            let f = lw.vector(value, Context::Force, dim.len());
+            if let (Some(at), Some(f)) = (at, f) {
+                axes.add_force_at(&mut scope.g, q_full, &at, &f);
+            }
+        }
+        Load::Torque { body, value } => {
+            let Some(Binding::Body(bi)) = scope.names.get(&body.to_string()) else {
+                scope
+                    .errors
+                    .at(body.span(), format!("unknown body `{body}`"));
+                return;
+            };
+            let bodies = kin.bodies;
+            let b = &bodies[*bi];
+            match (b.angle, b.rot) {
+                (Some(phi), _) => {
+                    if let Some(tau) = scope.lowerer(Some(kin)).scalar(value, Context::Force) {
+                        let g = &mut scope.g;
+                        for (j, zs) in axes.z.iter().enumerate() {
+                            let d = g.diff(phi, *zs);
+                            let w = g.mul(tau, d);
+                            q_full[j] = g.add(q_full[j], w);
+                        }
+                    }
+                }
+                (None, Some(rot)) => {
+                    if let Some(tau) = scope.lowerer(Some(kin)).vector(value, Context::Force, 3) {
+                        // World torque . d(w_world)/dzd_j.
+                        let g = &mut scope.g;
+                        let w_b = kin.omega_body(g, b);
+                        let w: Vec<Expr> = (0..3).map(|i| g.dot(&rot[i], &w_b)).collect();
+                        for (j, zds) in axes.zd.iter().enumerate() {
+                            let col: Vec<Expr> = w.iter().map(|x| g.diff(*x, *zds)).collect();
+                            let p = g.dot(&tau, &col);
+                            q_full[j] = g.add(q_full[j], p);
+                        }
+                    }
+                }
+                _ => scope.errors.at(
+                    body.span(),
+                    format!("`{body}` is a particle: a torque needs a rigid body"),
+                ),
+            }
+        }
+        Load::Generalized { coord, value } => {
+            let Some(j) = kin.coords.iter().position(|c| c.name == *coord) else {
+                scope
+                    .errors
+                    .at(coord.span(), format!("unknown coordinate `{coord}`"));
+                return;
+            };
+            if let Some(v) = scope.lowerer(Some(kin)).scalar(value, Context::Force) {
+                let g = &mut scope.g;
+                // Along a dependent coordinate `x = h(q)`: virtual work `v dh/dq_k`.
+                if let CoordKind::Dependent([h, ..]) = kin.coords[j].kind {
+                    for (k, zs) in axes.z.iter().enumerate() {
+                        let d = g.diff(h, *zs);
+                        let w = g.mul(v, d);
+                        q_full[k] = g.add(q_full[k], w);
+                    }
+                } else {
+                    q_full[j] = g.add(q_full[j], v);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,275 @@
+//! Minimal coordinates for a closed loop (the closed forms are closure.rs's): where the
+//! closure has a closed form, each dependent coordinate becomes that form in the kinematics
+//! (bodies, points, the coordinate's own name), its constraints are dropped and the rest of
+//! the derivation sees an unconstrained model.
+
+use super::constraints::Constraints;
+use super::kinematics::{BodyKin, Kin, Kinematics};
+use super::scope::Scope;
+use super::{Coord, CoordKind, Names, Role};
+use crate::closure;
+use crate::lower::{Binding, Context, Lowerer, Value};
+use crate::parse::{self, Errors, Mechanism};
+use crate::sym::{Expr, Graph, Sym};
+use std::collections::HashMap;
+use syn::Ident;
+
+/// Returns the run-time domain conditions, `None` when the model keeps the augmented form
+/// (asked for, reactions or friction that need the multipliers, no independent coordinate
+/// left, or no closed form).
+pub(super) fn minimal_coordinates(
+    ast: &Mechanism,
+    scope: &mut Scope,
+    kin: &mut Kinematics,
+    loops: &mut Constraints<'_>,
+) -> Option<Vec<closure::Domain>> {
+    if loops.phi.is_empty() || ast.loop_form == parse::LoopForm::Augmented {
+        return None;
+    }
+    let g = &mut scope.g;
+    let env = default_values(ast, g, &kin.coords, &scope.names);
+    let free: Vec<closure::Unknown> = kin
+        .coords
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| matches!(c.kind, CoordKind::Free))
+        .map(|(i, c)| closure::Unknown {
+            index: i,
+            sym: g.as_sym(c.z).expect("symbol"),
+            name: c.name.to_string(),
+            default: env.get(&g.as_sym(c.z).expect("symbol")).copied(),
+        })
+        .collect();
+    let asks_reactions = ast.outputs.iter().any(|o| names_reaction(&o.expr))
+        || ast.events.iter().any(|e| names_reaction(&e.expr));
+    let why_not = if !ast.frictions.is_empty() {
+        Some("friction keeps the augmented form (its normal force may need the multipliers)")
+    } else if !ast.relaxed.is_empty() || asks_reactions {
+        Some("reactions (`relaxed`, `reaction(..)`) need the multipliers of the augmented form")
+    } else if free.len() <= loops.phi.len() {
+        Some("no independent coordinate would remain (the constraints fix every free coordinate)")
+    } else {
+        None
+    };
+    let solution = match why_not {
+        Some(_) => None,
+        None => closure::solve(g, &loops.phi, &free, &env),
+    };
+    let Some(solution) = solution else {
+        if ast.loop_form == parse::LoopForm::Minimal {
+            let why = why_not.unwrap_or("no closed form for the closure: the derive solves a constraint linear in one coordinate with a constant coefficient, an angle inside only `sin`/`cos` of itself, or a planar loop of two angles");
+            scope.errors.at(
+                ast.loop_form_span,
+                format!("`minimal` coordinates are not possible here: {why}"),
+            );
+        }
+        return None;
+    };
+    check_closure_defaults(g, loops, &env, ast, &mut scope.errors);
+    eliminate(scope, kin, &solution.solved);
+    loops.phi.clear();
+    loops.tokens.clear();
+    Some(solution.domain)
+}
+
+/// Replaces each solved coordinate by its closed form everywhere: `z -> h` (sin z, cos z by
+/// the form's own), `z' -> dh/dt`, `z'' -> d2h/dt2`; then numbers the state anew.
+fn eliminate(scope: &mut Scope, kin: &mut Kinematics, solved: &[(usize, closure::Form)]) {
+    let g = &mut scope.g;
+    let coords = &mut kin.coords;
+    let mut map: HashMap<Sym, Expr> = HashMap::new();
+    let mut forms = Vec::new();
+    let mut eliminations = Vec::new();
+    {
+        let mut none = Vec::new();
+        let kin = Kin {
+            coords,
+            bodies: &kin.bodies,
+            t: scope.t,
+            dim: scope.dim,
+            reactions: &mut none,
+        };
+        for &(i, form) in solved {
+            let h = form.value;
+            eliminations.push((g.as_sym(coords[i].z).expect("symbol"), form));
+            let hd = kin.tder(g, h);
+            let hdd = kin.tder(g, hd);
+            let c = &coords[i];
+            for (s, v) in [(c.zd, hd), (c.zdd, hdd)] {
+                map.insert(g.as_sym(s).expect("symbol"), v);
+            }
+            forms.push((i, [h, hd, hdd]));
+        }
+    }
+    let mut dependent_names = Vec::new();
+    for (i, form) in forms {
+        coords[i].kind = CoordKind::Dependent(form);
+        dependent_names.push((coords[i].name.to_string(), form[0]));
+    }
+    let mut memos: Vec<HashMap<Expr, Expr>> = vec![HashMap::new(); eliminations.len()];
+    let mut close = |g: &mut Graph, e: Expr| {
+        let mut e = g.substitute(e, &map);
+        for ((x, form), memo) in eliminations.iter().zip(memos.iter_mut()) {
+            e = closure::eliminate(g, e, *x, *form, memo);
+        }
+        e
+    };
+    for b in kin.bodies.iter_mut() {
+        for e in kinematics_of(b) {
+            *e = close(g, *e);
+        }
+    }
+    for binding in scope.names.values_mut() {
+        if let Binding::Value(v) = binding {
+            *v = match v {
+                Value::Scalar(e) => Value::Scalar(close(g, *e)),
+                Value::Vector(v) => Value::Vector(v.iter().map(|&e| close(g, e)).collect()),
+                Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|e| close(g, e)))),
+            };
+        }
+    }
+    for (name, h) in dependent_names {
+        scope.names.insert(name, Binding::Value(Value::Scalar(h)));
+    }
+    renumber(g, &mut scope.roles, coords);
+}
+
+/// Every expression of a body's position and orientation.
+fn kinematics_of(b: &mut BodyKin) -> impl Iterator<Item = &mut Expr> {
+    let BodyKin {
+        r,
+        angle,
+        rot,
+        origin,
+        frame_angle,
+        frame_rot,
+        frame_omega,
+        ..
+    } = b;
+    r.iter_mut()
+        .chain(angle.iter_mut())
+        .chain(rot.iter_mut().flatten().flatten())
+        .chain(origin.iter_mut())
+        .chain(frame_angle.iter_mut())
+        .chain(frame_rot.iter_mut().flatten().flatten())
+        .chain(frame_omega.iter_mut().flatten())
+}
+
+/// The state is the independent coordinates, in the order of `coords`.
+fn renumber(g: &Graph, roles: &mut HashMap<Sym, Role>, coords: &[Coord]) {
+    let mut next = 0;
+    for c in coords.iter() {
+        let [z, zd, zdd] = [c.z, c.zd, c.zdd].map(|e| g.as_sym(e).expect("symbol"));
+        match c.kind {
+            CoordKind::Free => {
+                roles.insert(z, Role::Q(next));
+                roles.insert(zd, Role::Qd(next));
+                roles.insert(zdd, Role::Qdd(next));
+                next += 1;
+            }
+            CoordKind::Dependent(_) => {
+                for s in [z, zd, zdd] {
+                    roles.remove(&s);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Whether an output or event expression names `reaction`.
+fn names_reaction(e: &syn::Expr) -> bool {
+    fn walk(ts: proc_macro2::TokenStream) -> bool {
+        ts.into_iter().any(|tt| match tt {
+            proc_macro2::TokenTree::Ident(i) => i == "reaction",
+            proc_macro2::TokenTree::Group(gr) => walk(gr.stream()),
+            _ => false,
+        })
+    }
+    walk(quote::ToTokens::to_token_stream(e))
+}
+
+/// Values of the default configuration: parameter `#[default]`s, `init` positions (with
+/// those defaults) and driven coordinates at `t = 0`; a parameter without a default leaves
+/// only the constant `init` positions.
+fn default_values(
+    ast: &Mechanism,
+    g: &mut Graph,
+    coords: &[Coord],
+    names: &Names,
+) -> HashMap<Sym, f64> {
+    let mut env: HashMap<Sym, f64> = HashMap::new();
+    let mut scratch = Errors::default();
+    let no_names = HashMap::new();
+    for p in &ast.params {
+        let Some(d) = &p.default else { continue };
+        let e = Lowerer {
+            g,
+            names: &no_names,
+            struct_name: "",
+            model: None,
+            errors: &mut scratch,
+        }
+        .scalar(d, Context::Constant);
+        if let Some(v) = e.and_then(|e| g.as_const(e)) {
+            let s = g.symbol(&p.name.to_string());
+            env.insert(g.as_sym(s).expect("symbol"), v);
+        }
+    }
+    let time = g.symbol("t");
+    if let Some(s) = g.as_sym(time) {
+        env.insert(s, 0.0);
+    }
+    let mut values = Vec::new();
+    for c in coords {
+        let value = match &c.kind {
+            CoordKind::Driven(law) => Some(*law),
+            _ => ast
+                .inits
+                .iter()
+                .find(|i| !i.velocity && i.coord == c.name)
+                .and_then(|i| {
+                    Lowerer {
+                        g,
+                        names,
+                        struct_name: "",
+                        model: None,
+                        errors: &mut scratch,
+                    }
+                    .scalar(&i.value, Context::Constant)
+                }),
+        };
+        if let Some(e) = value {
+            let v = g.eval(e, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
+            if v.is_finite() {
+                values.push((g.as_sym(c.z).expect("symbol"), v));
+            }
+        }
+    }
+    env.extend(values);
+    env
+}
+
+/// The closure's equations at the default configuration, when it is complete (as
+/// `check_default_configuration` does for the augmented form).
+fn check_closure_defaults(
+    g: &Graph,
+    loops: &Constraints<'_>,
+    env: &HashMap<Sym, f64>,
+    ast: &Mechanism,
+    errors: &mut Errors,
+) {
+    let positioned = |c: &Ident| ast.inits.iter().any(|i| !i.velocity && i.coord == *c);
+    if ast.params.iter().any(|p| p.default.is_none()) || !ast.coords.iter().all(positioned) {
+        return;
+    }
+    for (k, p) in loops.phi.iter().enumerate() {
+        let r = g.eval(*p, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
+        if r.is_finite() && r.abs() > 1e-9 {
+            errors.over(
+                loops.tokens[k],
+                format!("the default configuration (parameter defaults and `init` positions at t = 0) violates this constraint: residual {r:.3e}"),
+            );
+        }
+    }
+}
