@@ -513,72 +513,94 @@ impl Lowerer<'_> {
             return Ok(model.der(self.g, &v));
         }
         if BODY_QUERIES.contains(&fname.as_str()) {
-            let body = match args[0] {
-                syn::Expr::Path(p) => match p
-                    .path
-                    .get_ident()
-                    .and_then(|i| self.names.get(&i.to_string()))
-                {
-                    Some(Binding::Body(b)) => *b,
-                    _ => {
-                        return self.fail(
-                            args[0].span(),
-                            format!(
-                                "`{fname}` takes a body name; `{}` is not a body",
-                                quote::ToTokens::to_token_stream(args[0])
-                            ),
-                        );
-                    }
-                },
-                other => return self.fail(other.span(), format!("`{fname}` takes a body name")),
-            };
-            let offset = match args.get(1) {
-                Some(e) => match self.expr(e, ctx)? {
-                    Value::Vector(v) => Some(v),
-                    _ => return self.fail(e.span(), "the offset is a body-fixed vector `[..]`"),
-                },
-                None => None,
-            };
-            let Some(model) = self.model.as_deref_mut() else {
-                return self.fail(name.span(), format!("`{fname}` is not available here"));
-            };
-            return match model.body(self.g, &fname, body, offset) {
-                Ok(v) => Ok(v),
-                Err(why) => self.fail(name.span(), why),
-            };
+            return self.body_query(name, args, ctx);
         }
         if fname == "reaction" {
-            let coord = match args[0] {
-                syn::Expr::Path(p) => match p
-                    .path
-                    .get_ident()
-                    .and_then(|i| self.names.get(&i.to_string()))
-                {
-                    Some(Binding::Coord(c)) => *c,
-                    _ => {
-                        return self.fail(
-                            args[0].span(),
-                            "`reaction` takes a relaxed or driven coordinate",
-                        );
-                    }
-                },
-                other => return self.fail(other.span(), "`reaction` takes a coordinate name"),
-            };
-            let Some(model) = self.model.as_deref_mut() else {
-                return self.fail(name.span(), "`reaction` is not available here");
-            };
-            return match model.reaction(self.g, coord) {
-                Some(r) => Ok(Value::Scalar(r)),
-                None => self.fail(
-                    args[0].span(),
-                    "`reaction` needs a `relaxed` or driven coordinate",
-                ),
-            };
+            return self.reaction(name, args);
         }
         let vals = args
             .iter()
             .map(|a| self.expr(a, ctx))
             .collect::<Result<Vec<_>, _>>()?;
+        self.function(&fname, args, &vals, span)
+    }
+
+    /// `position(b)`, `velocity(b, [..])`, ..: answered by the model.
+    fn body_query(&mut self, name: &syn::Ident, args: &[&syn::Expr], ctx: Context) -> Res {
+        let fname = name.to_string();
+        let body = match args[0] {
+            syn::Expr::Path(p) => match p
+                .path
+                .get_ident()
+                .and_then(|i| self.names.get(&i.to_string()))
+            {
+                Some(Binding::Body(b)) => *b,
+                _ => {
+                    return self.fail(
+                        args[0].span(),
+                        format!(
+                            "`{fname}` takes a body name; `{}` is not a body",
+                            quote::ToTokens::to_token_stream(args[0])
+                        ),
+                    );
+                }
+            },
+            other => return self.fail(other.span(), format!("`{fname}` takes a body name")),
+        };
+        let offset = match args.get(1) {
+            Some(e) => match self.expr(e, ctx)? {
+                Value::Vector(v) => Some(v),
+                _ => return self.fail(e.span(), "the offset is a body-fixed vector `[..]`"),
+            },
+            None => None,
+        };
+        let Some(model) = self.model.as_deref_mut() else {
+            return self.fail(name.span(), format!("`{fname}` is not available here"));
+        };
+        match model.body(self.g, &fname, body, offset) {
+            Ok(v) => Ok(v),
+            Err(why) => self.fail(name.span(), why),
+        }
+    }
+
+    /// `reaction(u)`: the reaction along a relaxed or driven coordinate.
+    fn reaction(&mut self, name: &syn::Ident, args: &[&syn::Expr]) -> Res {
+        let coord = match args[0] {
+            syn::Expr::Path(p) => match p
+                .path
+                .get_ident()
+                .and_then(|i| self.names.get(&i.to_string()))
+            {
+                Some(Binding::Coord(c)) => *c,
+                _ => {
+                    return self.fail(
+                        args[0].span(),
+                        "`reaction` takes a relaxed or driven coordinate",
+                    );
+                }
+            },
+            other => return self.fail(other.span(), "`reaction` takes a coordinate name"),
+        };
+        let Some(model) = self.model.as_deref_mut() else {
+            return self.fail(name.span(), "`reaction` is not available here");
+        };
+        match model.reaction(self.g, coord) {
+            Some(r) => Ok(Value::Scalar(r)),
+            None => self.fail(
+                args[0].span(),
+                "`reaction` needs a `relaxed` or driven coordinate",
+            ),
+        }
+    }
+
+    /// The mathematical functions, on lowered arguments.
+    fn function(
+        &mut self,
+        fname: &str,
+        args: &[&syn::Expr],
+        vals: &[Value],
+        span: proc_macro2::Span,
+    ) -> Res {
         let g = &mut *self.g;
         let scalar = |v: &Value| match v {
             Value::Scalar(s) => Some(*s),
@@ -588,13 +610,13 @@ impl Lowerer<'_> {
             Value::Vector(s) => Some(s.clone()),
             _ => None,
         };
-        if let Some(f) = Func::from_name(&fname)
+        if let Some(f) = Func::from_name(fname)
             && let Some(x) = scalar(&vals[0])
         {
             return Ok(Value::Scalar(g.call(f, x)));
         }
         let two = (vals.first().and_then(scalar), vals.get(1).and_then(scalar));
-        let out = match (fname.as_str(), two) {
+        let out = match (fname, two) {
             ("atan2", (Some(y), Some(x))) => Value::Scalar(g.atan2(y, x)),
             ("hypot", (Some(x), Some(y))) => {
                 let (x2, y2) = (g.powi(x, 2), g.powi(y, 2));
@@ -608,7 +630,7 @@ impl Lowerer<'_> {
                 Some(k) if k.fract() == 0.0 && k.abs() < 64.0 => Value::Scalar(g.powi(x, k as i32)),
                 _ => return self.fail(args[1].span(), "`powi` takes a constant integer exponent"),
             },
-            ("rot_x" | "rot_y" | "rot_z", (Some(a), _)) => Value::Matrix(rotation(g, &fname, a)),
+            ("rot_x" | "rot_y" | "rot_z", (Some(a), _)) => Value::Matrix(rotation(g, fname, a)),
             ("diag", _) => match (scalar(&vals[0]), scalar(&vals[1]), scalar(&vals[2])) {
                 (Some(a), Some(b), Some(c)) => {
                     let z = g.zero();

@@ -122,7 +122,6 @@ pub struct Constraint {
     pub tokens: proc_macro2::TokenStream,
     pub lhs: Expr,
     pub rhs: Expr,
-    pub span: Span,
 }
 
 /// What moves a tree body relative to its parent; each joint brings its own coordinates.
@@ -175,7 +174,6 @@ pub struct TreeBody {
 /// A revolute joint that closes a loop of the tree: point `at_a` of body `a` (its frame)
 /// stays on point `at_b` of body `b` (`None`: the ground). Two constraint equations.
 pub struct Closure {
-    pub name: Ident,
     pub a: Option<Ident>,
     pub at_a: Option<Expr>,
     pub b: Option<Ident>,
@@ -430,8 +428,22 @@ impl Mechanism {
     pub fn read(input: &DeriveInput) -> Result<Mechanism, (syn::Error, Option<Box<Mechanism>>)> {
         let mut errors = Errors::default();
         let params = params(input, &mut errors).map_err(|e| (e, None))?;
-        let mut m = Mechanism {
-            ident: input.ident.clone(),
+        let mut m = Mechanism::empty(input.ident.clone(), params);
+        let mut dim_given = false;
+        for attr in &input.attrs {
+            m.attribute(attr, &mut dim_given, &mut errors);
+        }
+        m.joint_coordinates(&mut errors);
+        m.duplicates(&mut errors);
+        match errors.finish() {
+            Ok(()) => Ok(m),
+            Err(e) => Err((e, Some(Box::new(m)))),
+        }
+    }
+
+    fn empty(ident: Ident, params: Vec<Param>) -> Mechanism {
+        Mechanism {
+            ident,
             params,
             dim: Dim::Planar,
             dim_span: Span::call_site(),
@@ -457,336 +469,292 @@ impl Mechanism {
             evaluation_span: Span::call_site(),
             loop_form: LoopForm::Auto,
             loop_form_span: Span::call_site(),
+        }
+    }
+
+    /// One attribute of the struct, by its name; attributes of other macros are left alone.
+    fn attribute(&mut self, attr: &Attribute, dim_given: &mut bool, errors: &mut Errors) {
+        let m = self;
+        let name = attr_name(attr);
+        let errors = &mut *errors;
+        match name.as_str() {
+            "mechanism" => m.options(attr, dim_given, errors),
+            "gravity" => m.gravity(attr, *dim_given, errors),
+            "coords" => m.coords.extend(ident_list(attr, errors)),
+            "relaxed" => m.relaxed.extend(ident_list(attr, errors)),
+            "drive" => m.drives.extend(named_list(attr, errors)),
+            "output" => m.outputs.extend(named_list(attr, errors)),
+            "constraint" => match attr.parse_args::<Expr>() {
+                Ok(Expr::Binary(b)) if matches!(b.op, syn::BinOp::Eq(_)) => {
+                    m.constraints.push(Constraint {
+                        tokens: quote::ToTokens::to_token_stream(&b),
+                        lhs: *b.left,
+                        rhs: *b.right,
+                    })
+                }
+                Ok(e) => errors.over(&e, "a constraint is an equation: `lhs == rhs`"),
+                Err(e) => errors.push(e),
+            },
+            "particle" | "rigid" | "rigid3" => m.free_body(attr, &name, *dim_given, errors),
+            "body" => m.tree_body(attr, errors),
+            "close" => m.closure(attr, errors),
+            "chain" => {
+                let keys = &["n", "joint", "length", "mass", "inertia", "parent", "at"];
+                if let Some(item) = Item::read(attr, errors, keys, &[]) {
+                    chain(item, &mut m.tree, errors);
+                }
+            }
+            "point" => {
+                if let Some(mut item) = Item::read(attr, errors, &["at"], &[])
+                    && let Some(at) = item.require("at", errors, "point")
+                {
+                    m.points.push(Point {
+                        name: item.name,
+                        at,
+                    });
+                }
+            }
+            "spring" => m.spring(attr, errors),
+            "damper" => m.damper(attr, errors),
+            "force" | "torque" | "generalized_force" => m.load(attr, &name, errors),
+            "potential" => match attr.parse_args::<Expr>() {
+                Ok(e) => m.potentials.push(e),
+                Err(e) => errors.push(e),
+            },
+            "friction" => match args(attr) {
+                Ok(list) => m.frictions.extend(friction(attr, list, errors)),
+                Err(e) => errors.push(e),
+            },
+            "event" => match args(attr) {
+                Ok(list) => m.events.extend(event(attr, list, errors)),
+                Err(e) => errors.push(e),
+            },
+            "init" => m.init(attr, errors),
+            _ => {}
+        }
+    }
+
+    /// `#[mechanism(planar | spatial, jacobian, recursive | mass_matrix, augmented | minimal)]`.
+    fn options(&mut self, attr: &Attribute, dim_given: &mut bool, errors: &mut Errors) {
+        for arg in args(attr).unwrap_or_else(|e| {
+            errors.push(e);
+            Vec::new()
+        }) {
+            match arg {
+                    Arg::Flag(f) if f == "planar" || f == "spatial" => {
+                        self.dim = if f == "planar" { Dim::Planar } else { Dim::Spatial };
+                        self.dim_span = f.span();
+                        *dim_given = true;
+                    }
+                    Arg::Flag(f) if f == "jacobian" => self.jacobian = true,
+                    Arg::Flag(f) if f == "recursive" || f == "mass_matrix" => {
+                        self.evaluation = if f == "recursive" { Evaluation::Recursive } else { Evaluation::MassMatrix };
+                        self.evaluation_span = f.span();
+                    }
+                    Arg::Flag(f) if f == "augmented" || f == "minimal" => {
+                        self.loop_form = if f == "augmented" { LoopForm::Augmented } else { LoopForm::Minimal };
+                        self.loop_form_span = f.span();
+                    }
+                    Arg::Flag(f) => errors.at(
+                        f.span(),
+                        format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
+                    ),
+                    Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
+                    Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),
+                }
+        }
+    }
+
+    /// `#[gravity(..)]`: also the dimension, when `mechanism` did not give it.
+    fn gravity(&mut self, attr: &Attribute, dim_given: bool, errors: &mut Errors) {
+        // The span of `(..)`: one group, so it covers all arguments on stable.
+        let args_span = match &attr.meta {
+            syn::Meta::List(l) => l.delimiter.span().join(),
+            _ => attr.path().span(),
         };
-        let mut dim_given = false;
-        for attr in &input.attrs {
-            let name = attr_name(attr);
-            match name.as_str() {
-                "mechanism" => {
-                    for arg in args(attr).unwrap_or_else(|e| {
-                        errors.push(e);
-                        Vec::new()
-                    }) {
-                        match arg {
-                            Arg::Flag(f) if f == "planar" || f == "spatial" => {
-                                m.dim = if f == "planar" { Dim::Planar } else { Dim::Spatial };
-                                m.dim_span = f.span();
-                                dim_given = true;
-                            }
-                            Arg::Flag(f) if f == "jacobian" => m.jacobian = true,
-                            Arg::Flag(f) if f == "recursive" || f == "mass_matrix" => {
-                                m.evaluation = if f == "recursive" { Evaluation::Recursive } else { Evaluation::MassMatrix };
-                                m.evaluation_span = f.span();
-                            }
-                            Arg::Flag(f) if f == "augmented" || f == "minimal" => {
-                                m.loop_form = if f == "augmented" { LoopForm::Augmented } else { LoopForm::Minimal };
-                                m.loop_form_span = f.span();
-                            }
-                            Arg::Flag(f) => errors.at(
-                                f.span(),
-                                format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
-                            ),
-                            Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
-                            Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),
-                        }
-                    }
-                }
-                "gravity" => {
-                    // The span of `(..)`: one group, so it covers all arguments on stable.
-                    let args_span = match &attr.meta {
-                        syn::Meta::List(l) => l.delimiter.span().join(),
-                        _ => attr.path().span(),
+        let list = attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated);
+        match list {
+            Ok(list) => {
+                let items: Vec<Expr> = list.into_iter().collect();
+                if !dim_given {
+                    self.dim = if items.len() == 3 {
+                        Dim::Spatial
+                    } else {
+                        Dim::Planar
                     };
-                    let list =
-                        attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated);
-                    match list {
-                        Ok(list) => {
-                            let items: Vec<Expr> = list.into_iter().collect();
-                            if !dim_given {
-                                m.dim = if items.len() == 3 {
-                                    Dim::Spatial
-                                } else {
-                                    Dim::Planar
-                                };
-                                m.dim_span = args_span;
-                            }
-                            m.gravity = Some(syn::parse_quote_spanned!(args_span=> [#(#items),*]));
-                        }
-                        Err(e) => errors.push(e),
-                    }
+                    self.dim_span = args_span;
                 }
-                "coords" => m.coords.extend(ident_list(attr, &mut errors)),
-                "relaxed" => m.relaxed.extend(ident_list(attr, &mut errors)),
-                "drive" => m.drives.extend(named_list(attr, &mut errors)),
-                "output" => m.outputs.extend(named_list(attr, &mut errors)),
-                "constraint" => match attr.parse_args::<Expr>() {
-                    Ok(Expr::Binary(b)) if matches!(b.op, syn::BinOp::Eq(_)) => {
-                        m.constraints.push(Constraint {
-                            tokens: quote::ToTokens::to_token_stream(&b),
-                            span: b.span(),
-                            lhs: *b.left,
-                            rhs: *b.right,
-                        })
-                    }
-                    Ok(e) => errors.over(&e, "a constraint is an equation: `lhs == rhs`"),
-                    Err(e) => errors.push(e),
-                },
-                "particle" | "rigid" | "rigid3" => {
-                    let (kind, keys): (BodyKind, &[&str]) = match name.as_str() {
-                        "particle" => (BodyKind::Particle, &["mass", "at"]),
-                        "rigid" => (BodyKind::Rigid, &["mass", "inertia", "at", "angle"]),
-                        _ => (BodyKind::Rigid3, &["mass", "inertia", "at", "rotation"]),
-                    };
-                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &[]) {
-                        if kind == BodyKind::Rigid3 && !dim_given {
-                            m.dim = Dim::Spatial;
-                            m.dim_span = item.name.span();
-                        }
-                        let orientation = match kind {
-                            BodyKind::Particle => None,
-                            BodyKind::Rigid => item.take("angle"),
-                            BodyKind::Rigid3 => item.take("rotation"),
-                        };
-                        m.bodies.push(Body {
-                            mass: item.require("mass", &mut errors, "body"),
-                            inertia: item.take("inertia"),
-                            at: item.require("at", &mut errors, "body"),
-                            orientation,
-                            kind,
-                            name: item.name,
-                        });
-                    }
-                }
-                "body" => {
-                    let keys = &["parent", "joint", "at", "angle", "com", "mass", "inertia"];
-                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &["reaction"]) {
-                        // `_rz` joins in a spatial mechanism, once the dimension is known.
-                        let reaction = (!item.flags.is_empty()).then(|| {
-                            let n = &item.name;
-                            let rx = format_ident!("{}_rx", n, span = n.span());
-                            let ry = format_ident!("{}_ry", n, span = n.span());
-                            m.relaxed.extend([rx.clone(), ry.clone()]);
-                            vec![rx, ry]
-                        });
-                        let joint_expr = item.require("joint", &mut errors, "body");
-                        let joint_span =
-                            joint_expr.as_ref().map_or(item.name.span(), Spanned::span);
-                        let joint = joint_expr.and_then(|j| joint(j, &mut errors));
-                        let parent = item.take("parent").and_then(|p| parent(p, &mut errors));
-                        if let Some(joint) = joint {
-                            m.tree.push(TreeBody {
-                                parent,
-                                joint,
-                                joint_span,
-                                at: item.take("at"),
-                                angle: item.take("angle"),
-                                com: item.take("com"),
-                                reaction,
-                                mass: item.require("mass", &mut errors, "body"),
-                                inertia: item.take("inertia"),
-                                name: item.name,
-                            });
-                        }
-                    }
-                }
-                "close" => {
-                    let keys = &["a", "at_a", "b", "at_b"];
-                    if let Some(mut item) = Item::read(attr, &mut errors, keys, &[]) {
-                        let a = item.require("a", &mut errors, "closure");
-                        let b = item.require("b", &mut errors, "closure");
-                        if let (Some(a), Some(b)) = (a, b) {
-                            m.closures.push(Closure {
-                                a: parent(a, &mut errors),
-                                at_a: item.take("at_a"),
-                                b: parent(b, &mut errors),
-                                at_b: item.take("at_b"),
-                                tokens: quote::ToTokens::to_token_stream(attr),
-                                name: item.name,
-                            });
-                        }
-                    }
-                }
-                "chain" => {
-                    let keys = &["n", "joint", "length", "mass", "inertia", "parent", "at"];
-                    if let Some(item) = Item::read(attr, &mut errors, keys, &[]) {
-                        chain(item, &mut m.tree, &mut errors);
-                    }
-                }
-                "point" => {
-                    if let Some(mut item) = Item::read(attr, &mut errors, &["at"], &[])
-                        && let Some(at) = item.require("at", &mut errors, "point")
-                    {
-                        m.points.push(Point {
-                            name: item.name,
-                            at,
-                        });
-                    }
-                }
-                "spring" => {
-                    if let Some(mut item) =
-                        Item::read(attr, &mut errors, &["from", "to", "k", "length"], &[])
-                    {
-                        let (from, to, k) = (
-                            item.require("from", &mut errors, "spring"),
-                            item.require("to", &mut errors, "spring"),
-                            item.require("k", &mut errors, "spring"),
-                        );
-                        if let (Some(from), Some(to), Some(k)) = (from, to, k) {
-                            let length = item.take("length");
-                            m.springs.push(Spring {
-                                name: item.name,
-                                from: end(from),
-                                to: end(to),
-                                k,
-                                length,
-                            });
-                        }
-                    }
-                }
-                "damper" => {
-                    if let Some(mut item) = Item::read(attr, &mut errors, &["from", "to", "c"], &[])
-                    {
-                        let (from, to, c) = (
-                            item.require("from", &mut errors, "damper"),
-                            item.require("to", &mut errors, "damper"),
-                            item.require("c", &mut errors, "damper"),
-                        );
-                        if let (Some(from), Some(to), Some(c)) = (from, to, c) {
-                            m.dampers.push(Damper {
-                                name: item.name,
-                                from: end(from),
-                                to: end(to),
-                                c,
-                            });
-                        }
-                    }
-                }
-                "force" | "torque" | "generalized_force" => {
-                    let key = match name.as_str() {
-                        "force" => "at",
-                        "torque" => "on",
-                        _ => "along",
-                    };
-                    if let Some(mut item) = Item::read(attr, &mut errors, &[key, "value"], &[]) {
-                        let target = item.require(key, &mut errors, &name);
-                        let value = item.require("value", &mut errors, &name);
-                        if let (Some(target), Some(value)) = (target, value) {
-                            match (name.as_str(), classify(target)) {
-                                ("force", Arg::Flag(id)) => m.loads.push(Load::Force {
-                                    at: syn::parse_quote!(#id),
-                                    value,
-                                }),
-                                ("force", Arg::Other(at)) => {
-                                    m.loads.push(Load::Force { at, value })
-                                }
-                                ("torque", Arg::Flag(body)) => {
-                                    m.loads.push(Load::Torque { body, value })
-                                }
-                                (_, Arg::Flag(coord)) if name == "generalized_force" => {
-                                    m.loads.push(Load::Generalized { coord, value })
-                                }
-                                (_, _) => errors.at(
-                                    item.name.span(),
-                                    format!("`{key}` of `{name}` must be a name"),
-                                ),
-                            }
-                        }
-                    }
-                }
-                "potential" => match attr.parse_args::<Expr>() {
-                    Ok(e) => m.potentials.push(e),
-                    Err(e) => errors.push(e),
-                },
-                "friction" => match args(attr) {
-                    Ok(list) => {
-                        let (mut along, mut mu, mut normal, mut mu_static) =
-                            (None, None, None, None);
-                        for arg in list {
-                            match arg {
-                                Arg::Keyed(k, v) if k == "along" => match classify(v) {
-                                    Arg::Flag(c) => along = Some(c),
-                                    _ => errors.at(k.span(), "`along` names a coordinate"),
-                                },
-                                // `mu` is both coefficients unless `mu_s` is given;
-                                // `mu_k` names the kinetic one alone.
-                                Arg::Keyed(k, v) if k == "mu" || k == "mu_k" => {
-                                    if mu.is_some() {
-                                        errors.at(k.span(), "`friction` takes one of `mu` and `mu_k` (the kinetic coefficient)");
-                                    }
-                                    mu = Some(v)
-                                }
-                                Arg::Keyed(k, v) if k == "normal" => normal = Some(v),
-                                Arg::Keyed(k, v) if k == "mu_s" || k == "mu_static" => {
-                                    if mu_static.is_some() {
-                                        errors.at(k.span(), "`friction` takes one of `mu_s` and `mu_static` (the static coefficient)");
-                                    }
-                                    mu_static = Some(v)
-                                }
-                                Arg::Keyed(k, _) | Arg::Flag(k) => errors.at(
-                                    k.span(),
-                                    format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `mu_k`, `mu_s`, `mu_static`, `normal`"),
-                                ),
-                                Arg::Other(e) => errors.at(e.span(), "expected `key = value` in `friction`"),
-                            }
-                        }
-                        match (along, mu, normal) {
-                            (Some(along), Some(mu), Some(normal)) => m.frictions.push(Friction {
-                                along,
-                                mu,
-                                mu_static,
-                                normal,
-                                span: attr.span(),
-                            }),
-                            _ => errors.over(attr, "`friction` needs `along`, `mu` and `normal`"),
-                        }
-                    }
-                    Err(e) => errors.push(e),
-                },
-                "event" => match args(attr) {
-                    Ok(list) => {
-                        let mut it = list.into_iter();
-                        let Some(Arg::Keyed(name, expr)) = it.next() else {
-                            errors.over(attr, "an event starts with `name = <expression>`");
-                            continue;
-                        };
-                        let mut ev = Event {
-                            name,
-                            expr,
-                            direction: Direction::Either,
-                            terminal: false,
-                        };
-                        for arg in it {
-                            match arg {
-                                Arg::Flag(f) if f == "rising" => ev.direction = Direction::Rising,
-                                Arg::Flag(f) if f == "falling" => ev.direction = Direction::Falling,
-                                Arg::Flag(f) if f == "terminal" => ev.terminal = true,
-                                Arg::Flag(f) | Arg::Keyed(f, _) => errors.at(
-                                    f.span(),
-                                    format!("unknown event option `{f}`, expected one of `rising`, `falling`, `terminal`"),
-                                ),
-                                Arg::Other(e) => errors.at(e.span(), "expected an event option"),
-                            }
-                        }
-                        m.events.push(ev);
-                    }
-                    Err(e) => errors.push(e),
-                },
-                "init" => {
-                    match attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated) {
-                        Ok(list) => {
-                            for e in list {
-                                match init(e) {
-                                    Ok(i) => m.inits.push(i),
-                                    Err(e) => errors.push(e),
-                                }
-                            }
-                        }
-                        Err(e) => errors.push(e),
-                    }
-                }
-                _ => {}
+                self.gravity = Some(syn::parse_quote_spanned!(args_span=> [#(#items),*]));
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+
+    /// `#[particle(..)]`, `#[rigid(..)]`, `#[rigid3(..)]`.
+    fn free_body(&mut self, attr: &Attribute, name: &str, dim_given: bool, errors: &mut Errors) {
+        let (kind, keys): (BodyKind, &[&str]) = match name {
+            "particle" => (BodyKind::Particle, &["mass", "at"]),
+            "rigid" => (BodyKind::Rigid, &["mass", "inertia", "at", "angle"]),
+            _ => (BodyKind::Rigid3, &["mass", "inertia", "at", "rotation"]),
+        };
+        if let Some(mut item) = Item::read(attr, errors, keys, &[]) {
+            if kind == BodyKind::Rigid3 && !dim_given {
+                self.dim = Dim::Spatial;
+                self.dim_span = item.name.span();
+            }
+            let orientation = match kind {
+                BodyKind::Particle => None,
+                BodyKind::Rigid => item.take("angle"),
+                BodyKind::Rigid3 => item.take("rotation"),
+            };
+            self.bodies.push(Body {
+                mass: item.require("mass", errors, "body"),
+                inertia: item.take("inertia"),
+                at: item.require("at", errors, "body"),
+                orientation,
+                kind,
+                name: item.name,
+            });
+        }
+    }
+
+    /// `#[body(..)]`: a joint-tree body; `reaction` frees its joint.
+    fn tree_body(&mut self, attr: &Attribute, errors: &mut Errors) {
+        let keys = &["parent", "joint", "at", "angle", "com", "mass", "inertia"];
+        if let Some(mut item) = Item::read(attr, errors, keys, &["reaction"]) {
+            // `_rz` joins in a spatial mechanism, once the dimension is known.
+            let reaction = (!item.flags.is_empty()).then(|| {
+                let n = &item.name;
+                let rx = format_ident!("{}_rx", n, span = n.span());
+                let ry = format_ident!("{}_ry", n, span = n.span());
+                self.relaxed.extend([rx.clone(), ry.clone()]);
+                vec![rx, ry]
+            });
+            let joint_expr = item.require("joint", errors, "body");
+            let joint_span = joint_expr.as_ref().map_or(item.name.span(), Spanned::span);
+            let joint = joint_expr.and_then(|j| joint(j, errors));
+            let parent = item.take("parent").and_then(|p| parent(p, errors));
+            if let Some(joint) = joint {
+                self.tree.push(TreeBody {
+                    parent,
+                    joint,
+                    joint_span,
+                    at: item.take("at"),
+                    angle: item.take("angle"),
+                    com: item.take("com"),
+                    reaction,
+                    mass: item.require("mass", errors, "body"),
+                    inertia: item.take("inertia"),
+                    name: item.name,
+                });
             }
         }
+    }
+
+    /// `#[close(..)]`: a loop-closing joint.
+    fn closure(&mut self, attr: &Attribute, errors: &mut Errors) {
+        let keys = &["a", "at_a", "b", "at_b"];
+        if let Some(mut item) = Item::read(attr, errors, keys, &[]) {
+            let a = item.require("a", errors, "closure");
+            let b = item.require("b", errors, "closure");
+            if let (Some(a), Some(b)) = (a, b) {
+                self.closures.push(Closure {
+                    a: parent(a, errors),
+                    at_a: item.take("at_a"),
+                    b: parent(b, errors),
+                    at_b: item.take("at_b"),
+                    tokens: quote::ToTokens::to_token_stream(attr),
+                });
+            }
+        }
+    }
+
+    fn spring(&mut self, attr: &Attribute, errors: &mut Errors) {
+        if let Some(mut item) = Item::read(attr, errors, &["from", "to", "k", "length"], &[]) {
+            let (from, to, k) = (
+                item.require("from", errors, "spring"),
+                item.require("to", errors, "spring"),
+                item.require("k", errors, "spring"),
+            );
+            if let (Some(from), Some(to), Some(k)) = (from, to, k) {
+                let length = item.take("length");
+                self.springs.push(Spring {
+                    name: item.name,
+                    from: end(from),
+                    to: end(to),
+                    k,
+                    length,
+                });
+            }
+        }
+    }
+
+    fn damper(&mut self, attr: &Attribute, errors: &mut Errors) {
+        if let Some(mut item) = Item::read(attr, errors, &["from", "to", "c"], &[]) {
+            let (from, to, c) = (
+                item.require("from", errors, "damper"),
+                item.require("to", errors, "damper"),
+                item.require("c", errors, "damper"),
+            );
+            if let (Some(from), Some(to), Some(c)) = (from, to, c) {
+                self.dampers.push(Damper {
+                    name: item.name,
+                    from: end(from),
+                    to: end(to),
+                    c,
+                });
+            }
+        }
+    }
+
+    /// `#[force(..)]`, `#[torque(..)]`, `#[generalized_force(..)]`.
+    fn load(&mut self, attr: &Attribute, name: &str, errors: &mut Errors) {
+        let key = match name {
+            "force" => "at",
+            "torque" => "on",
+            _ => "along",
+        };
+        if let Some(mut item) = Item::read(attr, errors, &[key, "value"], &[]) {
+            let target = item.require(key, errors, &name);
+            let value = item.require("value", errors, &name);
+            if let (Some(target), Some(value)) = (target, value) {
+                match (name, classify(target)) {
+                    ("force", Arg::Flag(id)) => self.loads.push(Load::Force {
+                        at: syn::parse_quote!(#id),
+                        value,
+                    }),
+                    ("force", Arg::Other(at)) => self.loads.push(Load::Force { at, value }),
+                    ("torque", Arg::Flag(body)) => self.loads.push(Load::Torque { body, value }),
+                    (_, Arg::Flag(coord)) if name == "generalized_force" => {
+                        self.loads.push(Load::Generalized { coord, value })
+                    }
+                    (_, _) => errors.at(
+                        item.name.span(),
+                        format!("`{key}` of `{name}` must be a name"),
+                    ),
+                }
+            }
+        }
+    }
+
+    fn init(&mut self, attr: &Attribute, errors: &mut Errors) {
+        match attr.parse_args_with(Punctuated::<Expr, Token![,]>::parse_terminated) {
+            Ok(list) => {
+                for e in list {
+                    match init(e) {
+                        Ok(i) => self.inits.push(i),
+                        Err(e) => errors.push(e),
+                    }
+                }
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+
+    /// Each joint brings its coordinate: free, unless a `drive` gives its law; a freed
+    /// spatial joint its `_rz` reaction too.
+    fn joint_coordinates(&mut self, errors: &mut Errors) {
+        let m = self;
         if m.dim == Dim::Spatial {
             for b in &mut m.tree {
                 if let Some(reaction) = &mut b.reaction {
@@ -809,6 +777,11 @@ impl Mechanism {
                 m.coords.push(c.clone());
             }
         }
+    }
+
+    /// Outputs, events and initial values named twice.
+    fn duplicates(&self, errors: &mut Errors) {
+        let m = self;
         let mut seen = std::collections::HashSet::new();
         for name in m.outputs.iter().map(|o| &o.name) {
             if !seen.insert(name.to_string()) {
@@ -830,10 +803,6 @@ impl Mechanism {
                     format!("initial {what} of `{}` given twice", i.coord),
                 );
             }
-        }
-        match errors.finish() {
-            Ok(()) => Ok(m),
-            Err(e) => Err((e, Some(Box::new(m)))),
         }
     }
 }
@@ -1056,4 +1025,80 @@ fn params(input: &DeriveInput, errors: &mut Errors) -> syn::Result<Vec<Param>> {
         out.push(Param { name, default });
     }
     Ok(out)
+}
+
+/// `#[friction(along = s, mu = .., normal = ..)]` (`mu_k`, `mu_s`/`mu_static` optional).
+fn friction(attr: &Attribute, list: Vec<Arg>, errors: &mut Errors) -> Option<Friction> {
+    let (mut along, mut mu, mut normal, mut mu_static) = (None, None, None, None);
+    for arg in list {
+        match arg {
+            Arg::Keyed(k, v) if k == "along" => match classify(v) {
+                Arg::Flag(c) => along = Some(c),
+                _ => errors.at(k.span(), "`along` names a coordinate"),
+            },
+            // `mu` is both coefficients unless `mu_s` is given;
+            // `mu_k` names the kinetic one alone.
+            Arg::Keyed(k, v) if k == "mu" || k == "mu_k" => {
+                if mu.is_some() {
+                    errors.at(k.span(), "`friction` takes one of `mu` and `mu_k` (the kinetic coefficient)");
+                }
+                mu = Some(v)
+            }
+            Arg::Keyed(k, v) if k == "normal" => normal = Some(v),
+            Arg::Keyed(k, v) if k == "mu_s" || k == "mu_static" => {
+                if mu_static.is_some() {
+                    errors.at(k.span(), "`friction` takes one of `mu_s` and `mu_static` (the static coefficient)");
+                }
+                mu_static = Some(v)
+            }
+            Arg::Keyed(k, _) | Arg::Flag(k) => errors.at(
+                k.span(),
+                format!("unknown key `{k}` in `friction`, expected one of `along`, `mu`, `mu_k`, `mu_s`, `mu_static`, `normal`"),
+            ),
+            Arg::Other(e) => errors.at(e.span(), "expected `key = value` in `friction`"),
+        }
+    }
+    match (along, mu, normal) {
+        (Some(along), Some(mu), Some(normal)) => Some(Friction {
+            along,
+            mu,
+            mu_static,
+            normal,
+            span: attr.span(),
+        }),
+        _ => {
+            errors.over(attr, "`friction` needs `along`, `mu` and `normal`");
+            None
+        }
+    }
+}
+
+/// `#[event(name = expr, rising | falling, terminal)]`.
+fn event(attr: &Attribute, list: Vec<Arg>, errors: &mut Errors) -> Option<Event> {
+    let mut it = list.into_iter();
+    let Some(Arg::Keyed(name, expr)) = it.next() else {
+        errors.over(attr, "an event starts with `name = <expression>`");
+        return None;
+    };
+    let mut ev = Event {
+        name,
+        expr,
+        direction: Direction::Either,
+        terminal: false,
+    };
+    for arg in it {
+        match arg {
+            Arg::Flag(f) if f == "rising" => ev.direction = Direction::Rising,
+            Arg::Flag(f) if f == "falling" => ev.direction = Direction::Falling,
+            Arg::Flag(f) if f == "terminal" => ev.terminal = true,
+            Arg::Flag(f) | Arg::Keyed(f, _) => errors.at(
+                f.span(),
+                format!(
+                    "unknown event option `{f}`, expected one of `rising`, `falling`, `terminal`"
+                ),
+            ),
+            Arg::Other(e) => errors.at(e.span(), "expected an event option"),
+        }
+    }
+    Some(ev)
 }
