@@ -715,8 +715,8 @@ impl Mechanism {
             _ => "along",
         };
         if let Some(mut item) = Item::read(attr, errors, &[key, "value"], &[]) {
-            let target = item.require(key, errors, &name);
-            let value = item.require("value", errors, &name);
+            let target = item.require(key, errors, name);
+            let value = item.require("value", errors, name);
             if let (Some(target), Some(value)) = (target, value) {
                 match (name, classify(target)) {
                     ("force", Arg::Flag(id)) => self.loads.push(Load::Force {

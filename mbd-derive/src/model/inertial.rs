@@ -106,7 +106,8 @@ pub(super) fn inertial(
 /// tree when it pays or is asked for (asked for elsewhere: a spanned error).
 fn evaluation(ast: &Mechanism, scope: &mut Scope, kin: &Kinematics, closed: Closed) -> bool {
     let (nodes, steps) = (&kin.planar.nodes, &kin.spatial.steps);
-    let eligible = !(nodes.is_empty() && steps.is_empty())
+    let tree = !(nodes.is_empty() && steps.is_empty());
+    let eligible = tree
         && ast.bodies.is_empty()
         && !closed.constrained
         && !closed.minimal
