@@ -227,7 +227,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let closure_domain = minimal::minimal_coordinates(ast, &mut scope, &mut kin, &mut loops);
 
     // Forces and inertial forms in full coordinates.
-    let forces = loads::generalized(ast, &mut scope, &kin, &mut reactions, &mut checks);
+    let loads = loads::lower(ast, &mut scope, &kin, &mut reactions);
+    let forces = loads::generalized(&mut scope, &kin, loads, &mut checks);
     let closed = inertial::Closed {
         constrained: !loops.phi.is_empty(),
         minimal: closure_domain.is_some(),

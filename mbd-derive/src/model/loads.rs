@@ -1,6 +1,7 @@
 //! Applied forces as generalised forces in full coordinates: springs and potentials by
 //! `-dV/dz`, dampers by `-dD/dz'` (Rayleigh), forces and torques by virtual work, gravity
-//! last (its potential enters only the energy).
+//! last (its potential enters only the energy). `lower` meets the user's expressions once;
+//! `generalized` works on what it returns, without `syn`.
 
 use super::checks::check;
 use super::kinematics::{Kin, Kinematics};
@@ -9,6 +10,50 @@ use super::{CoordKind, ParamCheck};
 use crate::lower::{Binding, Context, Value};
 use crate::parse::{End, Load, Mechanism};
 use crate::sym::{Expr, Func, Graph, Sym};
+
+/// The loads of a model, lowered.
+pub(super) struct Loads {
+    gravity: Option<Vec<Expr>>,
+    springs: Vec<Spring>,
+    potentials: Vec<Expr>,
+    dampers: Vec<Damper>,
+    applied: Vec<Applied>,
+}
+
+/// A spring of stiffness `k` and length `l0` between two points.
+struct Spring {
+    name: String,
+    ends: (Vec<Expr>, Vec<Expr>),
+    k: Expr,
+    l0: Expr,
+}
+
+/// A damper of coefficient `c` between two points.
+struct Damper {
+    name: String,
+    ends: (Vec<Expr>, Vec<Expr>),
+    c: Expr,
+}
+
+enum Applied {
+    Force {
+        at: Vec<Expr>,
+        force: Vec<Expr>,
+    },
+    /// Planar: the body's angle and the torque; spatial: the body and the torque vector.
+    PlanarTorque {
+        angle: Expr,
+        tau: Expr,
+    },
+    SpatialTorque {
+        body: usize,
+        tau: Vec<Expr>,
+    },
+    Generalized {
+        coord: usize,
+        value: Expr,
+    },
+}
 
 /// The generalised forces, with and without gravity, and the potential energy.
 pub(super) struct Forces {
@@ -39,54 +84,65 @@ impl Axes {
     }
 }
 
-pub(super) fn generalized(
+/// Gravity, springs, potentials, dampers and loads, with spanned errors for what has no
+/// meaning (unknown names, a torque on a particle).
+pub(super) fn lower(
     ast: &Mechanism,
     scope: &mut Scope,
     kinematics: &Kinematics,
     reactions: &mut Vec<(usize, Expr)>,
-    checks: &mut Vec<ParamCheck>,
-) -> Forces {
-    let zero = scope.g.zero();
-    let nz = kinematics.coords.len();
-    let mut kin = kinematics.kin(scope.t, scope.dim, reactions);
-    let axes = Axes {
-        z: kinematics.z_syms(&scope.g),
-        zd: kinematics.zd_syms(&scope.g),
-    };
+) -> Loads {
+    let len = scope.dim.len();
     let gravity = match &ast.gravity {
-        Some(e) => {
-            let len = scope.dim.len();
-            scope.lowerer(None).vector(e, Context::Constant, len)
-        }
+        Some(e) => scope.lowerer(None).vector(e, Context::Constant, len),
         None => None,
     };
-    let mut q_full = vec![zero; nz];
-    let potential = springs_and_potentials(ast, scope, kinematics, checks);
-    for (j, zs) in axes.z.iter().enumerate() {
-        let dv = scope.g.diff(potential, *zs);
-        q_full[j] = scope.g.sub(q_full[j], dv);
-    }
-    dampers(ast, scope, (kinematics, &kin), &axes, &mut q_full, checks);
-    for load in &ast.loads {
-        apply_load(load, scope, &mut kin, &axes, &mut q_full);
-    }
-    let q_applied = q_full.clone();
-    let mut gravity_energy = zero;
-    if let Some(grav) = &gravity {
-        let g = &mut scope.g;
-        for b in &kinematics.bodies {
-            let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
-            axes.add_force_at(g, &mut q_full, &b.r, &w);
-            let h = g.dot(&w, &b.r);
-            gravity_energy = g.sub(gravity_energy, h);
+    let mut springs = Vec::new();
+    for s in &ast.springs {
+        let (a, b) = (
+            end_position(scope, kinematics, &s.from),
+            end_position(scope, kinematics, &s.to),
+        );
+        let mut lw = scope.lowerer(None);
+        let k = lw.scalar(&s.k, Context::Constant);
+        let l0 = match &s.length {
+            Some(e) => lw.scalar(e, Context::Constant),
+            None => Some(lw.g.zero()),
+        };
+        if let (Some(a), Some(b), Some(k), Some(l0)) = (a, b, k, l0) {
+            let (name, ends) = (s.name.to_string(), (a, b));
+            springs.push(Spring { name, ends, k, l0 });
         }
     }
-    Forces {
-        q_full,
-        q_applied,
+    let potentials = ast
+        .potentials
+        .iter()
+        .filter_map(|p| scope.lowerer(None).scalar(p, Context::Kinematics))
+        .collect();
+    let mut dampers = Vec::new();
+    for d in &ast.dampers {
+        let (a, b) = (
+            end_position(scope, kinematics, &d.from),
+            end_position(scope, kinematics, &d.to),
+        );
+        let c = scope.lowerer(None).scalar(&d.c, Context::Constant);
+        if let (Some(a), Some(b), Some(c)) = (a, b, c) {
+            let (name, ends) = (d.name.to_string(), (a, b));
+            dampers.push(Damper { name, ends, c });
+        }
+    }
+    let mut kin = kinematics.kin(scope.t, scope.dim, reactions);
+    let applied = ast
+        .loads
+        .iter()
+        .filter_map(|load| lower_load(load, scope, &mut kin))
+        .collect();
+    Loads {
         gravity,
-        potential,
-        gravity_energy,
+        springs,
+        potentials,
+        dampers,
+        applied,
     }
 }
 
@@ -110,139 +166,44 @@ fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End) -> Option
     }
 }
 
-fn length(g: &mut Graph, a: &[Expr], b: &[Expr]) -> Expr {
-    let d: Vec<Expr> = a.iter().zip(b).map(|(x, y)| g.sub(*y, *x)).collect();
-    let s = g.dot(&d, &d);
-    g.call(Func::Sqrt, s)
-}
-
-/// `V = sum k (l - l0)^2 / 2` over the springs plus the user's potentials.
-fn springs_and_potentials(
-    ast: &Mechanism,
-    scope: &mut Scope,
-    kinematics: &Kinematics,
-    checks: &mut Vec<ParamCheck>,
-) -> Expr {
-    let mut potential = scope.g.zero();
-    for s in &ast.springs {
-        let (a, b) = (
-            end_position(scope, kinematics, &s.from),
-            end_position(scope, kinematics, &s.to),
-        );
-        let mut lw = scope.lowerer(None);
-        let k = lw.scalar(&s.k, Context::Constant);
-        let l0 = match &s.length {
-            Some(e) => lw.scalar(e, Context::Constant),
-            None => Some(lw.g.zero()),
-        };
-        if let (Some(a), Some(b), Some(k), Some(l0)) = (a, b, k, l0) {
-            checks.push(check(
-                format!("the stiffness of spring `{}`", s.name),
-                k,
-                false,
-            ));
-            checks.push(check(
-                format!("the length of spring `{}`", s.name),
-                l0,
-                false,
-            ));
-            let g = &mut scope.g;
-            let l = length(g, &a, &b);
-            let stretch = g.sub(l, l0);
-            let s2 = g.powi(stretch, 2);
-            let half = g.constant(0.5);
-            let half_k = g.mul(half, k);
-            let v = g.mul(half_k, s2);
-            potential = g.add(potential, v);
-        }
-    }
-    for p in &ast.potentials {
-        if let Some(v) = scope.lowerer(None).scalar(p, Context::Kinematics) {
-            potential = scope.g.add(potential, v);
-        }
-    }
-    potential
-}
-
-/// Rayleigh dissipation `D = c l'^2 / 2`: `Q_j -= dD/dz'_j = c l' dl'/dz'_j`.
-fn dampers(
-    ast: &Mechanism,
-    scope: &mut Scope,
-    (kinematics, kin): (&Kinematics, &Kin<'_>),
-    axes: &Axes,
-    q_full: &mut [Expr],
-    checks: &mut Vec<ParamCheck>,
-) {
-    for d in &ast.dampers {
-        let (a, b) = (
-            end_position(scope, kinematics, &d.from),
-            end_position(scope, kinematics, &d.to),
-        );
-        let c = scope.lowerer(None).scalar(&d.c, Context::Constant);
-        if let (Some(a), Some(b), Some(c)) = (a, b, c) {
-            checks.push(check(format!("the damping of `{}`", d.name), c, false));
-            let g = &mut scope.g;
-            let l = length(g, &a, &b);
-            let ldot = kin.tder(g, l);
-            let cl = g.mul(c, ldot);
-            for (j, zds) in axes.zd.iter().enumerate() {
-                let dl = g.diff(ldot, *zds);
-                let w = g.mul(cl, dl);
-                q_full[j] = g.sub(q_full[j], w);
-            }
-        }
-    }
-}
-
 /// A force at a point, a torque on a body, or a generalised force along a coordinate.
-fn apply_load(load: &Load, scope: &mut Scope, kin: &mut Kin<'_>, axes: &Axes, q_full: &mut [Expr]) {
-    let dim = scope.dim;
+fn lower_load(load: &Load, scope: &mut Scope, kin: &mut Kin<'_>) -> Option<Applied> {
+    let len = scope.dim.len();
     match load {
         Load::Force { at, value } => {
             let mut lw = scope.lowerer(Some(kin));
-            let at = lw.vector(at, Context::Kinematics, dim.len());
-            let f = lw.vector(value, Context::Force, dim.len());
-            if let (Some(at), Some(f)) = (at, f) {
-                axes.add_force_at(&mut scope.g, q_full, &at, &f);
-            }
+            let at = lw.vector(at, Context::Kinematics, len);
+            let force = lw.vector(value, Context::Force, len);
+            Some(Applied::Force {
+                at: at?,
+                force: force?,
+            })
         }
         Load::Torque { body, value } => {
             let Some(Binding::Body(bi)) = scope.names.get(&body.to_string()) else {
                 scope
                     .errors
                     .at(body.span(), format!("unknown body `{body}`"));
-                return;
+                return None;
             };
-            let bodies = kin.bodies;
-            let b = &bodies[*bi];
+            let bi = *bi;
+            let b = &kin.bodies[bi];
             match (b.angle, b.rot) {
-                (Some(phi), _) => {
-                    if let Some(tau) = scope.lowerer(Some(kin)).scalar(value, Context::Force) {
-                        let g = &mut scope.g;
-                        for (j, zs) in axes.z.iter().enumerate() {
-                            let d = g.diff(phi, *zs);
-                            let w = g.mul(tau, d);
-                            q_full[j] = g.add(q_full[j], w);
-                        }
-                    }
+                (Some(angle), _) => {
+                    let tau = scope.lowerer(Some(kin)).scalar(value, Context::Force)?;
+                    Some(Applied::PlanarTorque { angle, tau })
                 }
-                (None, Some(rot)) => {
-                    if let Some(tau) = scope.lowerer(Some(kin)).vector(value, Context::Force, 3) {
-                        // World torque . d(w_world)/dzd_j.
-                        let g = &mut scope.g;
-                        let w_b = kin.omega_body(g, b);
-                        let w: Vec<Expr> = (0..3).map(|i| g.dot(&rot[i], &w_b)).collect();
-                        for (j, zds) in axes.zd.iter().enumerate() {
-                            let col: Vec<Expr> = w.iter().map(|x| g.diff(*x, *zds)).collect();
-                            let p = g.dot(&tau, &col);
-                            q_full[j] = g.add(q_full[j], p);
-                        }
-                    }
+                (None, Some(_)) => {
+                    let tau = scope.lowerer(Some(kin)).vector(value, Context::Force, 3)?;
+                    Some(Applied::SpatialTorque { body: bi, tau })
                 }
-                _ => scope.errors.at(
-                    body.span(),
-                    format!("`{body}` is a particle: a torque needs a rigid body"),
-                ),
+                _ => {
+                    scope.errors.at(
+                        body.span(),
+                        format!("`{body}` is a particle: a torque needs a rigid body"),
+                    );
+                    None
+                }
             }
         }
         Load::Generalized { coord, value } => {
@@ -250,20 +211,140 @@ fn apply_load(load: &Load, scope: &mut Scope, kin: &mut Kin<'_>, axes: &Axes, q_
                 scope
                     .errors
                     .at(coord.span(), format!("unknown coordinate `{coord}`"));
-                return;
+                return None;
             };
-            if let Some(v) = scope.lowerer(Some(kin)).scalar(value, Context::Force) {
-                let g = &mut scope.g;
-                // Along a dependent coordinate `x = h(q)`: virtual work `v dh/dq_k`.
-                if let CoordKind::Dependent([h, ..]) = kin.coords[j].kind {
-                    for (k, zs) in axes.z.iter().enumerate() {
-                        let d = g.diff(h, *zs);
-                        let w = g.mul(v, d);
-                        q_full[k] = g.add(q_full[k], w);
-                    }
-                } else {
-                    q_full[j] = g.add(q_full[j], v);
+            let value = scope.lowerer(Some(kin)).scalar(value, Context::Force)?;
+            Some(Applied::Generalized { coord: j, value })
+        }
+    }
+}
+
+pub(super) fn generalized(
+    scope: &mut Scope,
+    kinematics: &Kinematics,
+    loads: Loads,
+    checks: &mut Vec<ParamCheck>,
+) -> Forces {
+    let zero = scope.g.zero();
+    let nz = kinematics.coords.len();
+    let mut reactions = Vec::new();
+    let kin = kinematics.kin(scope.t, scope.dim, &mut reactions);
+    let axes = Axes {
+        z: kinematics.z_syms(&scope.g),
+        zd: kinematics.zd_syms(&scope.g),
+    };
+    let g = &mut scope.g;
+    let mut q_full = vec![zero; nz];
+    let potential = springs_and_potentials(g, &loads, checks);
+    for (j, zs) in axes.z.iter().enumerate() {
+        let dv = g.diff(potential, *zs);
+        q_full[j] = g.sub(q_full[j], dv);
+    }
+    dampers(g, &kin, &loads.dampers, &axes, &mut q_full, checks);
+    for load in &loads.applied {
+        apply_load(g, load, &kin, &axes, &mut q_full);
+    }
+    let q_applied = q_full.clone();
+    let mut gravity_energy = zero;
+    if let Some(grav) = &loads.gravity {
+        for b in &kinematics.bodies {
+            let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
+            axes.add_force_at(g, &mut q_full, &b.r, &w);
+            let h = g.dot(&w, &b.r);
+            gravity_energy = g.sub(gravity_energy, h);
+        }
+    }
+    Forces {
+        q_full,
+        q_applied,
+        gravity: loads.gravity,
+        potential,
+        gravity_energy,
+    }
+}
+
+fn length(g: &mut Graph, a: &[Expr], b: &[Expr]) -> Expr {
+    let d: Vec<Expr> = a.iter().zip(b).map(|(x, y)| g.sub(*y, *x)).collect();
+    let s = g.dot(&d, &d);
+    g.call(Func::Sqrt, s)
+}
+
+/// `V = sum k (l - l0)^2 / 2` over the springs plus the user's potentials.
+fn springs_and_potentials(g: &mut Graph, loads: &Loads, checks: &mut Vec<ParamCheck>) -> Expr {
+    let mut potential = g.zero();
+    for s in &loads.springs {
+        let (name, (a, b), k, l0) = (&s.name, &s.ends, s.k, s.l0);
+        checks.push(check(format!("the stiffness of spring `{name}`"), k, false));
+        checks.push(check(format!("the length of spring `{name}`"), l0, false));
+        let l = length(g, a, b);
+        let stretch = g.sub(l, l0);
+        let s2 = g.powi(stretch, 2);
+        let half = g.constant(0.5);
+        let half_k = g.mul(half, k);
+        let v = g.mul(half_k, s2);
+        potential = g.add(potential, v);
+    }
+    for &v in &loads.potentials {
+        potential = g.add(potential, v);
+    }
+    potential
+}
+
+/// Rayleigh dissipation `D = c l'^2 / 2`: `Q_j -= dD/dz'_j = c l' dl'/dz'_j`.
+fn dampers(
+    g: &mut Graph,
+    kin: &Kin<'_>,
+    dampers: &[Damper],
+    axes: &Axes,
+    q_full: &mut [Expr],
+    checks: &mut Vec<ParamCheck>,
+) {
+    for d in dampers {
+        let ((a, b), c) = (&d.ends, d.c);
+        checks.push(check(format!("the damping of `{}`", d.name), c, false));
+        let l = length(g, a, b);
+        let ldot = kin.tder(g, l);
+        let cl = g.mul(c, ldot);
+        for (j, zds) in axes.zd.iter().enumerate() {
+            let dl = g.diff(ldot, *zds);
+            let w = g.mul(cl, dl);
+            q_full[j] = g.sub(q_full[j], w);
+        }
+    }
+}
+
+fn apply_load(g: &mut Graph, load: &Applied, kin: &Kin<'_>, axes: &Axes, q_full: &mut [Expr]) {
+    match load {
+        Applied::Force { at, force } => axes.add_force_at(g, q_full, at, force),
+        Applied::PlanarTorque { angle, tau } => {
+            for (j, zs) in axes.z.iter().enumerate() {
+                let d = g.diff(*angle, *zs);
+                let w = g.mul(*tau, d);
+                q_full[j] = g.add(q_full[j], w);
+            }
+        }
+        Applied::SpatialTorque { body, tau } => {
+            // World torque . d(w_world)/dzd_j.
+            let b = &kin.bodies[*body];
+            let rot = b.rot.expect("a spatial body");
+            let w_b = kin.omega_body(g, b);
+            let w: Vec<Expr> = (0..3).map(|i| g.dot(&rot[i], &w_b)).collect();
+            for (j, zds) in axes.zd.iter().enumerate() {
+                let col: Vec<Expr> = w.iter().map(|x| g.diff(*x, *zds)).collect();
+                let p = g.dot(tau, &col);
+                q_full[j] = g.add(q_full[j], p);
+            }
+        }
+        Applied::Generalized { coord, value } => {
+            // Along a dependent coordinate `x = h(q)`: virtual work `v dh/dq_k`.
+            if let CoordKind::Dependent([h, ..]) = kin.coords[*coord].kind {
+                for (k, zs) in axes.z.iter().enumerate() {
+                    let d = g.diff(h, *zs);
+                    let w = g.mul(*value, d);
+                    q_full[k] = g.add(q_full[k], w);
                 }
+            } else {
+                q_full[*coord] = g.add(q_full[*coord], *value);
             }
         }
     }
