@@ -93,6 +93,9 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
             load: [0.0; F],
         });
     }
+    if M == 0 {
+        return held(t, c, along, modes, &f);
+    }
     let mut k = Matrix::<A, A>::zeros();
     k.fixed_view_mut::<N, N>(0, 0).copy_from(&c.mass);
     k.fixed_view_mut::<M, N>(N, 0).copy_from(&c.phi_q);
@@ -134,6 +137,43 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
         }
     });
     Ok(InModes { qdd, lambda, load })
+}
+
+/// [`solve_in`] without constraints and with a contact stuck: the stuck coordinates' rows
+/// and columns of `M` replaced by the identity's (with `qdd_s = 0` on the right), an
+/// `N x N` solve instead of the `(N + F) x (N + F)` one, the loads again the residuals.
+fn held<const N: usize, const M: usize, const F: usize>(
+    t: f64,
+    c: &Contacts<N, M, F>,
+    along: &[usize; F],
+    modes: &[Slip; F],
+    f: &Vector<N>,
+) -> Result<InModes<N, M, F>> {
+    let (mut k, mut rhs) = (c.mass, *f);
+    for j in (0..F).filter(|&j| modes[j] == Slip::Stick) {
+        let s = along[j];
+        k.row_mut(s).fill(0.0);
+        k.column_mut(s).fill(0.0);
+        k[(s, s)] = 1.0;
+        rhs[s] = 0.0;
+    }
+    let mut qdd = solve_mass(t, &k, &rhs)?;
+    for j in (0..F).filter(|&j| modes[j] == Slip::Stick) {
+        qdd[along[j]] = 0.0;
+    }
+    let residual = f - c.mass * qdd;
+    let load = std::array::from_fn(|j| {
+        if modes[j] == Slip::Stick {
+            residual[along[j]]
+        } else {
+            0.0
+        }
+    });
+    Ok(InModes {
+        qdd,
+        lambda: Vector::<M>::zeros(),
+        load,
+    })
 }
 
 /// Whether the modes of the contacts marked `free` are consistent with the solution:
@@ -305,6 +345,20 @@ where
                 Err(_) => f64::NAN,
             }
         }
+    }
+}
+
+/// Where switching function `k` is the sliding velocity (`modes[k]` slides):
+/// `(N + along[k], +-1)` ([`crate::model::Hybrid::switching_state`]).
+pub fn switching_state<const N: usize, const F: usize>(
+    along: &[usize; F],
+    modes: &[Slip; F],
+    k: usize,
+) -> Option<(usize, f64)> {
+    match modes[k] {
+        Slip::Forward => Some((N + along[k], 1.0)),
+        Slip::Backward => Some((N + along[k], -1.0)),
+        Slip::Stick => None,
     }
 }
 

@@ -125,6 +125,8 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
         y_end: y0,
     };
     let mut switches = Vec::new();
+    // The last full step the method took in each mode met so far.
+    let mut steps_in: Vec<(S::Mode, f64)> = Vec::new();
     loop {
         let current = mode;
         let mut all: Vec<Event<'_, D>> = events
@@ -155,8 +157,21 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
                 }
                 None => Flow::Continue,
             };
-        let part = integrator.solve_observed(&view, t, y, t1, &all, Some(&mut watch))?;
+        // Restart with the step last taken in this mode (a fresh guess from a stuck
+        // state starts at 1e-6 and takes a step per tenfold growth).
+        let restarted = steps_in
+            .iter()
+            .find(|(m, _)| *m == mode)
+            .and_then(|&(_, h)| integrator.with_first_step(h));
+        let method = restarted.as_ref().unwrap_or(integrator);
+        let part = method.solve_observed(&view, t, y, t1, &all, Some(&mut watch))?;
         let steps = part.t.len() - 1;
+        if let Some(h) = last_step(&part) {
+            match steps_in.iter_mut().find(|(m, _)| *m == mode) {
+                Some(entry) => entry.1 = h,
+                None => steps_in.push((mode, h)),
+            }
+        }
         let stopped = part.stopped_by;
         append(&mut out, part, events.len());
         // A crossing inside the step comes before any located at its (possibly cut) end.
@@ -259,6 +274,20 @@ fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
     Ok(())
 }
 
+/// The step size to restart a mode with: the longer of the run's last two steps (the last
+/// one may have been cut short by the switch), from the dense segments when kept.
+fn last_step<const D: usize>(part: &Solution<D>) -> Option<f64> {
+    let lengths: Vec<f64> = if part.segments.is_empty() {
+        part.t.windows(2).rev().take(2).map(|w| w[1] - w[0]).collect()
+    } else {
+        part.segments.iter().rev().take(2).map(|s| s.h).collect()
+    };
+    lengths
+        .into_iter()
+        .filter(|h| *h > 0.0 && h.is_finite())
+        .reduce(f64::max)
+}
+
 fn add(s: &mut Stats, p: Stats) {
     s.n_rhs += p.n_rhs;
     s.n_jac += p.n_jac;
@@ -352,11 +381,23 @@ fn first_inside<S: Hybrid<D>, const D: usize>(
     seg: &Segment<D>,
 ) -> Option<(usize, f64)> {
     (0..S::SWITCHES)
+        .filter(|&k| {
+            sys.switching_state(mode, k)
+                .is_none_or(|(i, sign)| !positive_on(seg, i, sign))
+        })
         .filter_map(|k| {
             let g = |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k);
             hidden(&g, seg).map(|(a, b)| (k, bracketed(&g, seg, a, b)))
         })
         .min_by(|x, y| x.1.total_cmp(&y.1))
+}
+
+/// Whether `sign * y[i]` stays positive over the whole segment, from its coefficients in
+/// `theta` in `[0, 1]`: `p_0 + sum min(0, p_j) > 0` bounds it from below (`theta^j <= 1`).
+fn positive_on<const D: usize>(seg: &Segment<D>, i: usize, sign: f64) -> bool {
+    let p0 = sign * seg.coeffs[0][i];
+    let low: f64 = seg.coeffs[1..].iter().map(|c| (sign * c[i]).min(0.0)).sum();
+    p0 + low > 0.0
 }
 
 /// A bracket `((a, g(a) > 0), (b, g(b) <= 0))` of a zero of `g` inside `seg` (before its

@@ -126,6 +126,13 @@ pub trait Hybrid<const D: usize> {
     /// set onto the switching surface (a sliding velocity that reached zero becomes exactly 0).
     fn switch(&self, t: f64, y: &mut Vector<D>, mode: &Self::Mode, k: usize) -> Result<Self::Mode>;
 
+    /// `Some((i, sign))` where switching function `k` of `mode` is `sign * y[i]` (a sliding
+    /// velocity): the driver then rules out a crossing inside a step from the dense
+    /// polynomial's coefficients instead of sampling the function. The default: `None`.
+    fn switching_state(&self, _mode: &Self::Mode, _k: usize) -> Option<(usize, f64)> {
+        None
+    }
+
     /// [`OdeSystem::project`] in `mode`; the default does nothing.
     fn project_in(&self, _t: f64, _y: &mut Vector<D>, _mode: &Self::Mode) -> Result<()> {
         Ok(())

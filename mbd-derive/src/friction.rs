@@ -51,6 +51,7 @@ pub fn emit(
             }
         }
     });
+    let sliding_check = (m > 0).then(|| quote!(self.check_parameters()?;));
     let code = quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic, reason = "generated straight-line code")]
@@ -69,19 +70,25 @@ pub fn emit(
             type Mode = [#p::Slip; #nf];
             const SWITCHES: usize = #nf;
             fn rhs_in(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode) -> #p::Result<#p::Vector<#d>> {
+                // Every contact sliding: the straight-line forces with the directions given
+                // (the sliding view's), no stuck rows to solve. Its element checks and the
+                // mass solve's pivots refuse bad parameters (constrained: the LU does not).
+                if mode.iter().all(|m| *m != #p::Slip::Stick) {
+                    #sliding_check
+                    let direction = mode.map(|m| if m == #p::Slip::Forward { 1.0 } else { -1.0 });
+                    return #p::solve::second_order_rhs::<#n, #d>(y, |q, qd| self.acceleration_sliding(t, q, qd, &direction))
+                        .map_err(|e| self.diagnose(e));
+                }
                 // A negative coefficient or mass passed at run time: no stuck-row solve
                 // would notice it.
                 self.check_parameters()?;
-                // Every contact sliding: the straight-line forces with the directions given
-                // (the sliding view's), no stuck rows to solve.
-                if mode.iter().all(|m| *m != #p::Slip::Stick) {
-                    let direction = mode.map(|m| if m == #p::Slip::Forward { 1.0 } else { -1.0 });
-                    return #p::solve::second_order_rhs::<#n, #d>(y, |q, qd| self.acceleration_sliding(t, q, qd, &direction));
-                }
                 #p::friction::rhs_in::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode)
             }
             fn switching(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode, k: usize) -> f64 {
                 #p::friction::switching::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode, k)
+            }
+            fn switching_state(&self, mode: &Self::Mode, k: usize) -> Option<(usize, f64)> {
+                #p::friction::switching_state::<#n, #nf>(&<Self as #p::Frictional<#n, #m, #nf, #a>>::ALONG, mode, k)
             }
             fn mode_at(&self, t: f64, y: &#p::Vector<#d>) -> #p::Result<Self::Mode> {
                 #p::friction::mode_at::<Self, #n, #m, #nf, #a, #d>(self, t, y)

@@ -218,6 +218,14 @@ fn block_at_rest_on_an_incline_stays_with_every_method() {
             .solve::<_, 1, 2>(&AT_REST, 0.0, q0, qd0, 1.0, &[])
             .unwrap();
         rest(sol.last().1);
+        // Mode by mode through its `Integrator` implementation.
+        rest(
+            mbd::hybrid::solve(&ga, &AT_REST, 0.0, y0, 1.0, &[])
+                .unwrap()
+                .solution
+                .last()
+                .1,
+        );
     }
 }
 
@@ -274,6 +282,20 @@ fn block_stops_and_stays_on_the_plain_model() {
     check(
         mbd::hybrid::solve(&Rk4::new(0.01), &b, 0.0, b.initial_state(), 20.0, &[]).unwrap(),
         "RK4",
+    );
+    // Constant deceleration: generalized-alpha's steps and its cubic Hermite segments
+    // reproduce the parabola, so the stop is as exact as with the others.
+    check(
+        mbd::hybrid::solve(
+            &GeneralizedAlpha::new(0.8, 0.01),
+            &b,
+            0.0,
+            b.initial_state(),
+            20.0,
+            &[],
+        )
+        .unwrap(),
+        "generalized-alpha",
     );
     // The user's events pass through: the model's terminal `stops` (s' falling through 0)
     // ends the run at the stop, reported with its own index.

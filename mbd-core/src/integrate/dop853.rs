@@ -125,6 +125,12 @@ impl Integrator for Dop853 {
         "DOP853"
     }
 
+    fn with_first_step(&self, h: f64) -> Option<Self> {
+        let mut opts = self.opts.clone();
+        opts.h0 = Some(h);
+        Some(Dop853 { opts })
+    }
+
     fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,

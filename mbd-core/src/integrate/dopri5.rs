@@ -166,6 +166,12 @@ impl Integrator for Dopri5 {
         "DOPRI5"
     }
 
+    fn with_first_step(&self, h: f64) -> Option<Self> {
+        let mut opts = self.opts.clone();
+        opts.h0 = Some(h);
+        Some(Dopri5 { opts })
+    }
+
     fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,

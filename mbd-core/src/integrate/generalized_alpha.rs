@@ -24,13 +24,13 @@
 //! constraints hold to the Newton tolerance at every step (no drift).
 
 use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
-use super::{positive_finite, second_order_end, stack};
+use super::{Integrator, positive_finite, second_order_end_packed, stack};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
 use crate::jacobian::forward_difference;
 use crate::linalg::Lu;
-use crate::model::{Constrained, Mechanism, Vector};
+use crate::model::{Constrained, Mechanism, OdeSystem, Vector};
 
 /// The initial state of a run: time, positions, velocities, accelerations, and the first
 /// unknowns `z0 = [q0; extra]`.
@@ -167,7 +167,8 @@ impl GeneralizedAlpha {
             qdd0,
             z0: q0,
         };
-        self.run::<N, N, D>(start, t1, events, observer, residual)
+        const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+        self.run::<N, N, D>(start, t1, events, observer, stack, residual)
     }
 
     /// Integrate a closed loop in index-3 form (`A = N + M` unknowns `(q1, lambda1)` per
@@ -213,6 +214,7 @@ impl GeneralizedAlpha {
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
         const { assert!(A == N + M, "the unknowns are (q, lambda): A = N + M") };
+        const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
         let (qdd0, lambda0) = sys.acceleration_and_multipliers(t0, &q0, &qd0)?;
         let mut z0 = Vector::<A>::zeros();
         z0.fixed_rows_mut::<N>(0).copy_from(&q0);
@@ -229,6 +231,7 @@ impl GeneralizedAlpha {
             t1,
             events,
             observer,
+            stack,
             |scale, t, z: &Vector<A>, qd1, qdd1| {
                 let q1 = z.fixed_rows::<N>(0).into_owned();
                 // The unknowns carry beta h^2 lambda (see `run`).
@@ -247,13 +250,18 @@ impl GeneralizedAlpha {
 
     /// The stepping loop. The unknowns of a step are `z = [q1; extra]` (`K >= N`);
     /// `residual(1 / (beta h^2), t1, z, qd1, qdd1)` gets the velocities and accelerations
-    /// that the generalized-α formulas give for `q1`.
+    /// that the generalized-α formulas give for `q1`; `pack(q, qd)` is the state recorded.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the run's start, end, events, observer, state packing and residual"
+    )]
     fn run<const N: usize, const K: usize, const D: usize>(
         &self,
         start: Start<N, K>,
         t1: f64,
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
+        pack: impl Fn(&Vector<N>, &Vector<N>) -> Vector<D>,
         residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
     ) -> Result<Solution<D>> {
         let Start {
@@ -263,11 +271,10 @@ impl GeneralizedAlpha {
             qdd0,
             z0,
         } = start;
-        const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
         const { assert!(K >= N, "the unknowns start with q1") };
         let c = Coefficients::from_rho_inf(self.rho_inf)?;
         self.validate()?;
-        let y0 = stack(&q0, &qd0);
+        let y0 = pack(&q0, &qd0);
         validate_problem(t0, &y0, t1)?;
         let steps = ((t1 - t0) / self.h).ceil().max(1.0);
         if steps > self.max_steps as f64 {
@@ -365,7 +372,8 @@ impl GeneralizedAlpha {
                 return Err(failed);
             }
             let (q1, a1, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
-            let (y1, seg) = second_order_end(t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
+            let (y1, seg) =
+                second_order_end_packed(&pack, t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
             stats.n_steps += 1;
             stats.n_accepted += 1;
             (q, qd, qdd, a) = (q1, qd1, qdd1, a1);
@@ -384,5 +392,73 @@ impl GeneralizedAlpha {
             return bad("max_iterations/max_steps", "must be at least 1".to_string());
         }
         Ok(())
+    }
+}
+
+/// A first-order system `y = [q; qd]`, `y' = [qd; a(t, q, qd)]` (what a mechanism's `rhs`
+/// is, and a hybrid system's in each of its modes) integrated as the second-order
+/// `qdd = a(t, q, qd)`, i.e. with `M = I`: this is how [`crate::hybrid::solve`] drives
+/// generalized-α mode by mode. The const generics cannot name `N = D / 2`, so the positions
+/// are padded to `D` coordinates whose last `D / 2` stay exactly zero (`qdd = 0` there,
+/// decoupled in the Newton matrix). Refused with [`Error::InvalidInput`] unless `D` is even
+/// and the upper half of `f(t0, y0)` is the lower half of `y0`. No projection is applied.
+impl Integrator for GeneralizedAlpha {
+    fn name(&self) -> &'static str {
+        "generalized-alpha"
+    }
+
+    fn solve_observed<S: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        y0: Vector<D>,
+        t1: f64,
+        events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
+    ) -> Result<Solution<D>> {
+        validate_problem(t0, &y0, t1)?;
+        let n = D / 2;
+        let f0 = sys.rhs(t0, &y0)?;
+        if D % 2 != 0 || (0..n).any(|i| f0[i] != y0[n + i]) {
+            return Err(Error::InvalidInput {
+                what: "system",
+                detail: "generalized-alpha integrates second-order systems, y = [q; qd] with \
+                         y' = [qd; qdd]"
+                    .to_string(),
+            });
+        }
+        let pad = |v: &Vector<D>| Vector::<D>::from_fn(|i, _| if i < n { v[n + i] } else { 0.0 });
+        let q0 = Vector::<D>::from_fn(|i, _| if i < n { y0[i] } else { 0.0 });
+        let (qd0, qdd0) = (pad(&y0), pad(&f0));
+        let pack = |q: &Vector<D>, qd: &Vector<D>| {
+            Vector::<D>::from_fn(|i, _| if i < n { q[i] } else { qd[i - n] })
+        };
+        // The residual cannot fail: the first error of `rhs` is kept and returned.
+        let failure = std::cell::Cell::new(None);
+        let residual = |_, t, z: &Vector<D>, qd1: &Vector<D>, qdd1: &Vector<D>| match sys
+            .rhs(t, &pack(z, qd1))
+        {
+            Ok(f) => Vector::<D>::from_fn(|i, _| if i < n { qdd1[i] - f[n + i] } else { qdd1[i] }),
+            Err(e) => {
+                let first = failure.take().unwrap_or(e);
+                failure.set(Some(first));
+                Vector::<D>::repeat(f64::NAN)
+            }
+        };
+        let start = Start {
+            t0,
+            q0,
+            qd0,
+            qdd0,
+            z0: q0,
+        };
+        let run = self.run::<D, D, D>(start, t1, events, observer, pack, residual);
+        match (run, failure.take()) {
+            (Err(_), Some(e)) => Err(e),
+            (run, _) => run.map(|mut s| {
+                s.stats.n_rhs += 1;
+                s
+            }),
+        }
     }
 }

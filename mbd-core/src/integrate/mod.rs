@@ -68,6 +68,17 @@ pub trait Integrator {
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>>;
+
+    /// The same method with its first step set to `h` (`Options::h0`), or `None` for a
+    /// method without that setting. [`crate::hybrid`] restarts a mode with the step the
+    /// method last took in that mode rather than a fresh guess: the dynamics on both sides
+    /// of a switch are smooth, and a guess from rest (a stuck state) starts at `1e-6`.
+    fn with_first_step(&self, _h: f64) -> Option<Self>
+    where
+        Self: Sized,
+    {
+        None
+    }
 }
 
 /// Step size, tolerance and recording settings shared by the adaptive methods. `Default`
@@ -159,20 +170,32 @@ pub(crate) fn stack<const N: usize, const D: usize>(q: &Vector<N>, qd: &Vector<N
 pub(crate) fn second_order_end<const N: usize, const D: usize>(
     t: f64,
     t1: f64,
+    start: (&Vector<N>, &Vector<N>, &Vector<N>),
+    end: (&Vector<N>, &Vector<N>, &Vector<N>),
+) -> Result<(Vector<D>, Segment<D>)> {
+    second_order_end_packed(stack, t, t1, start, end)
+}
+
+/// [`second_order_end`] with the state packed by `pack(q, qd)` instead of [`stack`] (a
+/// first-order system integrated as a second-order one in padded coordinates).
+pub(crate) fn second_order_end_packed<const N: usize, const D: usize>(
+    pack: impl Fn(&Vector<N>, &Vector<N>) -> Vector<D>,
+    t: f64,
+    t1: f64,
     (q, qd, qdd): (&Vector<N>, &Vector<N>, &Vector<N>),
     (q1, qd1, qdd1): (&Vector<N>, &Vector<N>, &Vector<N>),
 ) -> Result<(Vector<D>, Segment<D>)> {
-    let y1 = stack(q1, qd1);
+    let y1 = pack(q1, qd1);
     if non_finite(&y1) || non_finite(qdd1) {
         return Err(Error::NonFinite { t: t1 });
     }
     let seg = Segment::hermite(
         t,
         t1 - t,
-        &stack(q, qd),
-        &stack(qd, qdd),
+        &pack(q, qd),
+        &pack(qd, qdd),
         &y1,
-        &stack(qd1, qdd1),
+        &pack(qd1, qdd1),
     );
     Ok((y1, seg))
 }

@@ -170,6 +170,12 @@ impl Integrator for Radau5 {
         "Radau5"
     }
 
+    fn with_first_step(&self, h: f64) -> Option<Self> {
+        let mut opts = self.opts.clone();
+        opts.h0 = Some(h);
+        Some(Radau5 { opts })
+    }
+
     fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
