@@ -15,7 +15,7 @@
 
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
-use crate::model::{Contacts, Frictional, Matrix, Slip, Vector};
+use crate::model::{Contacts, Frictional, Matrix, Normals, Slip, Vector};
 use crate::solve::{finite, solve_mass};
 
 /// Contacts at rest whose modes are enumerated at most (`3^12` solves would be too many).
@@ -176,6 +176,118 @@ fn held<const N: usize, const M: usize, const F: usize>(
     })
 }
 
+/// The normal forces of a model with implicit ones at a state, as functions of `(qdd,
+/// lambda)` ([`Frictional::normals`]).
+pub type NormalsAt<'a, const N: usize, const M: usize, const F: usize> =
+    &'a dyn Fn(&Vector<N>, &Vector<M>) -> Option<Normals<N, M, F>>;
+
+/// Newton iterations allowed for implicit normal forces.
+pub const MAX_NEWTON: usize = 50;
+
+/// [`solve_in`] where the normal forces may depend on the solution (`normals`): the sliding
+/// contacts' normals are solved with it ([`newton`]), the stuck contacts' (which do not
+/// enter the solve, only their bounds) are evaluated at it; `c.normal` is set to them.
+pub fn resolve<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    c: &mut Contacts<N, M, F>,
+    along: &[usize; F],
+    modes: &[Slip; F],
+    normals: Option<NormalsAt<'_, N, M, F>>,
+) -> Result<InModes<N, M, F>> {
+    let Some(at) = normals else {
+        return solve_in::<N, M, F, A>(t, c, along, modes);
+    };
+    if modes.iter().any(|m| *m != Slip::Stick) {
+        newton::<N, M, F, A>(t, c, along, modes, at)?;
+    }
+    let s = solve_in::<N, M, F, A>(t, c, along, modes)?;
+    let n = at(&s.qdd, &s.lambda).ok_or_else(|| no_normals(t))?;
+    for k in (0..F).filter(|&k| modes[k] == Slip::Stick) {
+        c.normal[k] = n.value[k];
+    }
+    Ok(s)
+}
+
+#[cold]
+fn no_normals(t: f64) -> Error {
+    Error::InvalidInput {
+        what: "friction",
+        detail: format!("implicit normal forces not available at t = {t}"),
+    }
+}
+
+/// The sliding contacts' normals `nu = N(x(nu))`. The solution is affine in `|nu|` (each
+/// normal adds `-mu_k |nu_k| dir_k` to one force), `x = x0 + sum_k |nu_k| G_k` with `G_k`
+/// the response to a unit normal, so one solve per sliding contact sets up a Newton
+/// iteration on `F` scalars with the exact Jacobian `I - (dN/dx) G diag(sign nu)`.
+fn newton<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    c: &mut Contacts<N, M, F>,
+    along: &[usize; F],
+    modes: &[Slip; F],
+    at: NormalsAt<'_, N, M, F>,
+) -> Result<()> {
+    let sliding: Vec<usize> = (0..F).filter(|&k| modes[k] != Slip::Stick).collect();
+    for &k in &sliding {
+        c.normal[k] = 0.0;
+    }
+    let x0 = solve_in::<N, M, F, A>(t, c, along, modes)?;
+    let mut unit = Vec::with_capacity(sliding.len());
+    for &k in &sliding {
+        c.normal[k] = 1.0;
+        let x1 = solve_in::<N, M, F, A>(t, c, along, modes)?;
+        c.normal[k] = 0.0;
+        unit.push((k, x1.qdd - x0.qdd, x1.lambda - x0.lambda));
+    }
+    let mut nu = at(&x0.qdd, &x0.lambda).ok_or_else(|| no_normals(t))?.value;
+    let mut last = f64::INFINITY;
+    for _ in 0..MAX_NEWTON {
+        let (mut qdd, mut lambda) = (x0.qdd, x0.lambda);
+        for (k, gq, gl) in &unit {
+            qdd += gq * nu[*k].abs();
+            lambda += gl * nu[*k].abs();
+        }
+        let n = at(&qdd, &lambda).ok_or_else(|| no_normals(t))?;
+        let (mut jac, mut r) = (Matrix::<F, F>::identity(), Vector::<F>::zeros());
+        for &(k, ..) in &unit {
+            r[k] = nu[k] - n.value[k];
+            for (j, gq, gl) in &unit {
+                let sign = if nu[*j] < 0.0 { -1.0 } else { 1.0 };
+                jac[(k, *j)] -= (n.d_qdd[k].dot(gq) + n.d_lambda[k].dot(gl)) * sign;
+            }
+        }
+        let d = Lu::factor(jac)
+            .map(|lu| lu.solve(&r))
+            .filter(|d| d.iter().all(|v| v.is_finite()))
+            .ok_or_else(|| not_converged(t))?;
+        let (mut size, mut scale) = (0.0f64, 0.0f64);
+        for &(k, ..) in &unit {
+            nu[k] -= d[k];
+            (size, scale) = (size.max(d[k].abs()), scale.max(nu[k].abs()));
+        }
+        // Converged to rounding: a step below 2 eps, or one that stopped halving near it.
+        if size <= 2.0 * f64::EPSILON * scale || (size <= 1e-10 * scale && size > 0.5 * last) {
+            for &k in &sliding {
+                c.normal[k] = nu[k];
+            }
+            return Ok(());
+        }
+        last = size;
+    }
+    Err(not_converged(t))
+}
+
+#[cold]
+fn not_converged(t: f64) -> Error {
+    Error::InvalidInput {
+        what: "friction",
+        detail: format!(
+            "the implicit normal force did not converge at t = {t} (friction too large for the \
+             joint to have a solution?)"
+        ),
+    }
+}
+
 /// Whether the modes of the contacts marked `free` are consistent with the solution:
 /// `strict`, a stuck load strictly inside its bound and a slide strictly accelerating (so
 /// that the new mode's switching functions start positive, and a load exactly at the bound
@@ -214,6 +326,18 @@ pub fn choose<const N: usize, const M: usize, const F: usize, const A: usize>(
     along: &[usize; F],
     fixed: &[Option<Slip>; F],
 ) -> Result<([Slip; F], InModes<N, M, F>)> {
+    choose_in::<N, M, F, A>(t, c.clone(), along, fixed, None).map(|(m, _, s)| (m, s))
+}
+
+/// [`choose`] with implicit normals ([`resolve`]); also returns the contacts with the
+/// normals of the chosen modes.
+pub fn choose_in<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    mut c: Contacts<N, M, F>,
+    along: &[usize; F],
+    fixed: &[Option<Slip>; F],
+    normals: Option<NormalsAt<'_, N, M, F>>,
+) -> Result<([Slip; F], Contacts<N, M, F>, InModes<N, M, F>)> {
     let free: [bool; F] = std::array::from_fn(|k| fixed[k].is_none());
     let resting: Vec<usize> = (0..F).filter(|&k| free[k]).collect();
     if resting.len() > MAX_RESTING {
@@ -245,9 +369,9 @@ pub fn choose<const N: usize, const M: usize, const F: usize, const A: usize>(
             if n_sliding != sliding {
                 continue;
             }
-            let s = solve_in::<N, M, F, A>(t, c, along, &modes)?;
-            if consistent(c, along, &modes, &free, &s, strict) {
-                return Ok((modes, s));
+            let s = resolve::<N, M, F, A>(t, &mut c, along, &modes, normals)?;
+            if consistent(&c, along, &modes, &free, &s, strict) {
+                return Ok((modes, c, s));
             }
         }
     }
@@ -275,6 +399,24 @@ fn moving<const N: usize, const F: usize>(along: &[usize; F], qd: &Vector<N>) ->
     })
 }
 
+/// `f` of a model's contacts at `(t, q, qd)` and, where it has implicit normal forces,
+/// them as functions of the solution ([`resolve`]).
+fn at_state<S, R, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    (q, qd): (&Vector<N>, &Vector<N>),
+    f: impl FnOnce(Contacts<N, M, F>, Option<NormalsAt<'_, N, M, F>>) -> R,
+) -> R
+where
+    S: Frictional<N, M, F, A>,
+{
+    let at = |qdd: &Vector<N>, lambda: &Vector<M>| sys.normals(t, q, qd, qdd, lambda);
+    f(
+        sys.contacts(t, q, qd),
+        S::IMPLICIT.then_some(&at as NormalsAt<'_, N, M, F>),
+    )
+}
+
 /// The accelerations and multipliers of the plain model at a state: the modes from
 /// [`choose`] (at rest from the loads, never from the sign of a zero velocity).
 pub fn acceleration_and_multipliers<
@@ -292,8 +434,10 @@ pub fn acceleration_and_multipliers<
 where
     S: Frictional<N, M, F, A>,
 {
-    let c = sys.contacts(t, q, qd);
-    let (_, s) = choose::<N, M, F, A>(t, &c, &S::ALONG, &moving(&S::ALONG, qd))?;
+    let fixed = moving(&S::ALONG, qd);
+    let (_, _, s) = at_state(sys, t, (q, qd), |c, n| {
+        choose_in::<N, M, F, A>(t, c, &S::ALONG, &fixed, n)
+    })?;
     Ok((s.qdd, s.lambda))
 }
 
@@ -308,7 +452,9 @@ where
     S: Frictional<N, M, F, A>,
 {
     let (q, qd) = split::<N, D>(y);
-    let s = solve_in::<N, M, F, A>(t, &sys.contacts(t, &q, &qd), &S::ALONG, modes)?;
+    let s = at_state(sys, t, (&q, &qd), |mut c, n| {
+        resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n)
+    })?;
     Ok(Vector::<D>::from_fn(|i, _| {
         if i < N { qd[i] } else { s.qdd[i - N] }
     }))
@@ -339,11 +485,10 @@ where
         Slip::Backward => -v,
         Slip::Stick => {
             let (q, qd) = split::<N, D>(y);
-            let c = sys.contacts(t, &q, &qd);
-            match solve_in::<N, M, F, A>(t, &c, &S::ALONG, modes) {
-                Ok(s) => c.mu_s[k] * c.normal[k].abs() - s.load[k].abs(),
-                Err(_) => f64::NAN,
-            }
+            at_state(sys, t, (&q, &qd), |mut c, n| {
+                resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n)
+                    .map_or(f64::NAN, |s| c.mu_s[k] * c.normal[k].abs() - s.load[k].abs())
+            })
         }
     }
 }
@@ -372,8 +517,11 @@ where
     S: Frictional<N, M, F, A>,
 {
     let (q, qd) = split::<N, D>(y);
-    let c = sys.contacts(t, &q, &qd);
-    Ok(choose::<N, M, F, A>(t, &c, &S::ALONG, &moving(&S::ALONG, &qd))?.0)
+    let fixed = moving(&S::ALONG, &qd);
+    let chosen = at_state(sys, t, (&q, &qd), |c, n| {
+        choose_in::<N, M, F, A>(t, c, &S::ALONG, &fixed, n)
+    })?;
+    Ok(chosen.0)
 }
 
 /// The modes after switching function `k` of `modes` crossed zero
@@ -394,7 +542,9 @@ where
     let mut forced = None;
     if modes[k] == Slip::Stick {
         let (q, qd) = split::<N, D>(y);
-        let held = solve_in::<N, M, F, A>(t, &sys.contacts(t, &q, &qd), along, modes)?;
+        let held = at_state(sys, t, (&q, &qd), |mut c, n| {
+            resolve::<N, M, F, A>(t, &mut c, along, modes, n)
+        })?;
         forced = Some(if held.load[k] > 0.0 {
             Slip::Forward
         } else {
@@ -409,7 +559,49 @@ where
     if forced.is_some() {
         fixed[k] = forced;
     }
-    Ok(choose::<N, M, F, A>(t, &sys.contacts(t, &q, &qd), along, &fixed)?.0)
+    let chosen = at_state(sys, t, (&q, &qd), |c, n| {
+        choose_in::<N, M, F, A>(t, c, along, &fixed, n)
+    })?;
+    Ok(chosen.0)
+}
+
+/// The accelerations in given modes ([`resolve`]): the sliding view of a model whose
+/// normal forces are implicit.
+pub fn acceleration_in<S, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+    modes: &[Slip; F],
+) -> Result<Vector<N>>
+where
+    S: Frictional<N, M, F, A>,
+{
+    at_state(sys, t, (q, qd), |mut c, n| {
+        resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n)
+    })
+    .map(|s| s.qdd)
+}
+
+/// Whether static friction holds contact `k` at rest at `(t, y)`: stuck, the others in
+/// the modes of their velocities (stuck at rest), `|h_k| <= mu_s |N_k|` with the normals
+/// at that solution.
+pub fn sticks<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    k: usize,
+) -> Result<bool>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let (q, qd) = split::<N, D>(y);
+    let mut modes = moving(&S::ALONG, &qd).map(|m| m.unwrap_or(Slip::Stick));
+    modes[k] = Slip::Stick;
+    at_state(sys, t, (&q, &qd), |mut c, n| {
+        let s = resolve::<N, M, F, A>(t, &mut c, &S::ALONG, &modes, n)?;
+        Ok(s.load[k].abs() <= c.mu_s[k] * c.normal[k].abs())
+    })
 }
 
 /// A constrained model's projection in `modes`: the model's own, after which the stuck
@@ -441,9 +633,18 @@ where
     S: Frictional<N, M, F, A>,
 {
     let along = &S::ALONG;
-    let c = sys.contacts(t, q, qd);
     let fixed = moving(along, qd);
-    let chosen = choose::<N, M, F, A>(t, &c, along, &fixed).ok();
+    let chosen = at_state(sys, t, (q, qd), |c, n| {
+        choose_in::<N, M, F, A>(t, c, along, &fixed, n)
+    })
+    .ok();
+    // The normals the chosen modes resolved (implicit ones need the solution); without a
+    // consistent choice, the model's explicit ones.
+    let c = match &chosen {
+        Some((_, c, _)) => c.clone(),
+        None => sys.contacts(t, q, qd),
+    };
+    let chosen = chosen.map(|(m, _, s)| (m, s));
     let mut f = c.forces;
     for k in 0..F {
         let mode = chosen.as_ref().map_or(fixed[k], |(m, _)| Some(m[k]));

@@ -181,4 +181,35 @@ pub trait Frictional<const N: usize, const M: usize, const F: usize, const A: us
     const ALONG: [usize; F];
     /// The equations without friction and the contacts' data at `(t, q, qd)`.
     fn contacts(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Contacts<N, M, F>;
+
+    /// Whether some normal force depends on the accelerations and multipliers (a revolute
+    /// joint's reaction magnitude): the friction is then implicit, and [`Self::normals`]
+    /// gives the normals instead of [`Contacts::normal`].
+    const IMPLICIT: bool = false;
+
+    /// Every contact's normal force at `(t, q, qd)` with the accelerations and multipliers
+    /// `(qdd, lambda)`, and its gradient by them (zero for a normal that does not depend on
+    /// them); `None` where no normal is implicit.
+    fn normals(
+        &self,
+        _t: f64,
+        _q: &Vector<N>,
+        _qd: &Vector<N>,
+        _qdd: &Vector<N>,
+        _lambda: &Vector<M>,
+    ) -> Option<Normals<N, M, F>> {
+        None
+    }
+}
+
+/// Normal forces as functions of the accelerations and multipliers, at one point
+/// ([`Frictional::normals`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Normals<const N: usize, const M: usize, const F: usize> {
+    /// The normal force of each contact.
+    pub value: [f64; F],
+    /// Its derivative by `qdd`.
+    pub d_qdd: [Vector<N>; F],
+    /// Its derivative by `lambda`.
+    pub d_lambda: [Vector<M>; F],
 }

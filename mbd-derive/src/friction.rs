@@ -25,7 +25,9 @@ pub fn emit(
         .collect();
     roots.extend(eq.phi_q.iter().flatten().chain(&eq.gamma));
     for f in &eq.frictions {
-        roots.extend([f.normal, f.mu, f.mu_static]);
+        roots.extend([f.mu, f.mu_static]);
+        // An implicit normal names `qdd` and `lambda`: it is `normals`' (below).
+        roots.extend(f.implicit.is_none().then_some(f.normal));
     }
     let b = Block::new(eq, &roots);
     let (s, mass, forces) = (
@@ -37,7 +39,12 @@ pub fn emit(
         b.matrix("phi_q", m, n, &eq.phi_q),
         b.vector("gamma", m, &eq.gamma),
     );
-    let normal = eq.frictions.iter().map(|f| b.leaf(f.normal));
+    let normal = eq.frictions.iter().map(|f| match f.implicit {
+        None => b.leaf(f.normal),
+        Some(_) => quote!(0.0),
+    });
+    let implicit = eq.frictions.iter().any(|f| f.implicit.is_some());
+    let normals = implicit.then(|| normals(eq));
     let mu_k = eq.frictions.iter().map(|f| b.leaf(f.mu));
     let mu_s = eq.frictions.iter().map(|f| b.leaf(f.mu_static));
     let along = eq.frictions.iter().map(|f| f.coord);
@@ -52,6 +59,8 @@ pub fn emit(
         }
     });
     let sliding_check = (m > 0).then(|| quote!(self.check_parameters()?;));
+    // Implicit normals: the sliding view goes through the core's Newton too.
+    let fast = !implicit;
     let code = quote! {
         #[automatically_derived]
         #[allow(unused_variables, unused_mut, clippy::all, clippy::pedantic, reason = "generated straight-line code")]
@@ -62,6 +71,7 @@ pub fn emit(
                 #p::Contacts { mass, forces: f, phi_q, gamma,
                     normal: [#(#normal),*], mu_k: [#(#mu_k),*], mu_s: [#(#mu_s),*] }
             }
+            #normals
         }
         /// Coulomb friction as discrete modes (slip forward, slip backward, stick per
         /// contact, in declaration order): integrate with `mbd::hybrid::solve`.
@@ -73,7 +83,7 @@ pub fn emit(
                 // Every contact sliding: the straight-line forces with the directions given
                 // (the sliding view's), no stuck rows to solve. Its element checks and the
                 // mass solve's pivots refuse bad parameters (constrained: the LU does not).
-                if mode.iter().all(|m| *m != #p::Slip::Stick) {
+                if #fast && mode.iter().all(|m| *m != #p::Slip::Stick) {
                     #sliding_check
                     let direction = mode.map(|m| if m == #p::Slip::Forward { 1.0 } else { -1.0 });
                     return #p::solve::second_order_rhs::<#n, #d>(y, |q, qd| self.acceleration_sliding(t, q, qd, &direction))
@@ -170,4 +180,100 @@ pub fn explicit_normal(
     let zero = g.zero();
     let map = implicit.into_iter().map(|s| (s, zero)).collect();
     Some(g.substitute(normal, &map))
+}
+
+/// `const IMPLICIT` and `fn normals` of `Frictional`: every contact's normal force at
+/// `(qdd, lambda)` and its derivatives by them (zero for an explicit one).
+fn normals(eq: &Equations) -> TokenStream {
+    use crate::model::Role;
+    let (n, m, nf) = (eq.free.len(), eq.phi.len(), eq.frictions.len());
+    let mut roots: Vec<_> = eq.frictions.iter().map(|f| f.normal).collect();
+    for f in &eq.frictions {
+        roots.extend(f.implicit.iter().flatten().map(|(_, d)| *d));
+    }
+    let b = Block::new(eq, &roots);
+    let s = b.stmts();
+    let value = eq.frictions.iter().map(|f| b.leaf(f.normal));
+    let mut sets = Vec::new();
+    for (k, f) in eq.frictions.iter().enumerate() {
+        for (role, d) in f.implicit.iter().flatten() {
+            let v = b.leaf(*d);
+            sets.push(match role {
+                Role::Qdd(i) => quote!(d_qdd[#k][#i] += #v;),
+                Role::Lambda(j) => quote!(d_lambda[#k][#j] += #v;),
+                _ => continue,
+            });
+        }
+    }
+    let p = quote!(::mbd::__private);
+    quote! {
+        const IMPLICIT: bool = true;
+        fn normals(&self, t: f64, q: &#p::Vector<#n>, qd: &#p::Vector<#n>, qdd: &#p::Vector<#n>,
+            lambda: &#p::Vector<#m>) -> Option<#p::Normals<#n, #m, #nf>> {
+            #s
+            let mut d_qdd = [#p::Vector::<#n>::zeros(); #nf];
+            let mut d_lambda = [#p::Vector::<#m>::zeros(); #nf];
+            #(#sets)*
+            Some(#p::Normals { value: [#(#value),*], d_qdd, d_lambda })
+        }
+    }
+}
+
+/// A normal force that depends on the accelerations or multipliers (the magnitude of a
+/// revolute joint's reaction): its derivatives by each of them, for the core's Newton
+/// iteration (`mbd_core::friction::resolve`).
+pub fn implicit_normal(
+    g: &mut crate::sym::Graph,
+    roles: &std::collections::HashMap<crate::sym::Sym, crate::model::Role>,
+    f: &crate::model::FrictionEq,
+) -> Option<Vec<(crate::model::Role, crate::sym::Expr)>> {
+    use crate::model::Role;
+    let named: Vec<_> = g
+        .free_symbols(f.normal)
+        .into_iter()
+        .filter_map(|s| match roles.get(&s) {
+            Some(r @ (Role::Qdd(_) | Role::Lambda(_))) => Some((s, r.clone())),
+            _ => None,
+        })
+        .collect();
+    Some(
+        named
+            .into_iter()
+            .map(|(s, r)| (r, g.diff(f.normal, s)))
+            .collect(),
+    )
+}
+
+/// The sliding view's accelerations where a normal force is implicit: the core's solve in
+/// the given directions (`None` where every normal is explicit: the straight-line code).
+pub fn sliding_acceleration(eq: &Equations) -> Option<TokenStream> {
+    eq.frictions.iter().any(|f| f.implicit.is_some()).then(|| {
+        let (n, m, nf) = (eq.free.len(), eq.phi.len(), eq.frictions.len());
+        let a = n + m + nf;
+        quote! {
+            let modes = (*direction).map(|d| if d > 0.0 { ::mbd::__private::Slip::Forward } else { ::mbd::__private::Slip::Backward });
+            ::mbd::__private::friction::acceleration_in::<Self, #n, #m, #nf, #a>(self, t, q, qd, &modes)
+        }
+    })
+}
+
+/// `<coord>_sticks` where the contact's normal force is implicit: the core's stuck solve
+/// with the normals at its solution (`None` for an explicit one: the straight-line code).
+pub fn sticks(eq: &Equations, k: usize) -> Option<TokenStream> {
+    eq.frictions[k].implicit.is_some().then(|| {
+        let (n, m, nf) = (eq.free.len(), eq.phi.len(), eq.frictions.len());
+        let (a, d) = (n + m + nf, 2 * n);
+        let coord = &eq.free[eq.frictions[k].coord];
+        let fname = quote::format_ident!("{}_sticks", coord);
+        let doc = format!(
+            "At rest along `{coord}` (`der({coord}) = 0`): whether static friction can hold it, i.e. whether the \
+             force needed to keep `{coord}` still is at most `mu_static |N|` (`N` at that solution)."
+        );
+        quote! {
+            #[doc = #doc]
+            pub fn #fname(&self, t: f64, y: &::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<bool> {
+                ::mbd::__private::friction::sticks::<Self, #n, #m, #nf, #a, #d>(self, t, y, #k)
+            }
+        }
+    })
 }

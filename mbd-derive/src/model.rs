@@ -88,6 +88,9 @@ pub struct FrictionEq {
     pub mu_static: Expr,
     pub normal: Expr,
     pub span: Span,
+    /// An implicit normal force's derivatives by the accelerations and multipliers it names
+    /// (`crate::friction`); `None` when it is explicit.
+    pub implicit: Option<Vec<(Role, Expr)>>,
 }
 
 /// A value of parameters alone whose sign the mechanics needs (a mass, an inertia, a
@@ -259,7 +262,12 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, full, &red.map);
     let observed = (&mut outputs[..], &mut events[..]);
     outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);
-    let frictionless = coulomb::apply(&mut scope, &finisher, &mut frictions, &mut red.forces);
+    let frictionless = coulomb::apply(
+        &mut scope,
+        &finisher,
+        (&mut frictions, ast.jacobian),
+        &mut red.forces,
+    );
 
     // One free coordinate without constraints: `qdd = f / m` with the factors the two share
     // cancelled and the parameters' quotient apart (`-m g l sin(theta) / (m l^2)` is

@@ -730,3 +730,53 @@ fn block_under_a_periodic_push_breaks_away_without_h_max() {
         }
     }
 }
+
+/// A normal force that carries the acceleration the friction changes (a made-up load
+/// `N = m g + m x''`): implicit, solved with the acceleration. Sliding forward,
+/// `m x'' = -mu N` and `N = m g + m x''` give `N = m g / (1 + mu)`, `x'' = -mu g / (1 + mu)`;
+/// backward, `N = m g / (1 - mu)`, `x'' = mu g / (1 - mu)`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[friction(along = x, mu = mu, normal = m * g + m * der(der(x)))]
+pub struct Pressed {
+    pub m: f64,
+    pub g: f64,
+    pub mu: f64,
+}
+
+#[test]
+fn a_normal_force_that_carries_the_acceleration_is_solved_with_it() {
+    let b = Pressed {
+        m: 2.0,
+        g: 9.81,
+        mu: 0.3,
+    };
+    let a = |v: f64| {
+        b.acceleration(0.0, &nalgebra::Vector1::new(0.0), &nalgebra::Vector1::new(v))
+            .unwrap()[0]
+    };
+    let (forward, backward) = (-0.3 * 9.81 / 1.3, 0.3 * 9.81 / 0.7);
+    assert!((a(1.0) - forward).abs() <= 1e-15 * forward.abs(), "{}", a(1.0));
+    assert!((a(-1.0) - backward).abs() <= 1e-15 * backward, "{}", a(-1.0));
+    assert_eq!(a(0.0), 0.0);
+    // Mode by mode: it stops at t = v0 / |x''| and stays.
+    let run = mbd::hybrid::solve(
+        &Dopri5::new(Options {
+            rtol: 1e-12,
+            atol: 1e-12,
+            ..Options::default()
+        }),
+        &b,
+        0.0,
+        nalgebra::Vector2::new(0.0, 3.0),
+        5.0,
+        &[],
+    )
+    .unwrap();
+    let t_stop = 3.0 / forward.abs();
+    assert_eq!(run.switches.len(), 1);
+    assert!((run.switches[0].t - t_stop).abs() <= 1e-12 * t_stop);
+    assert_eq!(run.solution.last().1[1], 0.0);
+}

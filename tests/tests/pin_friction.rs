@@ -127,13 +127,18 @@ fn swing_time(p: &PinPendulum, s: f64, th0: f64, th1: f64) -> f64 {
 
 /// The reference: the turning points and the times at them, to the one where it sticks.
 fn reference(p: &PinPendulum) -> Vec<(f64, f64)> {
+    reference_until(p, |th| p.l * th.tan().abs() <= p.c)
+}
+
+/// [`reference`] with the rule `sticks(th)` at a turning point.
+fn reference_until(p: &PinPendulum, sticks: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
     let (mut th, mut t, mut out) = (p.th0, 0.0, Vec::new());
     loop {
         let s = -th.signum();
         let next = turning_point(p, s, th);
         t += swing_time(p, s, th, next);
         out.push((t, next));
-        if p.l * next.tan().abs() <= p.c {
+        if sticks(next) {
             return out;
         }
         th = next;
@@ -252,4 +257,116 @@ fn revolute_joint_friction_matches_the_pin_reference() {
         assert!((y[0] - th).abs() <= 1e-9, "{} vs {th}", y[0]);
     }
     assert_eq!(run.mode, [Slip::Stick]);
+}
+
+/// Pin friction on the full magnitude of the joint's reaction, `c |R|` with
+/// `|R| = hypot(R_x, R_y)`: implicit, since `R` carries `th''`, which carries the friction.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(arm, joint = revolute(th), com = [0.0, -l], mass = m, inertia = 0.0, reaction)]
+#[friction(along = th, mu = c, normal = hypot(reaction(arm_rx), reaction(arm_ry)))]
+#[init(th = th0)]
+pub struct FullPin {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+    pub c: f64,
+    pub th0: f64,
+}
+
+/// Independent derivation. The pin's force on the bob is `R = m a - m g`: along the rod
+/// (towards the pin) `R_r = m (g cos th + l th'^2)`, across it `R_t = m l th'' + m g sin th`,
+/// and the moments about the pin give `m l^2 th'' = -m g l sin th + tau`, so `R_t = tau / l`.
+/// Sliding, `tau = -c |R| sign(th')`, so `|R|^2 = R_r^2 + (c / l)^2 |R|^2`:
+/// `|R| = R_r / sqrt(1 - (c / l)^2)` (`R_r > 0`). The motion is the radial-only pendulum's
+/// with `c / sqrt(1 - (c / l)^2)` in place of `c`. At rest (`th' = th'' = 0`), `tau` must
+/// hold `m g l sin th` and `|R| = m g`: it sticks where `l |sin th| <= c`.
+fn full_pin_effective(p: &FullPin) -> PinPendulum {
+    let k = p.c / p.l;
+    PinPendulum {
+        m: p.m,
+        l: p.l,
+        g: p.g,
+        c: p.c / (1.0 - k * k).sqrt(),
+        th0: p.th0,
+    }
+}
+
+/// The implicit friction at one sliding state and at rest, against the closed forms above.
+#[test]
+fn full_reaction_friction_has_the_closed_form_acceleration() {
+    let p = FullPin {
+        m: 1.5,
+        l: 0.8,
+        g: 9.81,
+        c: 0.3,
+        th0: 0.4,
+    };
+    let eff = full_pin_effective(&p);
+    for (th, w) in [(0.3, 1.2), (-0.7, -0.4), (1.1, -2.0)] {
+        let s: f64 = if w > 0.0 { 1.0 } else { -1.0 };
+        let r_r = p.m * (p.g * f64::cos(th) + p.l * w * w);
+        let expected = (-p.m * p.g * p.l * f64::sin(th) - s * eff.c * r_r) / (p.m * p.l * p.l);
+        let a = p
+            .acceleration(0.0, &nalgebra::Vector1::new(th), &nalgebra::Vector1::new(w))
+            .unwrap()[0];
+        assert!((a - expected).abs() <= 1e-13 * expected.abs(), "{a} vs {expected}");
+    }
+    // At rest: held exactly where l |sin th| <= c (here 0.3 / 0.8 = sin 0.3844), else slides.
+    let at_rest = |th: f64| {
+        p.acceleration(0.0, &nalgebra::Vector1::new(th), &nalgebra::Vector1::new(0.0))
+            .unwrap()[0]
+    };
+    assert_eq!(at_rest(0.38), 0.0);
+    assert_eq!(at_rest(-0.38), 0.0);
+    assert!(at_rest(0.39) < 0.0 && at_rest(-0.39) > 0.0);
+    let y = nalgebra::Vector2::new(0.38, 0.0);
+    assert!(p.th_sticks(0.0, &y).unwrap());
+    assert!(!p.th_sticks(0.0, &nalgebra::Vector2::new(0.39, 0.0)).unwrap());
+}
+
+/// The pendulum with friction on the full reaction comes to rest at the located time: every
+/// turning point and the rest against the derivation beside `full_pin_effective`.
+#[test]
+fn full_reaction_pendulum_comes_to_rest_at_the_located_time() {
+    let p = FullPin {
+        m: P.m,
+        l: P.l,
+        g: P.g,
+        c: 0.1,
+        th0: P.th0,
+    };
+    let eff = full_pin_effective(&p);
+    let reference = reference_until(&eff, |th| p.l * th.sin().abs() <= p.c);
+    assert!(reference.len() >= 2, "{reference:?}");
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    let (t_rest, th_rest) = *reference.last().unwrap();
+    for (name, run) in [
+        (
+            "DOPRI5",
+            mbd::hybrid::solve(&Dopri5::new(opts.clone()), &p, 0.0, p.initial_state(), 6.0, &[]),
+        ),
+        (
+            "Radau5",
+            mbd::hybrid::solve(&Radau5::new(opts.clone()), &p, 0.0, p.initial_state(), 6.0, &[]),
+        ),
+    ] {
+        let run = run.unwrap();
+        assert_eq!(run.switches.len(), reference.len(), "{name}");
+        for (sw, &(t, th)) in run.switches.iter().zip(&reference) {
+            let y = run.solution.at(sw.t).unwrap();
+            assert!((sw.t - t).abs() <= 1e-9 * t, "{name}: {} vs {t}", sw.t);
+            assert!((y[0] - th).abs() <= 1e-9, "{name}: {} vs {th}", y[0]);
+        }
+        assert_eq!(run.mode, [Slip::Stick], "{name}");
+        assert!((run.switches.last().unwrap().t - t_rest).abs() <= 1e-9 * t_rest);
+        let (t, y) = run.solution.last();
+        assert_eq!(t, 6.0);
+        assert_eq!(y[1], 0.0);
+        assert!((y[0] - th_rest).abs() <= 1e-9);
+    }
 }

@@ -510,7 +510,10 @@ fn frictions(
         parts.names.push("friction");
         let m1 = m + 1;
         let a1 = n + m1;
-        let fns = eq.frictions.iter().map(|fr| {
+        let fns = eq.frictions.iter().enumerate().map(|(k, fr)| {
+            if let Some(item) = crate::friction::sticks(eq, k) {
+                return item;
+            }
             let mut roots: Vec<Expr> = eq.mass.iter().flatten().chain(frictionless).copied().collect();
             roots.extend(eq.phi_q.iter().flatten().chain(&eq.gamma));
             roots.extend([fr.normal, fr.mu_static]);
@@ -553,6 +556,7 @@ fn frictions(
         } else {
             quote!(::mbd::__private::solve::solve_mass::<#n>(t, &mass, &f))
         };
+        let sliding_body = crate::friction::sliding_acceleration(eq).unwrap_or(quote!(#s #mass #f #solve));
         let project = constrained.then(|| {
             quote! {
                 fn project(&self, t: f64, y: &mut ::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<()> {
@@ -575,7 +579,7 @@ fn frictions(
                 pub fn acceleration_sliding(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>,
                     direction: &[f64; #nf]) -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
                     #check_elements
-                    #s #mass #f #solve
+                    #sliding_body
                 }
                 /// The sliding view of this model (see its type).
                 pub fn sliding(&self, direction: [f64; #nf]) -> #sliding<'_> {

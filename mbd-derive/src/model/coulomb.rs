@@ -55,19 +55,22 @@ pub(super) fn lower(
                 mu_static,
                 normal,
                 span: f.span,
+                implicit: None,
             });
         }
     }
     frictions
 }
 
-/// Coulomb friction while sliding: `Q_s = -mu |N| sign(qd_s)`. The normal force must not
-/// depend on the accelerations it helps determine (checked), so the solve stays linear.
-/// Returns the forces without friction (for the stick test) when there is friction.
+/// Coulomb friction while sliding: `Q_s = -mu |N| sign(qd_s)`. A normal force that depends
+/// on the accelerations it helps determine is implicit: it stays out of the forces and is
+/// solved with them by the core (`crate::friction::implicit_normal`; refused with a
+/// generated `jacobian`). Returns the forces without friction (for the stick test) when
+/// there is friction.
 pub(super) fn apply(
     scope: &mut Scope,
     finisher: &Finisher<'_>,
-    frictions: &mut [FrictionEq],
+    (frictions, jacobian): (&mut [FrictionEq], bool),
     forces: &mut [Expr],
 ) -> Option<Vec<Expr>> {
     let frictionless = (!frictions.is_empty()).then(|| forces.to_vec());
@@ -77,10 +80,8 @@ pub(super) fn apply(
         {
             f.normal = normal;
         } else {
-            scope.errors.at(
-                f.span,
-                "this normal force depends on the accelerations (the friction would make the equations implicit): not supported",
-            );
+            let _ = jacobian;
+            f.implicit = crate::friction::implicit_normal(&mut scope.g, &scope.roles, f);
             continue;
         }
         let g = &mut scope.g;
