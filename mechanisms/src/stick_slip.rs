@@ -25,6 +25,10 @@ use mbd::Slip;
 use mbd::hybrid::HybridSolution;
 use mbd::integrate::Integrator;
 
+use crate::workprecision::{
+    Failure, Measured, Method, Problem, Quantity, RHO_INF, Setting, solve_mechanism,
+};
+use mbd::integrate::{Dop853, Dopri5, GeneralizedAlpha, Radau5, Rk4};
 use mbd::prelude::*;
 
 /// A mass on a spring dragged by a belt at speed `v` (see the module's derivation).
@@ -135,6 +139,102 @@ pub fn switch_error(b: &Belt, run: &HybridSolution<2, [Slip; 1]>) -> Option<f64>
             let (exact, from, to) = exact_switch(b, i);
             ((sw.from, sw.to) == (from, to)).then(|| worst.max((sw.t - exact).abs() / exact))
         })
+}
+
+/// Periods of the work-precision runs (20 switches).
+pub const WP_PERIODS: usize = 10;
+
+/// The work-precision rows: the limit cycle mode by mode with each method, and the same
+/// belt without friction over the same time (its cost is the smooth one's).
+pub fn problems() -> Vec<Problem> {
+    vec![
+        Problem {
+            name: "stick-slip",
+            title: "stick-slip oscillator, 10 periods mode by mode (20 switches): last stop, last stick time, final s",
+            methods: &Method::MBD,
+            run: wp_friction,
+        },
+        Problem {
+            name: "stick-slip (no friction)",
+            title: "the same belt without friction over the same time: final s, s'",
+            methods: &Method::MBD,
+            run: wp_free,
+        },
+    ]
+}
+
+/// The end of the work-precision runs: half a stick phase after the last stop.
+fn wp_end(b: &Belt) -> f64 {
+    let (_, t_stick, t_slip) = limit_cycle(b);
+    WP_PERIODS as f64 * (t_stick + t_slip) + 0.5 * t_stick
+}
+
+/// The cycle from its start to `t1`, mode by mode.
+fn cycle<I: Integrator>(i: &I, b: &Belt, t1: f64) -> mbd::Result<HybridSolution<2, [Slip; 1]>> {
+    mbd::hybrid::solve(i, b, 0.0, b.initial_state(), t1, &[])
+}
+
+fn wp_friction(s: &Setting) -> Result<Measured, Failure> {
+    let b = std::hint::black_box(belt());
+    let opts = Options {
+        rtol: s.value,
+        atol: s.value,
+        ..Options::default()
+    };
+    let t1 = wp_end(&b);
+    let run = match s.method {
+        Method::Rk4 => cycle(&Rk4::new(s.value), &b, t1),
+        Method::Dopri5 => cycle(&Dopri5::new(opts), &b, t1),
+        Method::Dop853 => cycle(&Dop853::new(opts), &b, t1),
+        Method::Radau5 => cycle(&Radau5::new(opts), &b, t1),
+        Method::GeneralizedAlpha => cycle(&GeneralizedAlpha::new(RHO_INF, s.value), &b, t1),
+        _ => return Err(Failure::Unsupported("mbd's methods only".into())),
+    }?;
+    let sw = &run.switches;
+    if sw.len() != 2 * WP_PERIODS || switch_error(&b, &run).is_none() {
+        return Err(Failure::Failed(format!(
+            "{} switches instead of the cycle's {}",
+            sw.len(),
+            2 * WP_PERIODS
+        )));
+    }
+    let (x_a, t_stick, _) = limit_cycle(&b);
+    let last = exact_switch(&b, 2 * WP_PERIODS - 1).0;
+    let mut stats = run.solution.stats;
+    if s.method == Method::Radau5 {
+        // Radau5 counts its own calls only; each forward-difference Jacobian makes D + 1 more.
+        stats.n_rhs += stats.n_jac * 3;
+    }
+    Ok(Measured {
+        quantities: vec![
+            Quantity { name: "t_stop", value: sw[sw.len() - 1].t, reference: last },
+            Quantity { name: "t_stick", value: sw[sw.len() - 2].t - sw[sw.len() - 3].t, reference: t_stick },
+            // Stuck at x_a since the last stop: s = x_a - v t_stop.
+            Quantity { name: "s_end", value: run.solution.last().1[0], reference: x_a - b.v * last },
+        ],
+        stats,
+        span: t1,
+    })
+}
+
+fn wp_free(s: &Setting) -> Result<Measured, Failure> {
+    let b = belt();
+    let free = std::hint::black_box(without_friction(&b));
+    let t1 = wp_end(&b);
+    let sol = solve_mechanism(s, &free, 0.0, free.initial_state(), t1, &[])?;
+    // x = b + s is harmonic, x(0) = x_a, x'(0) = v (s' = 0): x = x_a cos wt + (v / w) sin wt.
+    let w = (b.k / b.m).sqrt();
+    let (t, y) = sol.last();
+    let x = b.s0 * (w * t).cos() + b.v / w * (w * t).sin();
+    let xd = -b.s0 * w * (w * t).sin() + b.v * (w * t).cos();
+    Ok(Measured {
+        quantities: vec![
+            Quantity { name: "s_end", value: y[0], reference: x - b.v * t },
+            Quantity { name: "s'_end", value: y[1], reference: xd - b.v },
+        ],
+        stats: sol.stats,
+        span: t1,
+    })
 }
 
 #[cfg(test)]

@@ -1,52 +1,86 @@
 //! Coulomb friction's cost: the stick-slip oscillator's limit cycle over 100 periods, run
 //! mode by mode (`mbd::hybrid::solve`), against the same run with the friction removed.
 //!
-//! Per method and tolerance: switches, accepted and rejected steps, steps per switch (mean
-//! and the most any one mode took), right-hand-side evaluations, the largest relative error
-//! of the switch times against the closed form, and the wall time (median of 7 runs) of the
-//! friction run over the frictionless one.
+//! Per method and tolerance (or step): switches, accepted and rejected steps, steps per
+//! switch (mean and the most any one mode took), right-hand-side evaluations, the largest
+//! relative error of the switch times against the closed form, and the time of the friction
+//! run over the frictionless one. Times are the thread's CPU time (user + system from
+//! `/proc/thread-self/stat`, in clock ticks): per run, over a batch of runs doubled until it
+//! takes 0.25 s, median of 5 batches. The machine is shared, and wall time would count the
+//! waits for a core. The load average is printed before and after.
 //!
 //! `cargo run --release -p mechanisms --bin friction`
 
 use mbd::Slip;
 use mbd::hybrid::HybridSolution;
-use mbd::integrate::{Dopri5, Integrator, Radau5};
+use mbd::integrate::{Dopri5, GeneralizedAlpha, Integrator, Radau5};
 use mbd::{Options, Solution};
 use mechanisms::stick_slip::{self, Belt};
 use std::hint::black_box;
-use std::time::Instant;
 
 const PERIODS: usize = 100;
 
-/// Median wall time of `f` over 7 runs, in seconds, and its last result.
-fn timed<T>(f: impl Fn() -> T) -> (f64, T) {
-    let mut times = Vec::new();
-    let mut out = None;
-    for _ in 0..7 {
-        let start = Instant::now();
-        out = Some(black_box(f()));
-        times.push(start.elapsed().as_secs_f64());
+/// Clock ticks per second of `/proc/*/stat` (`USER_HZ`, 100 on Linux).
+const TICKS: f64 = 100.0;
+
+/// This thread's CPU time in seconds (`utime + stime`, fields 14 and 15 of its stat), or NaN.
+fn cpu_time() -> f64 {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").unwrap_or_default();
+    // The fields after the command name (which is in parentheses and may hold spaces).
+    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+    let field = |i: usize| rest.split_whitespace().nth(i)?.parse::<f64>().ok();
+    match (field(11), field(12)) {
+        (Some(u), Some(s)) => (u + s) / TICKS,
+        _ => f64::NAN,
     }
-    times.sort_by(f64::total_cmp);
-    (times[3], out.expect("seven runs"))
 }
 
-fn row<I: Integrator>(
-    name: &str,
-    tol: f64,
-    polish: bool,
-    make: impl Fn(Options) -> I,
-) -> mbd::Result<()> {
+/// The load average over the last minute, 5 and 15 minutes.
+fn load() -> String {
+    std::fs::read_to_string("/proc/loadavg").map_or("?".into(), |s| {
+        s.split_whitespace().take(3).collect::<Vec<_>>().join(" ")
+    })
+}
+
+/// CPU time of one run of `f`, in seconds (median of 5 batches, each doubled until it
+/// takes 0.25 s), and its last result.
+fn timed<T>(f: impl Fn() -> T) -> (f64, T) {
+    let mut times = Vec::new();
+    let mut out = black_box(f());
+    for _ in 0..5 {
+        let mut n = 1usize;
+        loop {
+            let start = cpu_time();
+            for _ in 0..n {
+                out = black_box(f());
+            }
+            let spent = cpu_time() - start;
+            if spent >= 0.25 || spent.is_nan() {
+                times.push(spent / n as f64);
+                break;
+            }
+            n *= 2;
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    (times[2], out)
+}
+
+fn row<I: Integrator>(name: &str, tol: f64, polish: bool, make: impl Fn(Options) -> I) -> mbd::Result<()> {
     let opts = Options {
         rtol: tol,
         atol: tol,
         dense: true,
         ..Options::default()
     };
+    compare(name, &format!("{tol:.0e}"), polish, &make(opts))
+}
+
+/// One row: the friction run and the frictionless one with `integrator`.
+fn compare<I: Integrator>(name: &str, setting: &str, polish: bool, integrator: &I) -> mbd::Result<()> {
     let b: Belt = stick_slip::belt();
     let free = stick_slip::without_friction(&b);
-    let integrator = make(opts);
-    let (t_fric, run) = timed(|| stick_slip::run(&integrator, black_box(&b), PERIODS, polish));
+    let (t_fric, run) = timed(|| stick_slip::run(integrator, black_box(&b), PERIODS, polish));
     let run: HybridSolution<2, [Slip; 1]> = run?;
     let t1 = run.solution.last().0;
     let (t_free, smooth) =
@@ -58,7 +92,7 @@ fn row<I: Integrator>(
     let err = stick_slip::switch_error(&b, &run)
         .map_or("wrong modes".to_string(), |e| format!("{e:.1e}"));
     println!(
-        "{name:<7} {tol:>7.0e} {n_sw:>8} {:>7} {:>5} {:>9.1} {most:>5} {:>7} {err:>9} {:>8.0} | {:>7} {:>5} {:>7} {:>8.0} | {:>6.2} {:>6.2}",
+        "{name:<7} {setting:>7} {n_sw:>8} {:>7} {:>5} {:>9.1} {most:>5} {:>7} {err:>9} {:>8.0} | {:>7} {:>5} {:>7} {:>8.0} | {:>6.2} {:>6.2}",
         s.n_accepted,
         s.n_rejected,
         s.n_accepted as f64 / n_sw.max(1) as f64,
@@ -78,6 +112,7 @@ fn main() -> mbd::Result<()> {
     println!(
         "stick-slip oscillator, {PERIODS} periods of the limit cycle (mode by mode) against the same run without friction"
     );
+    println!("load average before: {} (2 cores, shared); times are CPU time", load());
     println!(
         "{:<7} {:>7} {:>8} {:>7} {:>5} {:>9} {:>5} {:>7} {:>9} {:>8} | {:>7} {:>5} {:>7} {:>8} | {:>6} {:>6}",
         "method",
@@ -106,5 +141,10 @@ fn main() -> mbd::Result<()> {
             row("Radau5", tol, polish, Radau5::new)?;
         }
     }
+    println!("generalized-alpha (rho_inf 0.9, fixed step h; order 2):");
+    for h in [1e-2, 1e-3] {
+        compare("gen-a", &format!("h {h:.0e}"), false, &GeneralizedAlpha::new(0.9, h))?;
+    }
+    println!("load average after: {}", load());
     Ok(())
 }
