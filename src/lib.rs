@@ -153,7 +153,7 @@
 //!
 //! `#[friction(along = s, mu_k = a, mu_s = b, normal = n)]` is a Coulomb contact on the free
 //! coordinate `s`, with the generalised normal force `n` (any expression of the state and
-//! time, a reaction included, but not of the accelerations) and kinetic and static
+//! time, a reaction included, even one that depends on the accelerations) and kinetic and static
 //! coefficients `0 <= mu_k <= mu_s` (`mu = c` sets both; literal coefficients with
 //! `mu_s < mu_k` are a compile error, parameters a run-time `InvalidInput`). Exactly:
 //! - sliding (`s' != 0`), the generalised force along `s` is `-mu_k |n| sign(s')`;
@@ -182,10 +182,18 @@
 //! joint's angle with `mu` a friction radius times the coefficient (a torque `mu r |n|`);
 //! with `#[body(.., reaction)]` the normal force can be the joint's force projected across
 //! the axis (`reaction(sled_rx) * sin(a) + reaction(sled_ry) * cos(a)`) or along a
-//! pendulum's rod. A normal force may name accelerations or multipliers only where they
-//! drop out (the derive checks that its derivatives by them vanish); the full magnitude of a
-//! revolute joint's reaction, whose tangential part carries the accelerations the friction
-//! changes, is refused (the equations would be implicit).
+//! pendulum's rod, or be the full magnitude of the joint's force,
+//! `hypot(reaction(arm_rx), reaction(arm_ry))`. Where a normal force names accelerations or
+//! multipliers and they drop out (its derivatives by them vanish), it is explicit. Where
+//! they do not (the full magnitude of a revolute joint's reaction, whose tangential part
+//! carries the accelerations the friction torque changes), the friction is implicit and is
+//! solved with them: sliding, a Newton iteration on the normal forces of the sliding
+//! contacts with the derivatives the derive generates (`impl Frictional`: `IMPLICIT`,
+//! `normals`), to rounding, or a typed `InvalidInput` where it has no solution (a friction
+//! too large for the joint); stuck, the holding torque is solved first and the contact holds
+//! while it is within `mu_s |n|` with `n` at that solution. Every integrator runs the modes,
+//! generalized-alpha included (as an `Integrator` it integrates `y = [q; qd]` as
+//! `qdd = a(t, q, qd)`).
 //!
 //! ```
 //! use mbd::prelude::*;

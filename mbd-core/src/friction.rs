@@ -486,8 +486,9 @@ where
         Slip::Stick => {
             let (q, qd) = split::<N, D>(y);
             at_state(sys, t, (&q, &qd), |mut c, n| {
-                resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n)
-                    .map_or(f64::NAN, |s| c.mu_s[k] * c.normal[k].abs() - s.load[k].abs())
+                resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n).map_or(f64::NAN, |s| {
+                    c.mu_s[k] * c.normal[k].abs() - s.load[k].abs()
+                })
             })
         }
     }

@@ -278,7 +278,12 @@ fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
 /// one may have been cut short by the switch), from the dense segments when kept.
 fn last_step<const D: usize>(part: &Solution<D>) -> Option<f64> {
     let lengths: Vec<f64> = if part.segments.is_empty() {
-        part.t.windows(2).rev().take(2).map(|w| w[1] - w[0]).collect()
+        part.t
+            .windows(2)
+            .rev()
+            .take(2)
+            .map(|w| w[1] - w[0])
+            .collect()
     } else {
         part.segments.iter().rev().take(2).map(|s| s.h).collect()
     };

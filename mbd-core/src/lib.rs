@@ -23,6 +23,6 @@ pub use integrate::{
     Solution, Stats,
 };
 pub use model::{
-    Constrained, Contacts, Frictional, Generated, Hybrid, Matrix, Mechanism, Normals, OdeSystem, Slip,
-    Vector,
+    Constrained, Contacts, Frictional, Generated, Hybrid, Matrix, Mechanism, Normals, OdeSystem,
+    Slip, Vector,
 };

@@ -207,10 +207,22 @@ fn wp_friction(s: &Setting) -> Result<Measured, Failure> {
     }
     Ok(Measured {
         quantities: vec![
-            Quantity { name: "t_stop", value: sw[sw.len() - 1].t, reference: last },
-            Quantity { name: "t_stick", value: sw[sw.len() - 2].t - sw[sw.len() - 3].t, reference: t_stick },
+            Quantity {
+                name: "t_stop",
+                value: sw[sw.len() - 1].t,
+                reference: last,
+            },
+            Quantity {
+                name: "t_stick",
+                value: sw[sw.len() - 2].t - sw[sw.len() - 3].t,
+                reference: t_stick,
+            },
             // Stuck at x_a since the last stop: s = x_a - v t_stop.
-            Quantity { name: "s_end", value: run.solution.last().1[0], reference: x_a - b.v * last },
+            Quantity {
+                name: "s_end",
+                value: run.solution.last().1[0],
+                reference: x_a - b.v * last,
+            },
         ],
         stats,
         span: t1,
@@ -229,8 +241,16 @@ fn wp_free(s: &Setting) -> Result<Measured, Failure> {
     let xd = -b.s0 * w * (w * t).sin() + b.v * (w * t).cos();
     Ok(Measured {
         quantities: vec![
-            Quantity { name: "s_end", value: y[0], reference: x - b.v * t },
-            Quantity { name: "s'_end", value: y[1], reference: xd - b.v },
+            Quantity {
+                name: "s_end",
+                value: y[0],
+                reference: x - b.v * t,
+            },
+            Quantity {
+                name: "s'_end",
+                value: y[1],
+                reference: xd - b.v,
+            },
         ],
         stats: sol.stats,
         span: t1,
@@ -304,8 +324,8 @@ mod tests {
         let errors: Vec<f64> = [2e-3, 1e-3]
             .into_iter()
             .map(|h| {
-                let run = run(&mbd::integrate::GeneralizedAlpha::new(0.8, h), &b, 3, false)
-                    .unwrap();
+                let run =
+                    run(&mbd::integrate::GeneralizedAlpha::new(0.8, h), &b, 3, false).unwrap();
                 assert_eq!(run.switches.len(), 6, "h = {h}");
                 assert_eq!(run.solution.last().1[1], 0.0, "h = {h}");
                 switch_error(&b, &run).expect("switches between the cycle's modes")

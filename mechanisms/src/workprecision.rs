@@ -436,7 +436,10 @@ pub fn cases() -> Vec<Problem> {
             "damped vibration: x after half a damped cycle (event)",
             case30,
         ),
-    ].into_iter().chain(crate::stick_slip::problems()).collect()
+    ]
+    .into_iter()
+    .chain(crate::stick_slip::problems())
+    .collect()
 }
 
 /// The cases left out, and why.

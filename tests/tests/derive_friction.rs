@@ -754,12 +754,24 @@ fn a_normal_force_that_carries_the_acceleration_is_solved_with_it() {
         mu: 0.3,
     };
     let a = |v: f64| {
-        b.acceleration(0.0, &nalgebra::Vector1::new(0.0), &nalgebra::Vector1::new(v))
-            .unwrap()[0]
+        b.acceleration(
+            0.0,
+            &nalgebra::Vector1::new(0.0),
+            &nalgebra::Vector1::new(v),
+        )
+        .unwrap()[0]
     };
     let (forward, backward) = (-0.3 * 9.81 / 1.3, 0.3 * 9.81 / 0.7);
-    assert!((a(1.0) - forward).abs() <= 1e-15 * forward.abs(), "{}", a(1.0));
-    assert!((a(-1.0) - backward).abs() <= 1e-15 * backward, "{}", a(-1.0));
+    assert!(
+        (a(1.0) - forward).abs() <= 1e-15 * forward.abs(),
+        "{}",
+        a(1.0)
+    );
+    assert!(
+        (a(-1.0) - backward).abs() <= 1e-15 * backward,
+        "{}",
+        a(-1.0)
+    );
     assert_eq!(a(0.0), 0.0);
     // Mode by mode: it stops at t = v0 / |x''| and stays.
     let run = mbd::hybrid::solve(

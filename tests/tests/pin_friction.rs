@@ -310,19 +310,29 @@ fn full_reaction_friction_has_the_closed_form_acceleration() {
         let a = p
             .acceleration(0.0, &nalgebra::Vector1::new(th), &nalgebra::Vector1::new(w))
             .unwrap()[0];
-        assert!((a - expected).abs() <= 1e-13 * expected.abs(), "{a} vs {expected}");
+        assert!(
+            (a - expected).abs() <= 1e-13 * expected.abs(),
+            "{a} vs {expected}"
+        );
     }
     // At rest: held exactly where l |sin th| <= c (here 0.3 / 0.8 = sin 0.3844), else slides.
     let at_rest = |th: f64| {
-        p.acceleration(0.0, &nalgebra::Vector1::new(th), &nalgebra::Vector1::new(0.0))
-            .unwrap()[0]
+        p.acceleration(
+            0.0,
+            &nalgebra::Vector1::new(th),
+            &nalgebra::Vector1::new(0.0),
+        )
+        .unwrap()[0]
     };
     assert_eq!(at_rest(0.38), 0.0);
     assert_eq!(at_rest(-0.38), 0.0);
     assert!(at_rest(0.39) < 0.0 && at_rest(-0.39) > 0.0);
     let y = nalgebra::Vector2::new(0.38, 0.0);
     assert!(p.th_sticks(0.0, &y).unwrap());
-    assert!(!p.th_sticks(0.0, &nalgebra::Vector2::new(0.39, 0.0)).unwrap());
+    assert!(
+        !p.th_sticks(0.0, &nalgebra::Vector2::new(0.39, 0.0))
+            .unwrap()
+    );
 }
 
 /// The pendulum with friction on the full reaction comes to rest at the located time: every
@@ -348,11 +358,25 @@ fn full_reaction_pendulum_comes_to_rest_at_the_located_time() {
     for (name, run) in [
         (
             "DOPRI5",
-            mbd::hybrid::solve(&Dopri5::new(opts.clone()), &p, 0.0, p.initial_state(), 6.0, &[]),
+            mbd::hybrid::solve(
+                &Dopri5::new(opts.clone()),
+                &p,
+                0.0,
+                p.initial_state(),
+                6.0,
+                &[],
+            ),
         ),
         (
             "Radau5",
-            mbd::hybrid::solve(&Radau5::new(opts.clone()), &p, 0.0, p.initial_state(), 6.0, &[]),
+            mbd::hybrid::solve(
+                &Radau5::new(opts.clone()),
+                &p,
+                0.0,
+                p.initial_state(),
+                6.0,
+                &[],
+            ),
         ),
     ] {
         let run = run.unwrap();

@@ -23,8 +23,8 @@
 //! if Newton is slow). Positions and velocities converge with order 2; the position
 //! constraints hold to the Newton tolerance at every step (no drift).
 
-use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
 use super::{Integrator, positive_finite, second_order_end_packed, stack};
+use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
@@ -419,7 +419,7 @@ impl Integrator for GeneralizedAlpha {
         validate_problem(t0, &y0, t1)?;
         let n = D / 2;
         let f0 = sys.rhs(t0, &y0)?;
-        if D % 2 != 0 || (0..n).any(|i| f0[i] != y0[n + i]) {
+        if !D.is_multiple_of(2) || (0..n).any(|i| f0[i] != y0[n + i]) {
             return Err(Error::InvalidInput {
                 what: "system",
                 detail: "generalized-alpha integrates second-order systems, y = [q; qd] with \

@@ -66,7 +66,12 @@ fn timed<T>(f: impl Fn() -> T) -> (f64, T) {
     (times[2], out)
 }
 
-fn row<I: Integrator>(name: &str, tol: f64, polish: bool, make: impl Fn(Options) -> I) -> mbd::Result<()> {
+fn row<I: Integrator>(
+    name: &str,
+    tol: f64,
+    polish: bool,
+    make: impl Fn(Options) -> I,
+) -> mbd::Result<()> {
     let opts = Options {
         rtol: tol,
         atol: tol,
@@ -77,7 +82,12 @@ fn row<I: Integrator>(name: &str, tol: f64, polish: bool, make: impl Fn(Options)
 }
 
 /// One row: the friction run and the frictionless one with `integrator`.
-fn compare<I: Integrator>(name: &str, setting: &str, polish: bool, integrator: &I) -> mbd::Result<()> {
+fn compare<I: Integrator>(
+    name: &str,
+    setting: &str,
+    polish: bool,
+    integrator: &I,
+) -> mbd::Result<()> {
     let b: Belt = stick_slip::belt();
     let free = stick_slip::without_friction(&b);
     let (t_fric, run) = timed(|| stick_slip::run(integrator, black_box(&b), PERIODS, polish));
@@ -112,7 +122,10 @@ fn main() -> mbd::Result<()> {
     println!(
         "stick-slip oscillator, {PERIODS} periods of the limit cycle (mode by mode) against the same run without friction"
     );
-    println!("load average before: {} (2 cores, shared); times are CPU time", load());
+    println!(
+        "load average before: {} (2 cores, shared); times are CPU time",
+        load()
+    );
     println!(
         "{:<7} {:>7} {:>8} {:>7} {:>5} {:>9} {:>5} {:>7} {:>9} {:>8} | {:>7} {:>5} {:>7} {:>8} | {:>6} {:>6}",
         "method",
@@ -143,7 +156,12 @@ fn main() -> mbd::Result<()> {
     }
     println!("generalized-alpha (rho_inf 0.9, fixed step h; order 2):");
     for h in [1e-2, 1e-3] {
-        compare("gen-a", &format!("h {h:.0e}"), false, &GeneralizedAlpha::new(0.9, h))?;
+        compare(
+            "gen-a",
+            &format!("h {h:.0e}"),
+            false,
+            &GeneralizedAlpha::new(0.9, h),
+        )?;
     }
     println!("load average after: {}", load());
     Ok(())
