@@ -221,13 +221,24 @@ fn normals(eq: &Equations) -> TokenStream {
 
 /// A normal force that depends on the accelerations or multipliers (the magnitude of a
 /// revolute joint's reaction): its derivatives by each of them, for the core's Newton
-/// iteration (`mbd_core::friction::resolve`).
+/// iteration (`mbd_core::friction::resolve`). Refused with `#[mechanism(jacobian)]`: the
+/// generated Jacobian differentiates the forces, which do not hold this friction.
 pub fn implicit_normal(
     g: &mut crate::sym::Graph,
     roles: &std::collections::HashMap<crate::sym::Sym, crate::model::Role>,
     f: &crate::model::FrictionEq,
+    jacobian: bool,
+    errors: &mut crate::parse::Errors,
 ) -> Option<Vec<(crate::model::Role, crate::sym::Expr)>> {
     use crate::model::Role;
+    if jacobian {
+        errors.at(
+            f.span,
+            "this normal force depends on the accelerations (implicit friction, solved with them): \
+             `#[mechanism(jacobian)]` is not generated for it",
+        );
+        return None;
+    }
     let named: Vec<_> = g
         .free_symbols(f.normal)
         .into_iter()

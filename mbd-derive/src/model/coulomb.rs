@@ -80,8 +80,13 @@ pub(super) fn apply(
         {
             f.normal = normal;
         } else {
-            let _ = jacobian;
-            f.implicit = crate::friction::implicit_normal(&mut scope.g, &scope.roles, f);
+            f.implicit = crate::friction::implicit_normal(
+                &mut scope.g,
+                &scope.roles,
+                f,
+                jacobian,
+                &mut scope.errors,
+            );
             continue;
         }
         let g = &mut scope.g;
