@@ -538,6 +538,15 @@ mod tests {
         assert!(matches!(err, Err(Error::TooManySteps { .. })));
     }
 
+    /// Generalized-alpha integrates `y = [q; qd]` systems only: the thermostat (one state)
+    /// is a typed error, not a wrong `Ok`.
+    #[test]
+    fn generalized_alpha_refuses_a_first_order_system() {
+        let ga = crate::integrate::GeneralizedAlpha::new(0.9, 0.1);
+        let err = solve(&ga, &Thermostat, 0.0, Vector::<1>::zeros(), 1.0, &[]);
+        assert!(matches!(err, Err(Error::InvalidInput { .. })), "{err:?}");
+    }
+
     /// A function of `t` alone that dips below zero many times inside one long segment:
     /// `0.5 - sin(10 t)` on `[0, 100]` first crosses at `asin(0.5) / 10`; a constant one
     /// costs three evaluations.
