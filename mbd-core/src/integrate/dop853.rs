@@ -213,7 +213,7 @@ impl Integrator for Dop853 {
                 }
             }
             // The segment interpolates the step as computed (before any projection).
-            let flow = if rec.needs_segment() {
+            let flow = if rec.needs_segment_to(t_new) {
                 stats.n_rhs += 3;
                 let seg = dense_segment(sys, t, h, &y, &y1, &mut k)?;
                 rec.accept(seg, &y_acc)

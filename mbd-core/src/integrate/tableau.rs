@@ -119,6 +119,11 @@ impl<const S: usize> Erk<S> {
     /// `z[i] = y + h sum_{j<i} a_ij k_j` (`z[0] = y`). Makes `S - 1` calls of `rhs`; a
     /// non-finite stage value stops with [`Error::NonFinite`]. Stage storage is the caller's
     /// fixed arrays, so a step does not allocate.
+    ///
+    /// The stages form a dependent chain (each argument needs the stage before), so the
+    /// argument is summed as `(y + h sum_{j<i-1} a_ij k_j) + (h a_{i,i-1}) k_{i-1}`: every
+    /// term but the newest is ready while `rhs` runs, and only one product and one sum stand
+    /// between one call's result and the next call (four, as `y + h (sum_j a_ij k_j)`).
     #[inline]
     pub fn stages<F: OdeSystem<D>, const D: usize>(
         &self,
@@ -130,17 +135,23 @@ impl<const S: usize> Erk<S> {
         z: &mut [Vector<D>; S],
     ) -> Result<()> {
         z[0] = *y;
+        // The newest stage kept as a value (not re-read from `k`), so it stays in registers.
+        let mut newest = k[0];
         for i in 1..S {
+            let row = &self.a[i];
             let mut acc = Vector::<D>::zeros();
-            for (a, kj) in self.a[i][..i].iter().zip(k.iter()) {
-                if *a != 0.0 {
-                    acc += kj * *a;
+            for j in 0..i - 1 {
+                if row[j] != 0.0 {
+                    acc += k[j] * row[j];
                 }
             }
-            z[i] = y + acc * h;
+            let base = if i == 1 { *y } else { y + acc * h };
+            let zi = base + newest * (h * row[i - 1]);
+            z[i] = zi;
             let ti = t + self.c[i] * h;
-            k[i] = sys.rhs(ti, &z[i])?;
-            if !k[i].iter().all(|v| v.is_finite()) {
+            newest = sys.rhs(ti, &zi)?;
+            k[i] = newest;
+            if !newest.iter().all(|v| v.is_finite()) {
                 return Err(Error::NonFinite { t: ti });
             }
         }
