@@ -76,9 +76,17 @@ pub struct Sweep {
     pub method: &'static str,
     pub points: Vec<Point>,
     pub rhs_ns: f64,
+    /// The bare call's latency: its time in a dependent chain of calls (each argument made
+    /// from the last result, as a stage's is), the floor of a step loop's time per call.
+    pub rhs_chain_ns: f64,
     /// Largest difference over the grid between two independent references (`0` for an
     /// exact one): the floor below which the error is not measured.
     pub reference_spread: f64,
+    /// Largest difference over the grid made by nudging the first initial coordinate by
+    /// one unit in the last place (the reference method, the same model): how far the
+    /// problem itself amplifies round-off, below which no double-precision run can be
+    /// told right from wrong.
+    pub ulp_spread: f64,
 }
 
 impl Sweep {
@@ -167,6 +175,15 @@ pub fn sweep<S: OdeSystem<D>, const D: usize>(
     (reference, spread): (&[Vector<D>], f64),
     n: usize,
 ) -> Sweep {
+    let mut nudged = y0;
+    nudged[0] *= 1.0 + f64::EPSILON;
+    let ulp_spread = match (
+        states("DOP853", sys, y0, t1, 1e-14),
+        states("DOP853", sys, nudged, t1, 1e-14),
+    ) {
+        (Ok((a, _)), Ok((b, _))) => grid_error(&a, &b, n),
+        _ => f64::NAN,
+    };
     let mut points = Vec::new();
     let mut reached = 0;
     // The bare call is timed over the states of a run (the reference may hold only the
@@ -201,12 +218,25 @@ pub fn sweep<S: OdeSystem<D>, const D: usize>(
                 black_box(sys.rhs(0.0, black_box(y)).ok());
             }
         }) / visited.len().max(1) as f64;
+    // Adding `0 * sum(f)` leaves the states as they are but makes every argument wait for
+    // the whole last result.
+    let rhs_chain_ns = 1e9
+        * least_time(&|| {
+            let mut f = Vector::<D>::zeros();
+            for y in &visited {
+                f = sys.rhs(0.0, &y.add_scalar(f.sum() * 0.0)).unwrap_or(f);
+            }
+            black_box(f);
+        })
+        / visited.len().max(1) as f64;
     Sweep {
         model,
         method,
         points,
         rhs_ns,
+        rhs_chain_ns,
         reference_spread: spread,
+        ulp_spread,
     }
 }
 
@@ -353,11 +383,15 @@ pub fn table(sweeps: &[Sweep], load_before: &str) -> String {
         "## Time to accuracy\n\nLargest error of the coordinates over 101 sample times (dense \
          output, `Record::Times`), fastest tolerance that reaches it; `ns/eval` is the run time \
          per rhs call, `loop ns/eval` what of it is not the bare call (the step loop's \
-         overhead per evaluation), `x rhs` the run time per call over the bare call's time; \
+         overhead per evaluation), `x rhs` the run time per call over the bare call's time \
+         (independent calls) and `x chain` over its latency (`chain ns`: calls in a dependent \
+         chain, as the stages are); \
          `ref spread` the largest difference between two independent references (module \
-         docs). Load average (1, 5, 15 min): {load_before} before, {} after.\n\n\
-         | model | method | target | time | tol | rhs calls | ns/eval | bare rhs ns | loop ns/eval | x rhs | ref spread |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n",
+         docs), `1 ulp` the largest change made by nudging the first initial coordinate by \
+         one unit in the last place (the problem's own amplification of round-off: a target \
+         below it cannot be resolved in double precision). Load average (1, 5, 15 min): {load_before} before, {} after.\n\n\
+         | model | method | target | time | tol | rhs calls | ns/eval | bare rhs ns | chain ns | loop ns/eval | x rhs | x chain | ref spread | 1 ulp |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         load_average()
     );
     for sw in sweeps {
@@ -367,20 +401,23 @@ pub fn table(sweeps: &[Sweep], load_before: &str) -> String {
             } else {
                 "exact".to_string()
             };
+            let ulp = sw.ulp_spread;
             match sw.fastest(target) {
                 Some(p) => {
                     let per_eval = p.time_s * 1e9 / p.n_rhs as f64;
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {target:.0e} | {:.1} us | {:.1e} | {} | {per_eval:.1} | {:.1} | {:.1} | {:.2} | {spread} |",
+                        "| {} | {} | {target:.0e} | {:.1} us | {:.1e} | {} | {per_eval:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {spread} | {ulp:.1e} |",
                         sw.model,
                         sw.method,
                         p.time_s * 1e6,
                         p.tol,
                         p.n_rhs,
                         sw.rhs_ns,
+                        sw.rhs_chain_ns,
                         per_eval - sw.rhs_ns,
-                        per_eval / sw.rhs_ns
+                        per_eval / sw.rhs_ns,
+                        per_eval / sw.rhs_chain_ns
                     );
                 }
                 None => {
@@ -391,8 +428,8 @@ pub fn table(sweeps: &[Sweep], load_before: &str) -> String {
                         .fold(f64::INFINITY, f64::min);
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {target:.0e} | not reached (best {best:.1e}) | | | | {:.1} | | | {spread} |",
-                        sw.model, sw.method, sw.rhs_ns
+                        "| {} | {} | {target:.0e} | not reached (best {best:.1e}) | | | | {:.1} | {:.1} | | | | {spread} | {ulp:.1e} |",
+                        sw.model, sw.method, sw.rhs_ns, sw.rhs_chain_ns
                     );
                 }
             }

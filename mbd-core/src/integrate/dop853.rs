@@ -18,7 +18,7 @@ use crate::model::{OdeSystem, Vector};
 /// controller with `dop853.f`'s constants ([`Dop853::controller`]), Hairer's initial step,
 /// stiffness detection every [`Options::stiffness_check`] accepted steps, and a
 /// seventh-order dense output built from three more stages per accepted step (only when
-/// the step's segment is kept or events are located).
+/// the step's segment is kept, events are located or an output time falls inside it).
 ///
 /// Counters: `n_rhs` is every call of `rhs`: one at `t0` (`dop853.f` counts two there even
 /// when the initial step is given), one for the initial step guess when `h0` is `None`,

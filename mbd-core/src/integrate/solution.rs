@@ -50,7 +50,8 @@ impl Record {
 }
 
 /// One accepted step as an [`Observer`] sees it: its end `(t, y)` (after any projection),
-/// and its dense segment when one was built (dense output, events or output times).
+/// and its dense segment when one was built (dense output, events, or an output time inside
+/// the step).
 #[derive(Debug, Clone, Copy)]
 pub struct Step<'s, const D: usize> {
     /// End of the step.
