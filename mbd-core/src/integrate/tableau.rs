@@ -158,6 +158,20 @@ impl<const S: usize> Erk<S> {
         Ok(())
     }
 
+    /// The propagated solution `y + h sum_i b_i k_i`, summed as the stage arguments are
+    /// ([`Self::stages`]): the last stage's term last, so that it alone waits for the last
+    /// call.
+    #[inline]
+    pub fn advance<const D: usize>(&self, y: &Vector<D>, k: &[Vector<D>; S], h: f64) -> Vector<D> {
+        let mut acc = Vector::<D>::zeros();
+        for j in 0..S - 1 {
+            if self.b[j] != 0.0 {
+                acc += k[j] * self.b[j];
+            }
+        }
+        (y + acc * h) + k[S - 1] * (h * self.b[S - 1])
+    }
+
     /// `h sum_i w_i k_i` for weights `w` (the increment `b`, or the error `e`).
     #[inline]
     pub fn combine<const D: usize>(w: &[f64; S], k: &[Vector<D>; S], h: f64) -> Vector<D> {
