@@ -7,7 +7,9 @@
     reason = "dop853.f's printed digits, rounded by the compiler"
 )]
 
-use mbd_core::integrate::{Direction, Dop853, Dopri5, Event, Integrator, Options, Record, Solution};
+use mbd_core::integrate::{
+    Direction, Dop853, Dopri5, Event, Integrator, Options, Record, Solution,
+};
 use mbd_core::{Error, OdeSystem, Result, Vector};
 use std::f64::consts::PI;
 

@@ -147,7 +147,10 @@ fn flyball_stops_as_stiff_only_with_the_check_on() {
             off.stats.n_steps
         );
         assert!(err < 10.0 * tol, "tol {tol:e}: error {err:e}");
-        assert!((2.5..5.0).contains(&h_lambda), "tol {tol:e}: h |lambda| = {h_lambda}");
+        assert!(
+            (2.5..5.0).contains(&h_lambda),
+            "tol {tol:e}: h |lambda| = {h_lambda}"
+        );
         steps.push(off.stats.n_steps as f64);
     }
     assert!(steps[1] / steps[0] < 1.1, "steps {steps:?}");

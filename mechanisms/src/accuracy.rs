@@ -220,15 +220,14 @@ pub fn sweep<S: OdeSystem<D>, const D: usize>(
         }) / visited.len().max(1) as f64;
     // Adding `0 * sum(f)` leaves the states as they are but makes every argument wait for
     // the whole last result.
-    let rhs_chain_ns = 1e9
-        * least_time(&|| {
+    let rhs_chain_ns =
+        1e9 * least_time(&|| {
             let mut f = Vector::<D>::zeros();
             for y in &visited {
                 f = sys.rhs(0.0, &y.add_scalar(f.sum() * 0.0)).unwrap_or(f);
             }
             black_box(f);
-        })
-        / visited.len().max(1) as f64;
+        }) / visited.len().max(1) as f64;
     Sweep {
         model,
         method,
@@ -287,15 +286,31 @@ pub fn all_sweeps() -> Vec<Sweep> {
         .collect();
     for m in METHODS {
         let y0 = Vector::<2>::new(theta0, 0.0);
-        out.push(sweep("pendulum 60 deg, 10 s", m, &p, y0, t1, (&reference, 0.0), 1));
+        out.push(sweep(
+            "pendulum 60 deg, 10 s",
+            m,
+            &p,
+            y0,
+            t1,
+            (&reference, 0.0),
+            1,
+        ));
     }
     out.extend(chain_sweeps::<Chain8, 8, 16>(
         "chain of 8 links, 2 s",
-        &black_box(Chain8 { m: LINK.0, l: LINK.1, g: LINK.2 }),
+        &black_box(Chain8 {
+            m: LINK.0,
+            l: LINK.1,
+            g: LINK.2,
+        }),
     ));
     out.extend(chain_sweeps::<Chain32, 32, 64>(
         "chain of 32 links, 2 s",
-        &black_box(Chain32 { m: LINK.0, l: LINK.1, g: LINK.2 }),
+        &black_box(Chain32 {
+            m: LINK.0,
+            l: LINK.1,
+            g: LINK.2,
+        }),
     ));
     out.extend(slider_crank_sweeps());
     out
@@ -318,7 +333,8 @@ fn chain_sweeps<G: OdeSystem<D>, const N: usize, const D: usize>(
     // Released from rest with every joint at 0.3 rad.
     let hand: ChainByHand<N> = black_box(ChainByHand::new(LINK.0, LINK.1, LINK.2));
     let y0 = Vector::<D>::from_fn(|i, _| if i < N { 0.3 } else { 0.0 });
-    let (Some(ref_hand), Some(ref_gen)) = (reference(&hand, y0, 2.0), reference(generated, y0, 2.0))
+    let (Some(ref_hand), Some(ref_gen)) =
+        (reference(&hand, y0, 2.0), reference(generated, y0, 2.0))
     else {
         return Vec::new();
     };
@@ -333,7 +349,15 @@ fn chain_sweeps<G: OdeSystem<D>, const N: usize, const D: usize>(
         "chain of 32 links, 2 s, generated"
     };
     for m in METHODS {
-        out.push(sweep(gen_name, m, generated, y0, 2.0, (&ref_hand, spread), N));
+        out.push(sweep(
+            gen_name,
+            m,
+            generated,
+            y0,
+            2.0,
+            (&ref_hand, spread),
+            N,
+        ));
     }
     out
 }
@@ -348,7 +372,8 @@ fn slider_crank_sweeps() -> Vec<Sweep> {
     let expert = SliderCrankClosedByHand::from(&free);
     let y1 = Vector::<2>::new(0.3, 0.0);
     let y3 = handwritten::slider_crank_state(&s, 0.3, 0.0);
-    let (Some(ref_expert), Some(ref_free)) = (reference(&expert, y1, 2.0), reference(&free, y1, 2.0))
+    let (Some(ref_expert), Some(ref_free)) =
+        (reference(&expert, y1, 2.0), reference(&free, y1, 2.0))
     else {
         return Vec::new();
     };
@@ -360,10 +385,26 @@ fn slider_crank_sweeps() -> Vec<Sweep> {
         .collect();
     let mut out = Vec::new();
     for m in METHODS {
-        out.push(sweep("slider-crank, 3 coordinates, 2 s", m, &s, y3, 2.0, (&ref6, spread), 1));
+        out.push(sweep(
+            "slider-crank, 3 coordinates, 2 s",
+            m,
+            &s,
+            y3,
+            2.0,
+            (&ref6, spread),
+            1,
+        ));
     }
     for m in METHODS {
-        out.push(sweep("slider-crank, minimal, 2 s", m, &free, y1, 2.0, (&ref_expert, spread), 1));
+        out.push(sweep(
+            "slider-crank, minimal, 2 s",
+            m,
+            &free,
+            y1,
+            2.0,
+            (&ref_expert, spread),
+            1,
+        ));
     }
     out
 }

@@ -164,9 +164,9 @@ impl<const S: usize> Erk<S> {
     #[inline]
     pub fn advance<const D: usize>(&self, y: &Vector<D>, k: &[Vector<D>; S], h: f64) -> Vector<D> {
         let mut acc = Vector::<D>::zeros();
-        for j in 0..S - 1 {
-            if self.b[j] != 0.0 {
-                acc += k[j] * self.b[j];
+        for (b, kj) in self.b[..S - 1].iter().zip(k) {
+            if *b != 0.0 {
+                acc += kj * *b;
             }
         }
         (y + acc * h) + k[S - 1] * (h * self.b[S - 1])
