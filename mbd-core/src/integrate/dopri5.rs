@@ -12,9 +12,10 @@ use crate::model::{OdeSystem, Vector};
 
 /// The explicit Dormand–Prince 5(4) pair run as Hairer's `dopri5.f` runs it (Hairer–Nørsett–
 /// Wanner I, Sect. II.5 and II.6): FSAL, local extrapolation, the scaled RMS
-/// [`error_norm`](super::control::error_norm) (as [`error_norm_sq`]), the [`PiController`], Hairer's initial step guess ([`initial_step`]),
-/// Shampine's fourth-order dense output, and stiffness detection every
-/// [`Options::stiffness_check`] accepted steps ([`StiffnessDetector`]).
+/// [`error_norm`](super::control::error_norm) (taken squared, [`error_norm_sq`]), the
+/// [`PiController`], Hairer's initial step guess ([`initial_step`]), Shampine's
+/// fourth-order dense output, and stiffness detection every [`Options::stiffness_check`]
+/// accepted steps ([`StiffnessDetector`]).
 ///
 /// Counters: `n_rhs` is every call of `rhs` (one at `t0`, one more for the initial step
 /// guess when `h0` is `None`, six per attempted step, and one more after a projection that
