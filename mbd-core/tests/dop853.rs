@@ -7,7 +7,9 @@
     reason = "dop853.f's printed digits, rounded by the compiler"
 )]
 
-use mbd_core::integrate::{Direction, Dop853, Dopri5, Event, Integrator, Options, Solution};
+use mbd_core::integrate::{
+    Direction, Dop853, Dopri5, Event, Integrator, Options, Record, Solution,
+};
 use mbd_core::{Error, OdeSystem, Result, Vector};
 use std::f64::consts::PI;
 
@@ -378,5 +380,45 @@ fn auto_picks_dop853_for_tight_tolerances() {
         };
         assert_eq!(a.stats, b.stats);
         assert_eq!(a.last(), b.last());
+    }
+}
+
+/// With `Record::Times`, only the steps with an output time strictly inside them build the
+/// seventh-order segment (three more calls each): the count is the `Record::Final` run's
+/// plus three per such step, the steps being those of the same run recorded every step
+/// (the step sequence does not depend on what is recorded), and the recorded states are
+/// the dense run's segments evaluated at those times, bit for bit.
+#[test]
+fn dop853_output_times_build_only_the_segments_they_need() {
+    let sys = oscillator();
+    let y0 = Vector::<2>::new(1.0, 0.0);
+    let run = |record: Record, dense: bool| {
+        Dop853::new(Options {
+            rtol: 1e-9,
+            atol: 1e-9,
+            record,
+            dense,
+            ..Options::default()
+        })
+        .solve(&sys, 0.0, y0, 10.0, &[])
+        .unwrap()
+    };
+    // Output times between steps, at step ends and at t0 / t1.
+    let times: Vec<f64> = (0..=40).map(|i| 0.25 * f64::from(i)).collect();
+    let steps = run(Record::Steps, false);
+    let final_only = run(Record::Final, false);
+    let at_times = run(Record::Times(times.clone()), false);
+    let dense = run(Record::Steps, true);
+    let inside = steps
+        .t
+        .windows(2)
+        .filter(|w| times.iter().any(|&t| w[0] < t && t < w[1]))
+        .count();
+    assert!(inside > 0 && inside < steps.t.len() - 1, "{inside}");
+    assert_eq!(final_only.stats.n_rhs, steps.stats.n_rhs);
+    assert_eq!(at_times.stats.n_rhs, final_only.stats.n_rhs + 3 * inside);
+    assert_eq!(at_times.t, times);
+    for (t, y) in at_times.t.iter().zip(&at_times.y) {
+        assert_eq!(dense.at(*t).unwrap(), *y, "t = {t}");
     }
 }

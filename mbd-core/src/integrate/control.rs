@@ -25,6 +25,27 @@ pub fn error_norm<const D: usize>(
     if D == 0 { 0.0 } else { (sum / D as f64).sqrt() }
 }
 
+/// The square of [`error_norm`] for the estimate `e = h acc`, computed as the step loop
+/// needs it: the weights `h / sk_i` depend on `y0`, `y1` only, so they are ready before the
+/// last stage is, and no square root is taken (`err <= 1` iff `err^2 <= 1`; the controller
+/// takes `ln err = ln(err^2) / 2`).
+#[inline]
+pub fn error_norm_sq<const D: usize>(
+    acc: &Vector<D>,
+    h: f64,
+    y0: &Vector<D>,
+    y1: &Vector<D>,
+    rtol: f64,
+    atol: f64,
+) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..D {
+        let w = h / (atol + rtol * y0[i].abs().max(y1[i].abs()));
+        sum += (acc[i] * w).powi(2);
+    }
+    if D == 0 { 0.0 } else { sum * (1.0 / D as f64) }
+}
+
 /// The PI step-size controller of `dopri5.f` (Gustafsson's "Lund stabilisation";
 /// Hairer–Nørsett–Wanner I, Sect. IV.2, eq. (2.43c)):
 ///
@@ -38,7 +59,10 @@ pub fn error_norm<const D: usize>(
 /// sets others (DOP853's).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PiController {
-    err_old: f64,
+    /// `BETA ln(err_old)`: the memory term kept as a logarithm, so that an accepted step
+    /// costs one `ln` and one `exp` (two `powf` before; the controller sits on the step
+    /// loop's critical path, between one step's last stage and the next one's first).
+    beta_ln_err_old: f64,
     rejected: bool,
     alpha: f64,
     beta: f64,
@@ -76,7 +100,7 @@ impl PiController {
     /// last accepted one, `safety`, and `h_new / h` kept in `[fac_min, fac_max]`.
     pub fn with(alpha: f64, beta: f64, safety: f64, fac_min: f64, fac_max: f64) -> Self {
         PiController {
-            err_old: Self::ERR_OLD_MIN,
+            beta_ln_err_old: beta * Self::ERR_OLD_MIN.ln(),
             rejected: false,
             alpha,
             beta,
@@ -90,11 +114,20 @@ impl PiController {
     /// memory. Never larger than `h` right after a rejection.
     #[inline]
     pub fn accept(&mut self, h: f64, err: f64) -> f64 {
-        let fac11 = err.powf(self.alpha);
-        let fac = (fac11 / self.err_old.powf(self.beta) / self.safety)
-            .clamp(1.0 / self.fac_max, 1.0 / self.fac_min);
-        let mut h_new = h / fac;
-        self.err_old = err.max(Self::ERR_OLD_MIN);
+        self.accept_ln(h, err.ln())
+    }
+
+    /// [`Self::accept`] given `ln err`, as
+    /// `h_new = h clamp(SAFETY exp(BETA ln err_old - ALPHA ln err), FAC_MIN, FAC_MAX)`: one
+    /// `exp` and products where the formula has two powers and two quotients, since this
+    /// sits on the step loop's critical path, between one step's last stage and the next
+    /// one's first. (`ln 0 = -inf` gives the largest growth, as `0^ALPHA` does.)
+    #[inline]
+    pub fn accept_ln(&mut self, h: f64, ln_err: f64) -> f64 {
+        let ratio = (self.safety * (self.beta_ln_err_old - self.alpha * ln_err).exp())
+            .clamp(self.fac_min, self.fac_max);
+        let mut h_new = h * ratio;
+        self.beta_ln_err_old = self.beta * ln_err.max(Self::ERR_OLD_MIN.ln());
         if self.rejected {
             h_new = h_new.min(h);
         }
@@ -105,8 +138,14 @@ impl PiController {
     /// The retry step after a rejected step of size `h` with error `err > 1`.
     #[inline]
     pub fn reject(&mut self, h: f64, err: f64) -> f64 {
+        self.reject_ln(h, err.ln())
+    }
+
+    /// [`Self::reject`] given `ln err`: `h max(SAFETY exp(-ALPHA ln err), FAC_MIN)`.
+    #[inline]
+    pub fn reject_ln(&mut self, h: f64, ln_err: f64) -> f64 {
         self.rejected = true;
-        h / (err.powf(self.alpha) / self.safety).min(1.0 / self.fac_min)
+        h * (self.safety * (-self.alpha * ln_err).exp()).max(self.fac_min)
     }
 }
 

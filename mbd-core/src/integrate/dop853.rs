@@ -18,7 +18,7 @@ use crate::model::{OdeSystem, Vector};
 /// controller with `dop853.f`'s constants ([`Dop853::controller`]), Hairer's initial step,
 /// stiffness detection every [`Options::stiffness_check`] accepted steps, and a
 /// seventh-order dense output built from three more stages per accepted step (only when
-/// the step's segment is kept or events are located).
+/// the step's segment is kept, events are located or an output time falls inside it).
 ///
 /// Counters: `n_rhs` is every call of `rhs`: one at `t0` (`dop853.f` counts two there even
 /// when the initial step is given), one for the initial step guess when `h0` is `None`,
@@ -179,7 +179,7 @@ impl Integrator for Dop853 {
             let stages: &mut [Vector<D>; 12] = (&mut k[..12]).try_into().expect("12 stages");
             DOP853.stages(sys, t, &y, h, stages, &mut z)?;
             stats.n_rhs += 11;
-            let y1 = y + Erk::combine(&DOP853.b, stages, h);
+            let y1 = DOP853.advance(&y, stages, h);
             let t_new = if last { t1 } else { t + h };
             let err = dop853_error(stages, &y, &y1, h, rtol, atol);
             if !err.is_finite() || non_finite(&y1) {
@@ -191,13 +191,16 @@ impl Integrator for Dop853 {
                 stats.n_rejected += 1;
                 continue;
             }
-            let h_new = control.accept(h, err).min(h_max);
             stats.n_accepted += 1;
+            // f(t + h, y1) first: it and the controller both wait for the step's last
+            // stage, and the call overlaps the controller's `ln` and `exp` when it comes
+            // first.
             k[12] = sys.rhs(t + h, &y1)?;
             stats.n_rhs += 1;
             if non_finite(&k[12]) {
                 return Err(Error::NonFinite { t: t_new });
             }
+            let h_new = control.accept(h, err).min(h_max);
             // h |lambda| ~ h ||f(y1) - f(z11)|| / ||y1 - z11||: both at t + h.
             if stiff.due(stats.n_accepted) && stiff.stiff_after(h, &k[12], &k[11], &y1, &z[11]) {
                 return Err(Error::Stiff { t });
@@ -219,7 +222,7 @@ impl Integrator for Dop853 {
                 }
             }
             // The segment interpolates the step as computed (before any projection).
-            let flow = if rec.needs_segment() {
+            let flow = if rec.needs_segment_to(t_new) {
                 stats.n_rhs += 3;
                 let seg = dense_segment(sys, t, h, &y, &y1, &mut k)?;
                 rec.accept(seg, &y_acc)

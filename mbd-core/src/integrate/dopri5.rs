@@ -1,6 +1,6 @@
 //! Dormand–Prince 5(4) with Hairer's step control, dense output and stiffness detection.
 
-use super::control::{PiController, StiffnessDetector, error_norm};
+use super::control::{PiController, StiffnessDetector, error_norm_sq};
 use super::non_finite;
 use super::tableau::{DOPRI5, DOPRI5_DENSE, Erk};
 use super::{
@@ -12,9 +12,10 @@ use crate::model::{OdeSystem, Vector};
 
 /// The explicit Dormand–Prince 5(4) pair run as Hairer's `dopri5.f` runs it (Hairer–Nørsett–
 /// Wanner I, Sect. II.5 and II.6): FSAL, local extrapolation, the scaled RMS
-/// [`error_norm`], the [`PiController`], Hairer's initial step guess ([`initial_step`]),
-/// Shampine's fourth-order dense output, and stiffness detection every
-/// [`Options::stiffness_check`] accepted steps ([`StiffnessDetector`]).
+/// [`error_norm`](super::control::error_norm) (taken squared, [`error_norm_sq`]), the
+/// [`PiController`], Hairer's initial step guess ([`initial_step`]), Shampine's
+/// fourth-order dense output, and stiffness detection every [`Options::stiffness_check`]
+/// accepted steps ([`StiffnessDetector`]).
 ///
 /// Counters: `n_rhs` is every call of `rhs` (one at `t0`, one more for the initial step
 /// guess when `h0` is `None`, six per attempted step, and one more after a projection that
@@ -220,17 +221,18 @@ impl Integrator for Dopri5 {
             stats.n_rhs += 6;
             let y1 = z[6];
             let t_new = if last { t1 } else { t + h };
-            let err = error_norm(&Erk::combine(&DOPRI5.e, &k, h), &y, &y1, rtol, atol);
-            if !err.is_finite() || non_finite(&y1) {
+            let err2 = error_norm_sq(&Erk::combine(&DOPRI5.e, &k, 1.0), h, &y, &y1, rtol, atol);
+            if !err2.is_finite() || non_finite(&y1) {
                 return Err(Error::NonFinite { t: t_new });
             }
-            if err > 1.0 {
-                h = control.reject(h, err);
+            let ln_err = 0.5 * err2.ln();
+            if err2 > 1.0 {
+                h = control.reject_ln(h, ln_err);
                 last = false;
                 stats.n_rejected += 1;
                 continue;
             }
-            let h_new = control.accept(h, err).min(h_max);
+            let h_new = control.accept_ln(h, ln_err).min(h_max);
             stats.n_accepted += 1;
 
             // h |lambda| ~ h ||f(y1) - f(z6)|| / ||y1 - z6||: both are at t + h.

@@ -50,7 +50,8 @@ impl Record {
 }
 
 /// One accepted step as an [`Observer`] sees it: its end `(t, y)` (after any projection),
-/// and its dense segment when one was built (dense output, events or output times).
+/// and its dense segment when one was built (dense output, events, or an output time inside
+/// the step).
 #[derive(Debug, Clone, Copy)]
 pub struct Step<'s, const D: usize> {
     /// End of the step.
@@ -226,9 +227,21 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
             || matches!(&self.record, Record::Times(ts) if self.next_time < ts.len())
     }
 
+    /// Whether a step ending at `t1` needs its segment: [`Self::needs_segment`], narrowed
+    /// for output times to a step with an output time inside it (before `t1`; one at `t1`
+    /// is the step's end state). Steps between output times then cost no more than with
+    /// [`Record::Final`] (DOP853 saves its three dense stages there).
+    #[inline]
+    pub fn needs_segment_to(&self, t1: f64) -> bool {
+        self.dense
+            || !self.events.is_empty()
+            || matches!(&self.record, Record::Times(ts) if ts.get(self.next_time).is_some_and(|&t| t < t1))
+    }
+
     /// [`Self::accept`] for a step ending at `(t1, y1)` whose segment is built only when
-    /// [`Self::needs_segment`]: a run without dense output, events and output times pays
+    /// [`Self::needs_segment_to`]: a run without dense output, events and output times pays
     /// nothing for it.
+    #[inline]
     pub fn accept_with(
         &mut self,
         t1: f64,
@@ -238,10 +251,14 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         if self.failed.is_some() {
             return Flow::Stop;
         }
-        if !self.needs_segment() {
+        if !self.needs_segment_to(t1) {
             return self.accept_point(t1, y1);
         }
-        let seg = segment();
+        self.accept_segment(segment(), t1, y1)
+    }
+
+    /// [`Self::accept`] with the segment built: events, then the record.
+    fn accept_segment(&mut self, seg: Segment<D>, t1: f64, y1: &Vector<D>) -> Flow {
         let stop = self.locate_events(&seg, t1, y1);
         if self.failed.is_some() {
             return Flow::Stop;
@@ -258,10 +275,11 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         }
     }
 
-    /// Record an accepted step ending at `(t1, y1)` when [`Self::needs_segment`] is false
-    /// (nothing kept or located needs the step's polynomial).
+    /// Record an accepted step ending at `(t1, y1)` when [`Self::needs_segment_to`] is
+    /// false (nothing kept or located needs the step's polynomial).
+    #[inline]
     pub(crate) fn accept_point(&mut self, t1: f64, y1: &Vector<D>) -> Flow {
-        debug_assert!(!self.needs_segment());
+        debug_assert!(!self.needs_segment_to(t1));
         self.push_step(None, t1, *y1)
     }
 

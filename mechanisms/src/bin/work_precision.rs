@@ -41,51 +41,6 @@ struct Args {
     time_to_accuracy: bool,
 }
 
-/// The time-to-accuracy table in Markdown.
-fn accuracy_table(sweeps: &[accuracy::Sweep]) -> String {
-    let mut s = String::from(
-        "## Time to accuracy\n\nLargest error of the coordinates over 101 sample times (dense \
-         output, `Record::Times`), fastest tolerance that reaches it; `ns/eval` is the run time \
-         per rhs call, `x rhs` that over the bare call's time. Chains: hand-written \
-         articulated-body rhs (`chain_by_hand`); slider-crank: 3 coordinates, 2 constraints, \
-         projected.\n\n| model | method | target | time | tol | rhs calls | ns/eval | bare rhs ns | x rhs |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
-    );
-    for sw in sweeps {
-        for target in [1e-6, 1e-10] {
-            match sw.fastest(target) {
-                Some(p) => {
-                    let per_eval = p.time_s * 1e9 / p.n_rhs as f64;
-                    let _ = writeln!(
-                        s,
-                        "| {} | {} | {target:.0e} | {:.1} us | {:.0e} | {} | {per_eval:.1} | {:.1} | {:.2} |",
-                        sw.model,
-                        sw.method,
-                        p.time_s * 1e6,
-                        p.tol,
-                        p.n_rhs,
-                        sw.rhs_ns,
-                        per_eval / sw.rhs_ns
-                    );
-                }
-                None => {
-                    let best = sw
-                        .points
-                        .iter()
-                        .map(|p| p.error)
-                        .fold(f64::INFINITY, f64::min);
-                    let _ = writeln!(
-                        s,
-                        "| {} | {} | {target:.0e} | not reached (best {best:.1e}) | | | | {:.1} | |",
-                        sw.model, sw.method, sw.rhs_ns
-                    );
-                }
-            }
-        }
-    }
-    s
-}
-
 /// One row of the report (the `--json` and CSV schema). A run that could not be made has
 /// no error, time or counters, and says why in `note`.
 #[derive(Serialize, Debug, Clone)]
@@ -570,7 +525,8 @@ fn write_report(
 fn main() -> ExitCode {
     let args = Args::parse();
     if args.time_to_accuracy {
-        let table = accuracy_table(&accuracy::all_sweeps());
+        let load = accuracy::load_average();
+        let table = accuracy::table(&accuracy::all_sweeps(), &load);
         print!("{table}");
         if let Some(dir) = &args.out
             && let Err(e) = std::fs::create_dir_all(dir)
