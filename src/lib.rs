@@ -55,7 +55,7 @@
 //! | `#[generalized_force(name, along = q, value = f)]` | a generalised force on a coordinate |
 //! | `#[potential(expr)]` | a potential energy term (nonlinear springs) |
 //! | `#[friction(along = s, mu = mu, normal = reaction(n))]` / `#[friction(along = s, mu_k = a, mu_s = b, normal = ..)]` | Coulomb friction along a free coordinate, exact stick and slip (see [Friction](#friction)); `mu` sets both coefficients, `mu_k`/`mu_s` each; the normal force may be a reaction |
-//! | `#[output(name = expr)]` | an output: any expression, with `der(..)`, `position(b)`, `velocity(b)`, `acceleration(b)`, `angle(b)`, `angular_velocity(b)`, `angular_acceleration(b)` (optionally at a body-fixed offset `velocity(b, [dx, dy])`), `reaction(u)`, `norm`, `dot`, `cross`, `v[i]` |
+//! | `#[output(name = expr)]` | an output: any expression, with `der(..)`, `position(b)`, `velocity(b)`, `acceleration(b)`, `angle(b)`, `angular_velocity(b)`, `angular_acceleration(b)` (optionally at a body-fixed offset `velocity(b, [dx, dy])`), `reaction(u)`, `norm`, `dot`, `cross`, `v[i]`; a vector-valued output `p = position(b)` becomes its ground-frame components `p_x`, `p_y` (, `p_z`) in `X::OUTPUTS` and the outputs struct |
 //! | `#[event(name = expr, rising \| falling, terminal)]` | a zero crossing of `expr`, located on the dense output |
 //! | `#[init(q = value, der(q) = value)]` | initial conditions |
 //!
@@ -132,11 +132,12 @@
 //! #[derive(Debug, Mechanism)]
 //! #[gravity(0.0, -9.81)]
 //! #[body(bar, joint = revolute(q), com = [0.0, -l / 2.0], mass = m, inertia = m * l * l / 12.0)]
-//! #[output(tip_y = position(bar, [0.0, -l])[1])]
+//! #[output(tip_y = position(bar, [0.0, -l])[1], com = position(bar))]
 //! pub struct Bar { pub m: f64, pub l: f64 }
 //!
 //! let bar = Bar { m: 1.0, l: 2.0 };
 //! assert_eq!(bar.outputs(0.0, &mbd::Vector::<2>::zeros())?.tip_y, -2.0);
+//! assert_eq!(Bar::OUTPUTS, ["tip_y", "com_x", "com_y"]); // a vector output: its components
 //! let wrong = Bar { m: -1.0, l: 2.0 };
 //! let err = wrong.acceleration(0.0, &mbd::Vector::<1>::new(0.1), &mbd::Vector::<1>::zeros());
 //! assert_eq!(err.unwrap_err().to_string(), "the mass of `bar` is -1: it must be positive");

@@ -176,8 +176,17 @@ impl Lowerer<'_> {
     pub fn scalar(&mut self, e: &syn::Expr, ctx: Context) -> Option<Expr> {
         match self.expr(e, ctx).ok()? {
             Value::Scalar(s) => Some(s),
-            _ => {
-                self.errors.at(e.span(), "expected a scalar expression");
+            Value::Vector(v) => {
+                let hint = format!(
+                    "expected a scalar expression, found a vector of {} components: take one (`v[0]`), `norm(v)` or `dot(v, w)`",
+                    v.len()
+                );
+                self.errors.at(e.span(), hint);
+                None
+            }
+            Value::Matrix(_) => {
+                let hint = "expected a scalar expression, found a 3x3 matrix: multiply it by a vector and take a component (`(m * v)[0]`)";
+                self.errors.at(e.span(), hint);
                 None
             }
         }

@@ -5,10 +5,11 @@ use super::inertial::Inertial;
 use super::kinematics::Kin;
 use super::scope::Scope;
 use super::{Coord, EventEq, OutputEq};
-use crate::lower::Context;
+use crate::lower::{Context, Value};
 use crate::parse::Mechanism;
 use crate::sym::{Expr, Graph, Sym};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
+use syn::spanned::Spanned;
 
 /// Outputs and events in full coordinates, with reaction placeholders.
 pub(super) fn lower(
@@ -19,11 +20,29 @@ pub(super) fn lower(
     let mut outputs = Vec::new();
     let mut events = Vec::new();
     for o in &ast.outputs {
-        if let Some(e) = scope.lowerer(Some(kin)).scalar(&o.expr, Context::Output) {
-            outputs.push(OutputEq {
+        match scope.lowerer(Some(kin)).lower(&o.expr, Context::Output) {
+            Some(Value::Scalar(e)) => outputs.push(OutputEq {
                 name: o.name.clone(),
                 expr: e,
-            });
+            }),
+            Some(Value::Vector(v)) => outputs.extend(components(&o.name, &v)),
+            Some(Value::Matrix(_)) => scope.errors.at(
+                o.expr.span(),
+                "an output is a scalar or a vector, not a matrix: multiply it by a vector or take a component",
+            ),
+            None => {}
+        }
+    }
+    // Parsing reports two declared outputs of one name; here a component meets a name.
+    let mut seen = HashSet::new();
+    for o in &outputs {
+        let name = o.name.to_string();
+        let declared_twice = ast.outputs.iter().filter(|d| d.name == o.name).count() > 1;
+        if !seen.insert(name.clone()) && !declared_twice {
+            scope.errors.at(
+                o.name.span(),
+                format!("output `{name}` is declared twice (a vector output `p` gives `p_x`, `p_y`, `p_z`): rename one"),
+            );
         }
     }
     for ev in &ast.events {
@@ -37,6 +56,18 @@ pub(super) fn lower(
         }
     }
     (outputs, events)
+}
+
+/// A vector output `p` as its components `p_x`, `p_y` (, `p_z`), in the ground frame.
+fn components(name: &syn::Ident, v: &[Expr]) -> Vec<OutputEq> {
+    ["x", "y", "z"]
+        .iter()
+        .zip(v)
+        .map(|(axis, e)| OutputEq {
+            name: syn::Ident::new(&format!("{name}_{axis}"), name.span()),
+            expr: *e,
+        })
+        .collect()
 }
 
 /// Takes an expression of full coordinates and reaction placeholders to the free
