@@ -47,7 +47,8 @@
 //! | `#[body(.., reaction)]` | frees the joint origin by two relaxed coordinates `name_rx`, `name_ry` (three in space, with `name_rz`), so that `reaction(name_rx)`, ... are the joint's force on the body (ground frame) |
 //! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) |
 //! | `#[chain(link, n = 16, joint = revolute, length = l, mass = m, inertia = i)]` | `n` identical links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default), relative angles `link_q1 ..` (zero: straight down), mass centres at mid-length |
-//! | `#[point(name, at = [x, y])]` | a named point, fixed or moving |
+//! | `#[point(name, at = [x, y])]` | a named point, fixed or moving, in ground coordinates |
+//! | `#[point(name, on = body, at = [dx, dy])]` | a body-fixed point of any body (free or joint-tree, planar or spatial): `at` is in the body's frame, from its origin (see the offsets rule below); usable wherever a point is (spring, damper and force ends, outputs) |
 //! | `#[spring(name, from = a, to = b, k = k, length = l0)]` | a linear spring between points, bodies or positions |
 //! | `#[damper(name, from = a, to = b, c = c)]` | a viscous damper on the rate of change of the distance |
 //! | `#[force(name, at = [x, y], value = [fx, fy])]` | a force applied at a point |
@@ -76,7 +77,11 @@
 //!   A tree body without `inertia` (a point mass) still has its frame; a free `particle` has
 //!   none, and an offset on it is an error. `position(b)` without
 //!   offset is the mass centre. A spring or damper between bodies acts between their mass
-//!   centres; for another point, name it with `#[point(..)]` or write its position.
+//!   centres; for another point, fix it to the body with `#[point(hook, on = b, at = [dx, dy])]`
+//!   or write `position(b, [dx, dy])` as the end (also a `force`'s `at`). Body queries are
+//!   kinematics where they can be: `position` and `angle` also in points, spring and damper
+//!   ends, potentials and a `force`'s `at`; `velocity` and `angular_velocity` also in force
+//!   values; accelerations and `reaction` only in outputs and events.
 //! - **Signs.** Angles and torques are positive counter-clockwise about the plane's normal
 //!   `z = x × y` (right-handed); spatial rotations are right-handed (`rot_z(a)` turns `x`
 //!   towards `y`), `R` maps body to ground coordinates, and a spatial `torque` value is a
@@ -141,6 +146,31 @@
 //! let wrong = Bar { m: -1.0, l: 2.0 };
 //! let err = wrong.acceleration(0.0, &mbd::Vector::<1>::new(0.1), &mbd::Vector::<1>::zeros());
 //! assert_eq!(err.unwrap_err().to_string(), "the mass of `bar` is -1: it must be positive");
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! A spring from a point of a joint-tree body, given in that body's frame (no chain of
+//! rotations written by hand):
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! /// A pendulum held by a zero-length spring from a point `d` down its arm to the
+//! /// ground point `(0, -c)`: `m l^2 q'' = -(m g l + k c d) sin q`.
+//! #[derive(Debug, Mechanism)]
+//! #[gravity(0.0, -g)]
+//! #[body(arm, joint = revolute(q), com = [0.0, -l], mass = m)]
+//! #[point(hook, on = arm, at = [0.0, -d])]
+//! #[spring(s, from = hook, to = [0.0, -c], k = k)]
+//! #[output(bob = position(arm))]
+//! pub struct Held { pub m: f64, pub l: f64, pub g: f64, pub d: f64, pub c: f64, pub k: f64 }
+//!
+//! let p = Held { m: 1.0, l: 2.0, g: 9.81, d: 0.5, c: 1.0, k: 10.0 };
+//! let q = 0.3;
+//! let qdd = p.acceleration(0.0, &mbd::Vector::<1>::new(q), &mbd::Vector::<1>::zeros())?[0];
+//! let want = -(p.m * p.g * p.l + p.k * p.c * p.d) * q.sin() / (p.m * p.l * p.l);
+//! assert!((qdd - want).abs() < 1e-14);
+//! assert_eq!(Held::OUTPUTS, ["bob_x", "bob_y"]);
 //! # Ok::<(), mbd::Error>(())
 //! ```
 //!

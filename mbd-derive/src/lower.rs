@@ -128,7 +128,31 @@ pub fn path_constant(path: &syn::Path) -> Option<f64> {
     if ok { named_constant(last) } else { None }
 }
 
-/// Body queries answered by [`Model::body`] (outputs only).
+/// Whether body query or `reaction` `fname` may stand in `ctx`: positions and angles are
+/// kinematics (forces' points, spring and damper ends), velocities are forces' too;
+/// accelerations and reactions would make the forces depend on the solution.
+fn query_allowed(fname: &str, ctx: Context) -> bool {
+    match ctx {
+        Context::Output => true,
+        Context::Force => !matches!(fname, "acceleration" | "angular_acceleration" | "reaction"),
+        Context::Kinematics => {
+            !BODY_QUERIES.contains(&fname) && fname != "reaction"
+                || matches!(fname, "position" | "angle")
+        }
+        Context::Constant => !BODY_QUERIES.contains(&fname) && fname != "reaction",
+    }
+}
+
+/// Where a refused body query can be written instead.
+fn query_hint(fname: &str) -> &'static str {
+    match fname {
+        "position" | "angle" => " (and in forces, spring and damper ends and `force`'s `at`)",
+        "velocity" | "angular_velocity" => " (and in force values)",
+        _ => "",
+    }
+}
+
+/// Body queries answered by [`Model::body`].
 const BODY_QUERIES: &[&str] = &[
     "position",
     "velocity",
@@ -494,11 +518,13 @@ impl Lowerer<'_> {
                 format!("`{fname}` takes {arity} argument(s), found {}", args.len()),
             );
         }
-        if ctx != Context::Output && (BODY_QUERIES.contains(&fname.as_str()) || fname == "reaction")
-        {
+        if !query_allowed(&fname, ctx) {
             return self.fail(
                 name.span(),
-                format!("`{fname}(..)` is only available in outputs and events"),
+                format!(
+                    "`{fname}(..)` is only available in outputs and events{}",
+                    query_hint(&fname)
+                ),
             );
         }
         if ctx == Context::Kinematics && matches!(fname.as_str(), "abs" | "signum" | "min" | "max")

@@ -17,6 +17,7 @@ mod bodies;
 mod checks;
 mod constraints;
 mod coulomb;
+mod fixed;
 mod implicit;
 mod inertial;
 mod initial;
@@ -222,6 +223,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         planar,
         spatial,
     };
+    fixed::declare(ast, &mut scope, &kin);
+    scope.errors_so_far()?;
     let mut checks = checks::body_checks(&scope.names, &kin.bodies);
     let mut reactions: Vec<(usize, Expr)> = Vec::new();
 

@@ -53,6 +53,8 @@ pub struct Body {
 pub struct Point {
     pub name: Ident,
     pub at: Expr,
+    /// `on = body`: `at` is in that body's frame, from its origin (a body-fixed point).
+    pub on: Option<Ident>,
 }
 
 /// Two ends of a spring or a damper: a point name, a body name (its mass centre), or a position.
@@ -505,12 +507,21 @@ impl Mechanism {
                 }
             }
             "point" => {
-                if let Some(mut item) = Item::read(attr, errors, &["at"], &[])
+                if let Some(mut item) = Item::read(attr, errors, &["at", "on"], &[])
                     && let Some(at) = item.require("at", errors, "point")
                 {
+                    let on = item.take("on").and_then(|e| match classify(e) {
+                        Arg::Flag(body) => Some(body),
+                        _ => {
+                            let why = "`on` names the body the point is fixed to";
+                            errors.at(item.name.span(), why);
+                            None
+                        }
+                    });
                     m.points.push(Point {
                         name: item.name,
                         at,
+                        on,
                     });
                 }
             }

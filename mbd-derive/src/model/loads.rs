@@ -117,7 +117,11 @@ pub(super) fn lower(
     let potentials = ast
         .potentials
         .iter()
-        .filter_map(|p| scope.lowerer(None).scalar(p, Context::Kinematics))
+        .filter_map(|p| {
+            let mut none = Vec::new();
+            let mut kin = kinematics.kin(scope.t, scope.dim, &mut none);
+            scope.lowerer(Some(&mut kin)).scalar(p, Context::Kinematics)
+        })
         .collect();
     let mut dampers = Vec::new();
     for d in &ast.dampers {
@@ -160,8 +164,12 @@ fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End) -> Option
             }
         },
         End::At(e) => {
-            let len = scope.dim.len();
-            scope.lowerer(None).vector(e, Context::Kinematics, len)
+            // `position(b, [..])` may name a body-fixed point here.
+            let (len, mut none) = (scope.dim.len(), Vec::new());
+            let mut kin = kinematics.kin(scope.t, scope.dim, &mut none);
+            scope
+                .lowerer(Some(&mut kin))
+                .vector(e, Context::Kinematics, len)
         }
     }
 }

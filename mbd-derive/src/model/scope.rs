@@ -145,7 +145,7 @@ impl Scope {
     /// Points, in order: a point may use the points before it.
     pub fn points(&mut self, ast: &Mechanism) {
         let len = self.dim.len();
-        for p in &ast.points {
+        for p in ast.points.iter().filter(|p| p.on.is_none()) {
             let v = self.lowerer(None).vector(&p.at, Context::Kinematics, len);
             if let Some(v) = v {
                 self.declare(&p.name, Binding::Value(Value::Vector(v)));
