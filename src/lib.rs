@@ -59,6 +59,7 @@
 //! | `#[output(name = expr)]` | an output: any expression, with `der(..)`, `position(b)`, `velocity(b)`, `acceleration(b)`, `angle(b)`, `angular_velocity(b)`, `angular_acceleration(b)` (optionally at a body-fixed offset `velocity(b, [dx, dy])`), `reaction(u)`, `norm`, `dot`, `cross`, `v[i]`; a vector-valued output `p = position(b)` becomes its ground-frame components `p_x`, `p_y` (, `p_z`) in `X::OUTPUTS` and the outputs struct |
 //! | `#[event(name = expr, rising \| falling, terminal)]` | a zero crossing of `expr`, located on the dense output |
 //! | `#[init(q = value, der(q) = value)]` | initial conditions |
+//! | `#[repeat(i in 0..n, attr(..), attr(..), ..)]` | `n` identical cells: the listed attributes stamped once per index, in order (`a..b` or `a..=b`, integer literals); in them `name[expr of i]` is the name with the index appended (`crank[i + 1]` -> `crank1` at `i = 0`), a bare `i` its value (`i * l` -> `0.0 * l`); `v[0]` without `i` stays a component; not nested. The result is exactly the model written out (see the example below) |
 //!
 //! # Conventions: frames, offsets, signs, defaults
 //!
@@ -172,6 +173,29 @@
 //! assert!((qdd - want).abs() < 1e-14);
 //! assert_eq!(Held::OUTPUTS, ["bob_x", "bob_y"]);
 //! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! Repeated closed-loop cells: a row of four-bars sharing their cranks, each cell a crank,
+//! a coupler on it and the pin closing the coupler on the next crank (here two cells; the
+//! 40-loop IFToMM assembly is the same five lines with `0..40`):
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[gravity(0.0, -g)]
+//! #[repeat(i in 0..2,
+//!     body(crank[i], joint = revolute(c[i]), at = [i * l, 0.0], com = [0.5 * l, 0.0],
+//!          mass = m, inertia = m * l * l / 12.0),
+//!     body(coupler[i], parent = crank[i], joint = revolute(k[i]), at = [l, 0.0],
+//!          com = [0.5 * l, 0.0], mass = m, inertia = m * l * l / 12.0),
+//!     close(pin[i], a = coupler[i], at_a = [l, 0.0], b = crank[i + 1], at_b = [l, 0.0]))]
+//! #[body(crank2, joint = revolute(c2), at = [2.0 * l, 0.0], com = [0.5 * l, 0.0],
+//!        mass = m, inertia = m * l * l / 12.0)]
+//! pub struct Row { pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! assert_eq!(Row::GENERATED.constraints, 4); // two pins, two equations each
+//! assert!(Row::COORDINATES.contains(&"k1"));
 //! ```
 //!
 //! Big models are welcome (machine-generated potentials of thousands of terms): the derive

@@ -1,7 +1,7 @@
 //! The pipeline: parse -> check -> mechanics -> codegen. Errors become `compile_error!`s,
 //! beside the skeleton of the items the model would have had.
 
-use crate::{check, codegen, model, parse, skeleton};
+use crate::{check, codegen, model, parse, repeat, skeleton};
 use proc_macro2::TokenStream;
 use std::time::Instant;
 use syn::DeriveInput;
@@ -50,8 +50,12 @@ fn dump(dir: &std::path::Path, name: &str, code: &TokenStream, seconds: f64) {
 type Failed = (syn::Error, Option<Box<parse::Mechanism>>);
 
 fn try_expand(input: &DeriveInput) -> Result<TokenStream, Failed> {
-    let ast = parse::Mechanism::read(input)?;
-    let checked = check::check(input, &ast).and_then(|()| model::derive(&ast));
+    let (input, repeated) = repeat::expand(input);
+    let ast = parse::Mechanism::read(&input)?;
+    if let Some(e) = repeated {
+        return Err((e, Some(Box::new(ast))));
+    }
+    let checked = check::check(&input, &ast).and_then(|()| model::derive(&ast));
     match checked {
         Ok(eqs) => Ok(codegen::emit(&ast, &eqs)),
         Err(e) => Err((e, Some(Box::new(ast)))),

@@ -16,6 +16,7 @@ mod guard;
 mod lower;
 mod model;
 mod parse;
+mod repeat;
 mod skeleton;
 mod spatial;
 mod sym;
@@ -51,6 +52,7 @@ use syn::DeriveInput;
         output,
         event,
         init,
+        repeat,
         default
     )
 )]
