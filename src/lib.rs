@@ -48,7 +48,7 @@
 //! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) |
 //! | `#[chain(link, n = 16, joint = revolute, length = l, mass = m, inertia = i)]` | `n` identical links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default), relative angles `link_q1 ..` (zero: straight down), mass centres at mid-length |
 //! | `#[point(name, at = [x, y])]` | a named point, fixed or moving, in ground coordinates |
-//! | `#[point(name, on = body, at = [dx, dy])]` | a body-fixed point of any body (free or joint-tree, planar or spatial): `at` is in the body's frame, from its origin (see the offsets rule below); usable wherever a point is (spring, damper and force ends, outputs) |
+//! | `#[point(name, on = body, at = [dx, dy])]` | a body-fixed point of any body (free or joint-tree, planar or spatial): `at` is in the body's frame, from its origin (see the offsets rule below); usable wherever a point is after the bodies (spring, damper and force ends, potentials, constraints, outputs), not in a body's or a plain point's `at` |
 //! | `#[spring(name, from = a, to = b, k = k, length = l0)]` | a linear spring between points, bodies or positions |
 //! | `#[damper(name, from = a, to = b, c = c)]` | a viscous damper on the rate of change of the distance |
 //! | `#[force(name, at = [x, y], value = [fx, fy])]` | a force applied at a point |
