@@ -27,6 +27,9 @@
 //!
 //! # The mechanism language
 //!
+//! Every attribute below, with its units, frames, signs and defaults, appears in a checked
+//! example in [`language`], which also lists the functions and constants.
+//!
 //! The struct's fields are the parameters (`f64`; `#[default(value)]` on a field gives a
 //! default). Attributes on the struct describe the mechanism; every expression is a small,
 //! smooth subset of Rust over the parameters, the coordinates and time `t`.
@@ -67,8 +70,8 @@
 //! - **Frames.** Positions, `at` of free bodies and points, `force` values, gravity and
 //!   every vector output (`position`, `velocity`, `acceleration`, a spatial
 //!   `angular_velocity`/`angular_acceleration`) are in the **ground frame**. A tree body's
-//!   `at` is in its parent's frame, its `com`, `prismatic` axis and every body-fixed offset in
-//!   its own.
+//!   `at` and `prismatic` axis are in its parent's frame, its `com` and every body-fixed
+//!   offset in its own.
 //! - **Body-fixed offsets: one rule.** `position(b, [dx, dy])` (and `velocity`,
 //!   `acceleration`, `close`'s `at_a`/`at_b`) is the point `[dx, dy]` of body `b`'s *frame*,
 //!   measured **from the frame's origin** in the frame's axes. A free `particle`, `rigid` or
@@ -351,6 +354,8 @@
 //! assert_eq!(p.rhs(0.0, &rest)?, rest);
 //! # Ok::<(), mbd::Error>(())
 //! ```
+
+pub mod language;
 
 pub use mbd_core::*;
 pub use mbd_derive::Mechanism;

@@ -1,0 +1,269 @@
+//! The mechanism language by example: every attribute of the [table](crate#the-mechanism-language)
+//! in a model whose numbers are checked against a closed form written beside it.
+//! This module holds documentation only.
+//!
+//! | example | attributes it exercises |
+//! |---|---|
+//! | [Loads on a free body](#loads-on-a-free-body) | `#[default]`, `mechanism(planar, jacobian)`, `coords`, `rigid`, `point` (ground), `spring` (default and given `length`), `damper`, `force` (at a body-fixed point), `torque`, `generalized_force`, `potential`, scalar `output` with `der`, `angle`, `angular_velocity`, `position(b, [..])[i]`, named constants |
+//! | [Constraints and multipliers](#constraints-and-multipliers) | `mechanism(augmented)`, `constraint`, `particle`, `init`, `event(rising)` |
+//! | [Drives and reactions](#drives-and-reactions) | `drive`, `body` (`revolute`, `prismatic`, `reaction`), `reaction(u)` of a driven and of relaxed coordinates, `mechanism(mass_matrix)` |
+//! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`), spatial `close` |
+//!
+//! The crate-level examples cover the rest: `gravity`, `coords`, `particle`, `init`,
+//! `event(falling, terminal)` (the thrown ball); a planar `body` with a body-fixed offset and
+//! a vector output (the bar); `point(.., on = b)` and a spring to it (the held pendulum);
+//! `repeat` and planar `close` (the row of four-bars); `relaxed` and `friction` (the crate on
+//! an incline); `chain` (the triple pendulum); spatial `body` with `universal` and
+//! `revolute(q, x)` joints (the Cardan bar).
+//!
+//! # Units, frames, signs, origins, defaults
+//!
+//! The derive never converts units: write every number in one consistent system (SI: m, kg,
+//! s, N, N m, rad). Angles are radians. The frame, sign and origin of each quantity:
+//!
+//! | attribute | frame and origin | sign | default |
+//! |---|---|---|---|
+//! | `gravity(gx, gy[, gz])` | ground | the acceleration of free fall (`-g` on `y` points down) | none: no gravity |
+//! | `rigid`/`particle` `at` | ground, the mass centre | | |
+//! | `rigid` `angle` | about `z` | counter-clockwise positive | |
+//! | `rigid` `inertia` | about the mass centre | `>= 0` | |
+//! | `rigid3` `rotation` | `R` maps body to ground coordinates | right-handed | |
+//! | `body` `at` | parent's frame, from the parent's joint | | `[0, 0]` (`[0, 0, 0]`) |
+//! | `body` `com`, body-fixed offsets | the body's own frame, from its joint | | `com = [0, 0]` |
+//! | `body` `prismatic(s, axis)` | `axis` in the parent's frame: the joint moves `at` by `s axis` | `s` positive along `axis` | |
+//! | `body` `revolute(q)` (planar) | the frame's angle is the parent's `+ q + angle` | counter-clockwise | |
+//! | `body` `revolute(q, x \| y \| z)` (spatial) | about the parent's axis at the joint, `R = R_parent rot_x(q)` .. | right-handed | |
+//! | `body` `angle` (planar) | a constant angle added to the frame's | counter-clockwise | `0` |
+//! | `body` `parent` | | | `ground` |
+//! | `body` `inertia` | about the mass centre, body axes | | none: a point mass |
+//! | `point(p, at = ..)` | ground | | |
+//! | `point(p, on = b, at = ..)` | `b`'s frame, from its origin | | |
+//! | `spring` `k`, `length` | force `k (d - length)` along the line of the ends, pulling them together when stretched | `k >= 0` | `length = 0` |
+//! | `damper` `c` | force `c d'` (`d'` the rate of the ends' distance), resisting it | `c >= 0` | |
+//! | `force` `at`, `value` | ground frame, a point in ground coordinates | | |
+//! | `torque` `value` | planar: a scalar about `z`; spatial: a ground-frame vector | counter-clockwise / right-handed | |
+//! | `generalized_force` | along the coordinate | positive increases it | |
+//! | `potential` | an energy (J); its force is `-dV/dq` | | |
+//! | `reaction(u)` | the generalised force along `u` that keeps `u` on its law; for `body(.., reaction)` the joint's force on the body, ground frame | positive along `u` | |
+//! | `init` | | | every coordinate and rate `0` |
+//! | `event` | a zero of the expression | `rising`: from negative to positive | both directions, not terminal |
+//! | `mechanism` | | | planar unless `gravity` has 3 components; articulated-body recursion for a tree of 2 or more bodies; `minimal` where the closure has a closed form |
+//!
+//! # Expressions: operators, functions, constants
+//!
+//! An expression is a number (an integer literal is an `f64`), a parameter, a coordinate,
+//! `t`, a named constant, or one of: `-x`, `x + y`, `x - y`, `x * y`, `x / y` (scalars;
+//! vectors `[x, y]`/`[x, y, z]` add, subtract and scale; a 3x3 matrix `[[..], [..], [..]]`
+//! multiplies matrices and vectors), `v[i]` with a literal index, `(x)`, `x as f64`, and
+//! calls, written as functions or as methods (`sin(x)` or `x.sin()`, `powi(x, 2)` or
+//! `x.powi(2)`):
+//!
+//! | functions | arguments |
+//! |---|---|
+//! | `sin cos tan asin acos atan sinh cosh tanh exp ln sqrt` | one scalar |
+//! | `abs signum` | one scalar; not in kinematics (not smooth) |
+//! | `atan2(y, x) hypot(x, y) powf(x, y)` | two scalars |
+//! | `powi(x, n)` | `n` a constant integer, `abs(n) < 64` |
+//! | `min max` | two scalars; not in kinematics |
+//! | `norm(v)`, `dot(a, b)`, `cross(a, b)` | vectors (`cross` of 2-vectors is the scalar `a_x b_y - a_y b_x`) |
+//! | `rot_x rot_y rot_z` (an angle), `diag(a, b, c)` | 3x3 matrices |
+//! | `der(e)` | the time derivative; outputs, events and force values |
+//! | `position velocity acceleration angle angular_velocity angular_acceleration` (`(b)` or `(b, [offset])`) | body queries, see [the conventions](crate#conventions-frames-offsets-signs-defaults) for where |
+//! | `reaction(u)` | a relaxed or driven coordinate; outputs and events |
+//!
+//! The named constants are those of `std::f64::consts`: `PI E TAU FRAC_PI_2 FRAC_PI_3
+//! FRAC_PI_4 FRAC_PI_6 FRAC_PI_8 FRAC_1_PI FRAC_2_PI FRAC_2_SQRT_PI SQRT_2 FRAC_1_SQRT_2 LN_2
+//! LN_10 LOG2_E LOG10_E LOG2_10 LOG10_2`, bare or by path (`std::f64::consts::PI`,
+//! `core::f64::consts::PI`, `f64::consts::PI`, `consts::PI`). `^` is refused (it is not a
+//! power in Rust) with a hint to `powi`.
+//!
+//! # Loads on a free body
+//!
+//! A rigid block on coordinates `x` (along the ground `x` axis) and `th` (its angle), with
+//! every planar load at once. At a state `(x, th, x', th')`, with the spring from the wall
+//! point `(-1, 0)` of rest length 1 and a force `[f, 0]` (ground frame) at the body-fixed
+//! point `[0, h]`, which is at `(x - h sin th, h cos th)` in ground coordinates:
+//!
+//! - `m x'' = -k x - (c + b) x' + f`
+//! - `j th'' = tau - f h cos th - kt (th - pi/4)` (torque and potential, and the force's
+//!   moment `dp/dth . F`)
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(planar, jacobian)]
+//! #[coords(x, th)]
+//! #[rigid(block, mass = m, inertia = j, at = [x, 0.0], angle = th)]
+//! #[point(wall, at = [-1.0, 0.0])]
+//! #[spring(s, from = wall, to = block, k = k, length = 1.0)]
+//! #[damper(d, from = wall, to = block, c = c)]
+//! #[force(push, at = position(block, [0.0, h]), value = [f, 0.0])]
+//! #[torque(motor, on = block, value = tau)]
+//! #[generalized_force(drag, along = x, value = -b * der(x))]
+//! #[potential(0.5 * kt * (th - std::f64::consts::FRAC_PI_4).powi(2))]
+//! #[output(turn = angle(block), spin = angular_velocity(block), rate = der(x),
+//!          push_x = position(block, [0.0, h])[0])]
+//! pub struct Block {
+//!     #[default(2.0)]
+//!     pub m: f64,
+//!     pub j: f64, pub k: f64, pub c: f64, pub b: f64,
+//!     pub f: f64, pub h: f64, pub tau: f64, pub kt: f64,
+//! }
+//!
+//! let p = Block { m: 2.0, j: 0.3, k: 50.0, c: 1.5, b: 0.5, f: 3.0, h: 0.2, tau: 0.7, kt: 4.0 };
+//! let (x, th, xd, thd) = (0.1, 0.4, -0.3, 2.0);
+//! let q = mbd::Vector::<2>::new(x, th);
+//! let qd = mbd::Vector::<2>::new(xd, thd);
+//! let a = p.acceleration(0.0, &q, &qd)?;
+//! let xdd = (-p.k * x - (p.c + p.b) * xd + p.f) / p.m;
+//! let thdd = (p.tau - p.f * p.h * th.cos() - p.kt * (th - PI / 4.0)) / p.j;
+//! assert!((a[0] - xdd).abs() < 1e-13 && (a[1] - thdd).abs() < 1e-13);
+//! // `jacobian` generates the exact d(rhs)/dy: here d x''/dx = -k/m, d x''/dx' = -(c+b)/m.
+//! let y = mbd::Vector::<4>::new(x, th, xd, thd);
+//! let jac = p.jacobian(0.0, &y)?;
+//! assert!((jac[(2, 0)] + p.k / p.m).abs() < 1e-13);
+//! assert!((jac[(2, 2)] + (p.c + p.b) / p.m).abs() < 1e-13);
+//! let out = p.outputs(0.0, &y)?;
+//! assert_eq!((out.turn, out.spin, out.rate), (th, thd, xd));
+//! assert!((out.push_x - (x - p.h * th.sin())).abs() < 1e-15);
+//! # use std::f64::consts::PI;
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Constraints and multipliers
+//!
+//! A pendulum in Cartesian coordinates, kept on its circle by a constraint. `augmented`
+//! keeps both coordinates and the multiplier `lambda` of `M q'' + Phi_q^T lambda = f`. With
+//! `Phi = x^2 + y^2 - l^2`, at the bottom `(0, -l)` moving at `v`: `y'' = v^2 / l` and the rod
+//! tension `T = m (g + v^2 / l)` is `-Phi_q^T lambda = [0, 2 l lambda]`, so
+//! `lambda = T / (2 l)`. Released from the horizontal at rest, the bob first rises through
+//! `y = -l / 2` (a `rising` event on `-y - l / 2`) when `sin(angle swept) = 1/2`; energy
+//! gives the speed there, `v^2 = g l`.
+//!
+//! ```
+//! use mbd::prelude::*;
+//! use mbd::integrate::{Dopri5, Integrator};
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(planar, augmented)]
+//! #[gravity(0.0, -g)]
+//! #[coords(x, y)]
+//! #[particle(bob, mass = m, at = [x, y])]
+//! #[constraint(x * x + y * y == l * l)]
+//! #[init(x = l, y = 0.0)]
+//! #[event(half_way = -y - l / 2.0, rising)]
+//! pub struct Cartesian { pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! let p = Cartesian { m: 0.5, l: 2.0, g: 9.81 };
+//! let v = 3.0;
+//! let q = mbd::Vector::<2>::new(0.0, -p.l);
+//! let qd = mbd::Vector::<2>::new(v, 0.0);
+//! let (qdd, lambda) = p.acceleration_and_multipliers(0.0, &q, &qd)?;
+//! assert!(qdd[0].abs() < 1e-14 && (qdd[1] - v * v / p.l).abs() < 1e-13);
+//! let tension = p.m * (p.g + v * v / p.l);
+//! assert!((lambda[0] - tension / (2.0 * p.l)).abs() < 1e-13);
+//!
+//! let opts = Options { rtol: 1e-11, atol: 1e-11, ..Options::default() };
+//! let events = p.events();
+//! let sol = Dopri5::new(opts).solve(&p, 0.0, p.initial_state(), 5.0, &events)?;
+//! let hit = &sol.events[0];
+//! let speed2 = hit.y[2].powi(2) + hit.y[3].powi(2);
+//! assert!((speed2 - p.g * p.l).abs() < 1e-7);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Drives and reactions
+//!
+//! A bead on a rod turned at a constant rate `w` in a vertical plane: the rod's angle is
+//! driven, `th = w t`, the bead slides along it on a prismatic joint (axis `[1, 0]` in the
+//! rod's frame). Along the rod, `s'' = w^2 s - g sin(w t)`, so from `s(0) = s0` at rest
+//! `s = s0 cosh(w t) - g / (2 w^2) (sinh(w t) - sin(w t))`. `reaction(th)` is the torque the
+//! drive must give, `d/dt (J w) + gravity's moment = 2 m s s' w + g cos(w t) (ma r + m s)`
+//! (the rod: mass `ma` at `r`, inertia `ia` constant). The bead's `reaction` coordinates
+//! give the rod's force on it, normal to the rod: `N = m (2 s' w + g cos th)` along
+//! `(-sin th, cos th)`.
+//!
+//! ```
+//! use mbd::prelude::*;
+//! use mbd::integrate::{Dopri5, Integrator};
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(planar, mass_matrix)]
+//! #[gravity(0.0, -g)]
+//! #[drive(th = w * t)]
+//! #[body(rod, joint = revolute(th), com = [r, 0.0], mass = ma, inertia = ia)]
+//! #[body(bead, parent = rod, joint = prismatic(s, [1.0, 0.0]), mass = m, reaction)]
+//! #[init(s = s0)]
+//! #[output(motor = reaction(th), nx = reaction(bead_rx), ny = reaction(bead_ry))]
+//! pub struct Bead { pub m: f64, pub ma: f64, pub ia: f64, pub r: f64, pub w: f64, pub g: f64, pub s0: f64 }
+//!
+//! let p = Bead { m: 0.2, ma: 1.0, ia: 0.1, r: 0.5, w: 3.0, g: 9.81, s0: 0.3 };
+//! let opts = Options { rtol: 1e-12, atol: 1e-12, ..Options::default() };
+//! let sol = Dopri5::new(opts).solve(&p, 0.0, p.initial_state(), 0.5, &[])?;
+//! let (t, y) = (0.5, *sol.y.last().unwrap());
+//! let wt = p.w * t;
+//! let a = p.g / (2.0 * p.w * p.w);
+//! let s = p.s0 * wt.cosh() - a * (wt.sinh() - wt.sin());
+//! let sd = p.w * (p.s0 * wt.sinh() - a * (wt.cosh() - wt.cos()));
+//! assert!((y[0] - s).abs() < 1e-9 && (y[1] - sd).abs() < 1e-8);
+//!
+//! let out = p.outputs(t, &y)?;
+//! let motor = 2.0 * p.m * y[0] * y[1] * p.w + p.g * wt.cos() * (p.ma * p.r + p.m * y[0]);
+//! assert!((out.motor - motor).abs() < 1e-12);
+//! let n = p.m * (2.0 * y[1] * p.w + p.g * wt.cos());
+//! assert!((out.nx + n * wt.sin()).abs() < 1e-12 && (out.ny - n * wt.cos()).abs() < 1e-12);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Spatial bodies
+//!
+//! A wheel turning about the ground `z` axis (`rotation = rot_z(psi)`, right-handed), driven
+//! by a ground-frame torque `[0, 0, tau]` and a force `[0, fy, 0]` at its body-fixed rim
+//! point `[r, 0, 0]`, which is at `r (cos psi, sin psi, 0)`: `c psi'' = tau + r fy cos psi`.
+//! `angular_velocity` is a ground-frame vector, its components the outputs `w_x`, `w_y`, `w_z`.
+//!
+//! A spatial `close` is a spherical joint: three equations, the difference of the two
+//! points. Two bars on spherical joints 1 m apart, their tips tied: hanging straight, the
+//! tips are 1 m apart, so `|Phi| = 1`. `augmented` keeps all six joint angles and the three
+//! equations; by default (`minimal`) this loop is solved in closed form and the state keeps
+//! three angles.
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial)]
+//! #[gravity(0.0, 0.0, -9.81)]
+//! #[coords(psi)]
+//! #[rigid3(wheel, mass = m, inertia = diag(a, a, c), at = [0.0, 0.0, 0.0], rotation = rot_z(psi))]
+//! #[torque(motor, on = wheel, value = [0.0, 0.0, tau])]
+//! #[force(tug, at = position(wheel, [r, 0.0, 0.0]), value = [0.0, fy, 0.0])]
+//! #[output(w = angular_velocity(wheel))]
+//! pub struct Wheel { pub m: f64, pub a: f64, pub c: f64, pub tau: f64, pub r: f64, pub fy: f64 }
+//!
+//! let p = Wheel { m: 3.0, a: 0.2, c: 0.4, tau: 0.5, r: 0.3, fy: 2.0 };
+//! let (psi, psid) = (0.6, 1.5);
+//! let acc = p.acceleration(0.0, &mbd::Vector::<1>::new(psi), &mbd::Vector::<1>::new(psid))?;
+//! assert!((acc[0] - (p.tau + p.r * p.fy * psi.cos()) / p.c).abs() < 1e-14);
+//! let out = p.outputs(0.0, &mbd::Vector::<2>::new(psi, psid))?;
+//! assert!(out.w_x.abs() < 1e-15 && out.w_y.abs() < 1e-15 && (out.w_z - psid).abs() < 1e-15);
+//! assert_eq!(Wheel::OUTPUTS, ["w_x", "w_y", "w_z"]);
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial, augmented)]
+//! #[gravity(0.0, 0.0, -g)]
+//! #[body(left, joint = spherical(a1, b1, c1), com = [0.0, 0.0, -l / 2.0], mass = m,
+//!        inertia = diag(m * l * l / 12.0, m * l * l / 12.0, 1e-4))]
+//! #[body(right, joint = spherical(a2, b2, c2), at = [1.0, 0.0, 0.0], com = [0.0, 0.0, -l / 2.0],
+//!        mass = m, inertia = diag(m * l * l / 12.0, m * l * l / 12.0, 1e-4))]
+//! #[close(tie, a = left, at_a = [0.0, 0.0, -l], b = right, at_b = [0.0, 0.0, -l])]
+//! pub struct Tied { pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! let tied = Tied { m: 1.0, l: 0.8, g: 9.81 };
+//! assert_eq!(Tied::GENERATED.constraints, 3);
+//! let phi = Constrained::<6, 3>::phi(&tied, 0.0, &mbd::Vector::<6>::zeros());
+//! assert!((phi.norm() - 1.0).abs() < 1e-15);
+//! assert_eq!(Tied::COORDINATES.len(), 6);
+//! # Ok::<(), mbd::Error>(())
+//! ```
