@@ -7,6 +7,7 @@
 //! | [Loads on a free body](#loads-on-a-free-body) | `#[default]`, `mechanism(planar, jacobian)`, `coords`, `rigid`, `point` (ground), `spring` (default and given `length`), `damper`, `force` (at a body-fixed point), `torque`, `generalized_force`, `potential`, scalar `output` with `der`, `angle`, `angular_velocity`, `position(b, [..])[i]`, named constants |
 //! | [Constraints and multipliers](#constraints-and-multipliers) | `mechanism(augmented)`, `constraint`, `particle`, `init`, `event(rising)` |
 //! | [Drives and reactions](#drives-and-reactions) | `drive`, `body` (`revolute`, `prismatic`, `reaction`), `reaction(u)` of a driven and of relaxed coordinates, `mechanism(mass_matrix)` |
+//! | [Trees: recursion or mass matrix](#trees-recursion-or-mass-matrix) | `mechanism(recursive)`, `mechanism(mass_matrix)`, planar `body` with `fixed` joint, a spring between a body's mass centre and a ground `point`, outputs `velocity`, `acceleration`, `angular_acceleration` |
 //! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`), spatial `close` |
 //!
 //! The crate-level examples cover the rest: `gravity`, `coords`, `particle`, `init`,
@@ -46,6 +47,7 @@
 //! | `potential` | an energy (J); its force is `-dV/dq` | | |
 //! | `reaction(u)` | the generalised force along `u` that keeps `u` on its law; for `body(.., reaction)` the joint's force on the body, ground frame | positive along `u` | |
 //! | `init` | | | every coordinate and rate `0` |
+//! | spring or damper end naming a body | its mass centre (a `point(.., on = b)` for another point) | | |
 //! | `event` | a zero of the expression | `rising`: from negative to positive | both directions, not terminal |
 //! | `mechanism` | | | planar unless `gravity` has 3 components; articulated-body recursion for a tree of 2 or more bodies; `minimal` where the closure has a closed form |
 //!
@@ -213,6 +215,61 @@
 //! assert!((out.motor - motor).abs() < 1e-12);
 //! let n = p.m * (2.0 * y[1] * p.w + p.g * wt.cos());
 //! assert!((out.nx + n * wt.sin()).abs() < 1e-12 && (out.ny - n * wt.cos()).abs() < 1e-12);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Trees: recursion or mass matrix
+//!
+//! A bar (mass `m` at `l`, inertia `ia` about its centre) swinging from the ground's origin,
+//! with a weight `m2` welded (`fixed`) at `[0, -2 l]` of its frame and a zero-length spring
+//! `k` from the weight to the ground point `(0, -3 l)`. The spring's energy is
+//! `k l^2 (13 - 12 cos q) / 2`, so
+//! `(ia + m l^2 + 4 m2 l^2) q'' = -(g (m + 2 m2) l + 6 k l^2) sin q`. The weight's velocity
+//! is `2 l q' (cos q, sin q)` and its acceleration `2 l q'' (cos q, sin q) + 2 l q'^2 (-sin q,
+//! cos q)`. `recursive` (articulated bodies) and `mass_matrix` give the same accelerations.
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(planar, recursive)]
+//! #[gravity(0.0, -g)]
+//! #[body(bar, joint = revolute(q), com = [0.0, -l], mass = m, inertia = ia)]
+//! #[body(weight, parent = bar, joint = fixed, at = [0.0, -2.0 * l], mass = m2)]
+//! #[point(anchor, at = [0.0, -3.0 * l])]
+//! #[spring(s, from = weight, to = anchor, k = k)]
+//! #[output(v = velocity(weight), a = acceleration(weight), alpha = angular_acceleration(bar))]
+//! pub struct Welded { pub m: f64, pub m2: f64, pub ia: f64, pub l: f64, pub g: f64, pub k: f64 }
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(planar, mass_matrix)]
+//! #[gravity(0.0, -g)]
+//! #[body(bar, joint = revolute(q), com = [0.0, -l], mass = m, inertia = ia)]
+//! #[body(weight, parent = bar, joint = fixed, at = [0.0, -2.0 * l], mass = m2)]
+//! #[point(anchor, at = [0.0, -3.0 * l])]
+//! #[spring(s, from = weight, to = anchor, k = k)]
+//! pub struct WeldedByMatrix { pub m: f64, pub m2: f64, pub ia: f64, pub l: f64, pub g: f64, pub k: f64 }
+//!
+//! let p = Welded { m: 1.0, m2: 0.5, ia: 0.2, l: 0.4, g: 9.81, k: 30.0 };
+//! let (q, qd): (f64, f64) = (0.7, -1.2);
+//! let (l, s, c) = (p.l, q.sin(), q.cos());
+//! let want = -(p.g * (p.m + 2.0 * p.m2) * l + 6.0 * p.k * l * l) * s
+//!     / (p.ia + p.m * l * l + 4.0 * p.m2 * l * l);
+//! let qv = mbd::Vector::<1>::new(q);
+//! let qdv = mbd::Vector::<1>::new(qd);
+//! let qdd = p.acceleration(0.0, &qv, &qdv)?[0];
+//! assert!((qdd - want).abs() < 1e-13);
+//! let by_matrix = WeldedByMatrix { m: 1.0, m2: 0.5, ia: 0.2, l: 0.4, g: 9.81, k: 30.0 };
+//! assert!((by_matrix.acceleration(0.0, &qv, &qdv)?[0] - want).abs() < 1e-13);
+//! assert!(Welded::GENERATED.parts.contains(&"articulated_body"));
+//! assert!(!WeldedByMatrix::GENERATED.parts.contains(&"articulated_body"));
+//!
+//! let out = p.outputs(0.0, &mbd::Vector::<2>::new(q, qd))?;
+//! let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+//! assert!(close(out.v_x, 2.0 * l * qd * c) && close(out.v_y, 2.0 * l * qd * s));
+//! assert!(close(out.a_x, 2.0 * l * (qdd * c - qd * qd * s)));
+//! assert!(close(out.a_y, 2.0 * l * (qdd * s + qd * qd * c)));
+//! assert!(close(out.alpha, qdd));
 //! # Ok::<(), mbd::Error>(())
 //! ```
 //!
