@@ -8,7 +8,7 @@
 //! | [Constraints and multipliers](#constraints-and-multipliers) | `mechanism(augmented)`, `constraint`, `particle`, `init`, `event(rising)` |
 //! | [Drives and reactions](#drives-and-reactions) | `drive`, `body` (`revolute`, `prismatic`, `reaction`), `reaction(u)` of a driven and of relaxed coordinates, `mechanism(mass_matrix)` |
 //! | [Trees: recursion or mass matrix](#trees-recursion-or-mass-matrix) | `mechanism(recursive)`, `mechanism(mass_matrix)`, planar `body` with `fixed` joint, a spring between a body's mass centre and a ground `point`, outputs `velocity`, `acceleration`, `angular_acceleration` |
-//! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`), spatial `close` |
+//! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`, `prismatic`, `revolute(q, y)`), spatial `close`, `mechanism(augmented)` in space |
 //!
 //! The crate-level examples cover the rest: `gravity`, `coords`, `particle`, `init`,
 //! `event(falling, terminal)` (the thrown ball); a planar `body` with a body-fixed offset and
@@ -286,6 +286,11 @@
 //! equations; by default (`minimal`) this loop is solved in closed form and the state keeps
 //! three angles.
 //!
+//! A trolley on a spatial `prismatic` joint along `x` with a pendulum on `revolute(q, y)`:
+//! `rot_y(q)` takes the bob's `[0, 0, -l]` to `(-l sin q, 0, -l cos q)`, so a positive `q`
+//! swings it towards `-x`. At rest, with `mu = m / (mc + m)`:
+//! `q'' = -g sin q / (l (1 - mu cos^2 q))` and `x'' = mu l cos q q''`.
+//!
 //! ```
 //! use mbd::prelude::*;
 //!
@@ -322,5 +327,20 @@
 //! let phi = Constrained::<6, 3>::phi(&tied, 0.0, &mbd::Vector::<6>::zeros());
 //! assert!((phi.norm() - 1.0).abs() < 1e-15);
 //! assert_eq!(Tied::COORDINATES.len(), 6);
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial)]
+//! #[gravity(0.0, 0.0, -g)]
+//! #[body(cart, joint = prismatic(x, [1.0, 0.0, 0.0]), mass = mc)]
+//! #[body(bob, parent = cart, joint = revolute(q, y), com = [0.0, 0.0, -l], mass = m)]
+//! pub struct Trolley { pub mc: f64, pub m: f64, pub l: f64, pub g: f64 }
+//!
+//! let cp = Trolley { mc: 2.0, m: 0.5, l: 0.7, g: 9.81 };
+//! let (x, q): (f64, f64) = (0.3, 0.4);
+//! let acc = cp.acceleration(0.0, &mbd::Vector::<2>::new(x, q), &mbd::Vector::<2>::zeros())?;
+//! let share = cp.m / (cp.mc + cp.m);
+//! let qdd = -cp.g * q.sin() / (cp.l * (1.0 - share * q.cos().powi(2)));
+//! assert!((acc[1] - qdd).abs() < 1e-13);
+//! assert!((acc[0] - share * cp.l * q.cos() * qdd).abs() < 1e-13);
 //! # Ok::<(), mbd::Error>(())
 //! ```
