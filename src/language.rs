@@ -7,6 +7,7 @@
 //! | [Loads on a free body](#loads-on-a-free-body) | `#[default]`, `mechanism(planar, jacobian)`, `coords`, `rigid`, `point` (ground), `spring` (default and given `length`), `damper`, `force` (at a body-fixed point), `torque`, `generalized_force`, `potential`, scalar `output` with `der`, `angle`, `angular_velocity`, `position(b, [..])[i]`, named constants |
 //! | [Constraints and multipliers](#constraints-and-multipliers) | `mechanism(augmented)`, `constraint`, `particle`, `init`, `event(rising)` |
 //! | [Drives and reactions](#drives-and-reactions) | `drive`, `body` (`revolute`, `prismatic`, `reaction`), `reaction(u)` of a driven and of relaxed coordinates, `mechanism(mass_matrix)` |
+//! | [Friction coefficients](#friction-coefficients) | `friction` with `mu_k`, `mu_s` and a normal force expression |
 //! | [Trees: recursion or mass matrix](#trees-recursion-or-mass-matrix) | `mechanism(recursive)`, `mechanism(mass_matrix)`, planar `body` with `fixed` joint, a spring between a body's mass centre and a ground `point`, outputs `velocity`, `acceleration`, `angular_acceleration` |
 //! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`, `prismatic`, `revolute(q, y)`), spatial `close`, `mechanism(augmented)` in space |
 //!
@@ -215,6 +216,40 @@
 //! assert!((out.motor - motor).abs() < 1e-12);
 //! let n = p.m * (2.0 * y[1] * p.w + p.g * wt.cos());
 //! assert!((out.nx + n * wt.sin()).abs() < 1e-12 && (out.ny - n * wt.cos()).abs() < 1e-12);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Friction coefficients
+//!
+//! A block pushed along a floor by a constant generalised force `p`, with kinetic and static
+//! coefficients `mu_k < mu_s` and the normal force `m g` (the full rules are in
+//! [Friction](crate#friction)): at rest it holds while `p <= mu_s m g`; sliding forward,
+//! `m x'' = p - mu_k m g`, whatever `p`.
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[gravity(0.0, -g)]
+//! #[coords(x)]
+//! #[particle(block, mass = m, at = [x, 0.0])]
+//! #[generalized_force(push, along = x, value = p)]
+//! #[friction(along = x, mu_k = mk, mu_s = ms, normal = m * g)]
+//! pub struct Pushed { pub m: f64, pub g: f64, pub p: f64, pub mk: f64, pub ms: f64 }
+//!
+//! let (x, rest, moving) = (
+//!     mbd::Vector::<1>::zeros(),
+//!     mbd::Vector::<1>::zeros(),
+//!     mbd::Vector::<1>::new(0.5),
+//! );
+//! // 4.5 N: below static friction, 0.3 * 2 kg * 9.81 = 5.886 N, above kinetic, 3.924 N.
+//! let held = Pushed { m: 2.0, g: 9.81, p: 4.5, mk: 0.2, ms: 0.3 };
+//! assert_eq!(held.acceleration(0.0, &x, &rest)?[0], 0.0);
+//! let sliding = held.acceleration(0.0, &x, &moving)?[0];
+//! assert!((sliding - (4.5 - 0.2 * 2.0 * 9.81) / 2.0).abs() < 1e-14);
+//! // 6 N breaks away from rest and slides under kinetic friction.
+//! let breaks = Pushed { p: 6.0, ..held };
+//! assert!((breaks.acceleration(0.0, &x, &rest)?[0] - (6.0 - 0.2 * 2.0 * 9.81) / 2.0).abs() < 1e-14);
 //! # Ok::<(), mbd::Error>(())
 //! ```
 //!
