@@ -13,6 +13,7 @@ mod codegen;
 mod expand;
 mod friction;
 mod guard;
+mod linear;
 mod lower;
 mod model;
 mod parse;
@@ -50,6 +51,7 @@ use syn::DeriveInput;
         potential,
         friction,
         output,
+        input,
         event,
         init,
         repeat,

@@ -137,6 +137,8 @@ pub struct Equations {
     /// `(dR/dq, dR/dqd, dC/dq, dC/dqd)` of the residuals `R = M qdd + Phi_q^T lambda - f`
     /// and `C = Phi_q qdd - gamma`, when exact Jacobians are asked for.
     pub jacobian: Option<ResidualJacobian>,
+    /// Derivatives by the parameters and of the outputs (linear.rs), with `jacobian`.
+    pub linear: Option<crate::linear::LinearEq>,
     pub outputs: Vec<OutputEq>,
     pub events: Vec<EventEq>,
     pub frictions: Vec<FrictionEq>,
@@ -291,6 +293,18 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         let by = (&qsyms[..], &qd[..], &qdd[..]);
         implicit::residual_jacobian(&mut scope.g, (mass, forces), &con, by)
     });
+    let linear_parts = crate::linear::Parts {
+        mass,
+        forces,
+        phi_q: &con.phi_q,
+        gamma: &con.gamma,
+        q: &qsyms,
+        qd: &qd,
+        qdd: &qdd,
+        lambdas: &con.lambdas,
+        outputs: &outputs,
+    };
+    let linear = crate::linear::derive(&mut scope.g, ast, &mut scope.errors, linear_parts);
     let (init_q, init_qd) = initial::initial_conditions(ast, &mut scope, &kin.coords, free_idx);
     let free = free_idx
         .iter()
@@ -318,6 +332,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         phi_t: con.phi_t,
         gamma: con.gamma,
         jacobian,
+        linear,
         outputs,
         events,
         frictions,

@@ -225,6 +225,8 @@ pub struct Mechanism {
     pub potentials: Vec<Expr>,
     pub frictions: Vec<Friction>,
     pub outputs: Vec<Named>,
+    /// Parameters that are inputs (`#[input(u, ..)]`, see linear.rs).
+    pub inputs: Vec<Ident>,
     pub events: Vec<Event>,
     pub inits: Vec<Init>,
     /// Generate exact Jacobians `d qdd / dq`, `d qdd / dqd` for implicit methods.
@@ -464,6 +466,7 @@ impl Mechanism {
             potentials: Vec::new(),
             frictions: Vec::new(),
             outputs: Vec::new(),
+            inputs: Vec::new(),
             events: Vec::new(),
             inits: Vec::new(),
             jacobian: false,
@@ -486,6 +489,7 @@ impl Mechanism {
             "relaxed" => m.relaxed.extend(ident_list(attr, errors)),
             "drive" => m.drives.extend(named_list(attr, errors)),
             "output" => m.outputs.extend(named_list(attr, errors)),
+            "input" => m.inputs.extend(ident_list(attr, errors)),
             "constraint" => match attr.parse_args::<Expr>() {
                 Ok(Expr::Binary(b)) if matches!(b.op, syn::BinOp::Eq(_)) => {
                     m.constraints.push(Constraint {

@@ -10,6 +10,7 @@ pub mod bricard;
 pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
+pub mod linear_io;
 pub mod modes;
 pub mod sim;
 pub mod spatial_chain_by_hand;

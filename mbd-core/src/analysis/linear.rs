@@ -16,6 +16,7 @@
 //! coordinates) at a rest state with time-independent constraints; elsewhere (moving
 //! points, drives) the tangent space needs `(Phi_q qd)_q`, which is not generated yet.
 
+use super::sensitivity::Parametric;
 use crate::error::{Error, Result};
 use crate::model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
 use nalgebra::{Complex, DMatrix, DVector, Schur, SymmetricEigen};
@@ -308,10 +309,32 @@ where
     S: Constrained<N, M> + OdeSystem<D>,
 {
     const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
-    let bad = |detail: String| Error::InvalidInput {
-        what: "constrained_modes",
-        detail,
-    };
+    let tm = tangent_basis::<S, N, M, D>(sys, t, q, "constrained_modes")?;
+    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
+    let a = linearize(sys, t, &y)?;
+    let ad = DMatrix::from_iterator(D, D, a.iter().copied());
+    let mut out = modes_of(tm.transpose() * ad * &tm)?;
+    let tc = tm.map(|v| Complex::new(v, 0.0));
+    for m in &mut out {
+        m.shape = &tc * &m.shape;
+        let big = largest(&m.shape);
+        m.shape /= big;
+    }
+    Ok(out)
+}
+
+/// `T = diag(Z, Z)` (`D x 2 (N - M)`) at a rest state `q` on time-independent constraints,
+/// with the checks of [`constrained_modes`].
+fn tangent_basis<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    what: &'static str,
+) -> Result<DMatrix<f64>>
+where
+    S: Constrained<N, M>,
+{
+    let bad = |detail: String| Error::InvalidInput { what, detail };
     let phi = sys.phi(t, q).abs().max();
     if phi.is_nan() || phi > 1e-9 {
         return Err(bad(format!("not assembled: |Phi| = {phi:.3e}")));
@@ -322,22 +345,12 @@ where
             "time-dependent constraints: |Phi_t| = {phi_t:.3e}"
         )));
     }
-    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
-    let a = linearize(sys, t, &y)?;
     let z = null_space(&sys.phi_q(t, q)).ok_or(Error::SingularConstraintJacobian { t })?;
     let r = z.ncols();
     let mut tm = DMatrix::<f64>::zeros(D, 2 * r);
     tm.view_mut((0, 0), (N, r)).copy_from(&z);
     tm.view_mut((N, r), (N, r)).copy_from(&z);
-    let ad = DMatrix::from_iterator(D, D, a.iter().copied());
-    let mut out = modes_of(tm.transpose() * ad * &tm)?;
-    let tc = tm.map(|v| Complex::new(v, 0.0));
-    for m in &mut out {
-        m.shape = &tc * &m.shape;
-        let big = largest(&m.shape);
-        m.shape /= big;
-    }
-    Ok(out)
+    Ok(tm)
 }
 
 /// An orthonormal basis (`N x (N - M)`) of the null space of `Phi_q`, `None` when `Phi_q`
@@ -356,6 +369,78 @@ fn null_space<const M: usize, const N: usize>(phi_q: &Matrix<M, N>) -> Option<DM
         .collect();
     (top.is_finite() && zero.len() + M == N)
         .then(|| DMatrix::from_fn(N, zero.len(), |r, c| eig.eigenvectors[(r, zero[c])]))
+}
+
+/// A linear model `dx' = A dx + B du`, `dy = C dx + D du` about an operating point (`du`
+/// the inputs' deviations from the struct's values), with the names of its columns/rows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StateSpace {
+    pub a: DMatrix<f64>,
+    pub b: DMatrix<f64>,
+    pub c: DMatrix<f64>,
+    pub d: DMatrix<f64>,
+    pub inputs: Vec<&'static str>,
+    pub outputs: Vec<&'static str>,
+}
+
+/// `A, B, C, D` at `(t, y)`, exact from one generated evaluation
+/// ([`Parametric::linear_parts`]): `B = df/du`, `C = d out/dy`, `D = d out/du` for the
+/// inputs `u` (`#[input(..)]`) and outputs (`#[output(..)]`).
+///
+/// Errors: the model's; [`Error::NonFinite`] for a non-finite entry.
+pub fn state_space<S: Parametric<D>, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+) -> Result<StateSpace> {
+    let lp = sys.linear_parts(t, y)?;
+    Ok(StateSpace {
+        b: lp.f_p.select_columns(S::INPUTS),
+        d: lp.out_p.select_columns(S::INPUTS),
+        a: lp.a,
+        c: lp.out_y,
+        inputs: S::INPUTS.iter().map(|&i| S::PARAMETERS[i]).collect(),
+        outputs: S::OUTPUT_NAMES.to_vec(),
+    })
+}
+
+/// [`state_space`] of a closed loop (augmented form) at rest on its constraints, in
+/// independent coordinates `x = T^T dy` (`T = diag(Z, Z)` as in [`constrained_modes`]):
+/// `A_r = T^T A T`, `B_r = T^T B`, `C_r = C T`, `D`; the map `T` back to the full state is
+/// returned beside it.
+///
+/// Errors as [`constrained_modes`], and [`Error::InvalidInput`] when an input moves the
+/// state off the tangent space (`|B - T T^T B| > 1e-9 |B|`: an input inside a constraint,
+/// which this restriction does not model).
+pub fn constrained_state_space<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+) -> Result<(StateSpace, DMatrix<f64>)>
+where
+    S: Constrained<N, M> + Parametric<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let tm = tangent_basis::<S, N, M, D>(sys, t, q, "constrained_state_space")?;
+    let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
+    let full = state_space(sys, t, &y)?;
+    let b = tm.transpose() * &full.b;
+    let off = (&full.b - &tm * &b).amax();
+    if off > 1e-9 * full.b.amax() {
+        return Err(Error::InvalidInput {
+            what: "constrained_state_space",
+            detail: format!("an input leaves the constraints' tangent space ({off:.3e})"),
+        });
+    }
+    let reduced = StateSpace {
+        a: tm.transpose() * &full.a * &tm,
+        b,
+        c: &full.c * &tm,
+        d: full.d,
+        inputs: full.inputs,
+        outputs: full.outputs,
+    };
+    Ok((reduced, tm))
 }
 
 #[cfg(test)]

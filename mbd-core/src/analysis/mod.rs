@@ -13,15 +13,20 @@ pub mod kinematics;
 pub mod linear;
 pub mod projection;
 pub mod redundancy;
+pub mod sensitivity;
 pub mod singular;
 pub mod statics;
 
 pub use assembly::{assemble, consistent_velocities};
 pub use dynamics::{Reactions, inverse_dynamics};
 pub use kinematics::{KinematicState, kinematic_sweep, kinematics};
-pub use linear::{Mode, ModeKind, NormalMode, constrained_modes, linearize, modes, undamped_modes};
+pub use linear::{
+    Mode, ModeKind, NormalMode, StateSpace, constrained_modes, constrained_state_space, linearize,
+    modes, state_space, undamped_modes,
+};
 pub use projection::{constraint_drift, project_positions, project_state, project_velocities};
 pub use redundancy::{rank_and_redundant, redundant_constraints};
+pub use sensitivity::{LinearParts, Parametric, Sensitivity, equilibrium_sensitivity};
 pub use singular::check_passages;
 pub use statics::{static_equilibrium, static_equilibrium_constrained};
 

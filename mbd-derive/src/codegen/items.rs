@@ -44,12 +44,18 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     let events = events(eq, &mut sh);
     let frictions = frictions(eq, &mut sh, &check_elements);
     sh.parts.statements += accel.statements;
+    let linear = crate::linear::emit(eq, sh.ident, &sh.split, &sh.solve_qdd_lambda, &sh.direction)
+        .map(|(code, len)| {
+            sh.parts.names.push("linear");
+            sh.parts.statements += len;
+            code
+        });
     let items = [
         mechanism_impl,
         constrained_impl.unwrap_or_default(),
         ode_impl,
     ];
-    let observed = [outputs, events, frictions].map(Option::unwrap_or_default);
+    let observed = [outputs, events, frictions, linear].map(Option::unwrap_or_default);
     state(eq, sh, check_parameters, items, observed)
 }
 
@@ -609,7 +615,7 @@ fn state(
     sh: Shape<'_>,
     check_parameters: TokenStream,
     [mechanism_impl, constrained_impl, ode_impl]: [TokenStream; 3],
-    [outputs, events, frictions]: [TokenStream; 3],
+    [outputs, events, frictions, linear]: [TokenStream; 4],
 ) -> TokenStream {
     let (ident, n, m, d) = (sh.ident, sh.n, sh.m, sh.d);
     let init_roots: Vec<Expr> = eq.init_q.iter().chain(&eq.init_qd).copied().collect();
@@ -672,5 +678,6 @@ fn state(
         #outputs
         #events
         #frictions
+        #linear
     }
 }
