@@ -121,6 +121,70 @@ pub fn four_bar_reference() -> f64 {
     (g / r + k / m).sqrt()
 }
 
+/// A heavy symmetric top on a fixed point: Euler angles `z-x-z` (precession `phi`,
+/// nutation `theta` from the upward vertical, spin `psi`), mass `m` at distance `l` along
+/// its symmetry axis, principal moments `a1, a1, c3` about its centre of mass.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(spatial, jacobian)]
+#[gravity(0.0, 0.0, -g)]
+#[coords(phi, theta, psi)]
+#[rigid3(top, mass = m, inertia = diag(a1, a1, c3),
+         at = rot_z(phi) * rot_x(theta) * [0.0, 0.0, l],
+         rotation = rot_z(phi) * rot_x(theta) * rot_z(psi))]
+pub struct HeavyTop {
+    pub m: f64,
+    pub l: f64,
+    pub a1: f64,
+    pub c3: f64,
+    pub g: f64,
+}
+
+/// `m = 1 kg`, `l = 0.1 m`, `a1 = 0.02`, `c3 = 0.03 kg m^2`.
+pub const TOP: HeavyTop = HeavyTop {
+    m: 1.0,
+    l: 0.1,
+    a1: 0.02,
+    c3: 0.03,
+    g: 9.81,
+};
+
+/// The top's steady precessions at `theta0` with spin `omega3` about its axis, slow and
+/// fast: `[(state, nutation frequency in rad/s); 2]`.
+///
+/// With `I1 = a1 + m l^2` (about the fixed point), `T = I1 (theta'^2 + phi'^2 sin^2) / 2
+/// + c3 omega3^2 / 2`, `omega3 = psi' + phi' cos(theta)`, `V = m g l cos(theta)`. `phi`,
+/// `psi` are cyclic: `p_psi = c3 omega3 =: a` and `p_phi = I1 phi' sin^2 + a cos =: b` are
+/// conserved, and Routh's reduction leaves `I1 theta'' = -U'(theta)` with
+/// `U = (b - a cos)^2 / (2 I1 sin^2) + m g l cos`. With `Omega = phi' = (b - a cos) /
+/// (I1 sin^2)`, `U' = sin (a Omega - I1 Omega^2 cos - m g l)`: steady precession where
+/// `I1 cos Omega^2 - a Omega + m g l = 0`, `Omega = (a -+ sqrt(a^2 - 4 I1 m g l cos)) /
+/// (2 I1 cos)`. Differentiating once more, with `dOmega/dtheta = (a - 2 I1 Omega cos) /
+/// (I1 sin)` and the bracket zero at the steady state, `U'' = (a - 2 I1 Omega cos)^2 / I1
+/// + I1 Omega^2 sin^2`, so the nutation frequency is
+/// `w^2 = U'' / I1 = ((a - 2 I1 Omega cos) / I1)^2 + Omega^2 sin^2`
+/// (fast top, `Omega -> 0`: `w -> a / I1`, the classical `I3 omega3 / I1`). The linearised
+/// equations about the steady motion do not depend on `phi`, `psi` (cyclic), so `A` is
+/// constant along it: `+- i w` and four zeros (the cyclic angles and their momenta).
+pub fn top_precessions(theta0: f64, omega3: f64) -> [(Vector<6>, f64); 2] {
+    let HeavyTop { m, l, a1, c3, g } = TOP;
+    let i1 = a1 + m * l * l;
+    let (s, c) = theta0.sin_cos();
+    let a = c3 * omega3;
+    let root = (a * a - 4.0 * i1 * m * g * l * c).sqrt();
+    [-1.0, 1.0].map(|sign| {
+        let big_omega = (a + sign * root) / (2.0 * i1 * c);
+        let psi_dot = omega3 - big_omega * c;
+        let w = (((a - 2.0 * i1 * big_omega * c) / i1).powi(2) + (big_omega * s).powi(2)).sqrt();
+        (
+            Vector::<6>::new(0.0, theta0, 0.0, big_omega, 0.0, psi_dot),
+            w,
+        )
+    })
+}
+
+/// `theta0 = 0.5 rad`, `omega3 = 20 rad/s`.
+pub const TOP_POINT: (f64, f64) = (0.5, 20.0);
+
 /// One row of the report (the `--json` schema).
 #[derive(Debug, Clone, Serialize)]
 pub struct Row {
@@ -288,6 +352,23 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
         &modes(&a)?,
         &[(0.0, None), (0.0, None), (s, Some(0.0))],
     )?);
+    for ((y, w), point) in top_precessions(TOP_POINT.0, TOP_POINT.1)
+        .into_iter()
+        .zip(["slow precession", "fast precession"])
+    {
+        // The oscillatory mode alone: the four zeros of the cyclic coordinates come out at
+        // the square root of rounding (a Jordan block), checked in the tests.
+        let found: Vec<Mode> = modes(&linearize(&TOP, 0.0, &y)?)?
+            .into_iter()
+            .filter(|m| m.kind != ModeKind::Neutral)
+            .collect();
+        out.extend(rows_of(
+            "heavy symmetric top, nutation",
+            point,
+            &found,
+            &[(w, Some(0.0))],
+        )?);
+    }
     let found = constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::zeros())?;
     out.extend(rows_of(
         "sprung parallelogram four-bar",
@@ -307,7 +388,7 @@ mod tests {
     #[test]
     fn modes_match_the_closed_forms() {
         let rows = rows().unwrap();
-        assert_eq!(rows.len(), 2 + 2 + 1 + 4 + 3 + 1);
+        assert_eq!(rows.len(), 2 + 2 + 1 + 4 + 3 + 2 + 1);
         for r in &rows {
             assert!(r.rel_error <= GOAL, "{r:?}");
             let diverges = r.damping_ratio.is_some_and(|z| z < 0.0);
@@ -374,6 +455,27 @@ mod tests {
         assert!((v[2] - i_w * v[0]).norm() < 1e-8 * v[2].norm(), "{v}");
         // A point off the loop is refused.
         assert!(constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::new(0.1, 0.0)).is_err());
+    }
+
+    /// The top's steady precessions are steady (`qdd = 0` there, so `A` is the linearisation
+    /// about the motion), and besides the nutation pair `A` has only the four zeros of the
+    /// cyclic coordinates.
+    #[test]
+    fn top_steady_precession() {
+        for (y, w) in top_precessions(TOP_POINT.0, TOP_POINT.1) {
+            let f = TOP.rhs(0.0, &y).unwrap();
+            assert!(f.fixed_rows::<3>(3).amax() < 1e-12, "{f}");
+            let found = modes(&linearize(&TOP, 0.0, &y).unwrap()).unwrap();
+            let kinds: Vec<_> = found.iter().map(|m| m.kind).collect();
+            assert_eq!(
+                kinds,
+                [ModeKind::Neutral; 4]
+                    .into_iter()
+                    .chain([ModeKind::Oscillatory])
+                    .collect::<Vec<_>>()
+            );
+            assert!((found[4].omega_n - w).abs() <= GOAL * w);
+        }
     }
 
     /// Typed errors: no generated Jacobian, not an equilibrium, a damped model.
