@@ -83,45 +83,69 @@ impl<T: ComplexField<RealField = f64> + Copy, const N: usize> Lu<T, N> {
 /// Solve `A x = b` for a symmetric positive definite `A` by `L D L^T` (no square roots,
 /// one pass, everything on the stack): the mass-matrix solve of every generated model.
 /// `None` when a pivot is not positive (not positive definite) or not finite.
+#[inline]
 pub fn solve_spd<const N: usize>(
     a: &SMatrix<f64, N, N>,
     b: &SVector<f64, N>,
 ) -> Option<SVector<f64, N>> {
-    let mut l = *a;
-    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    for j in 0..N {
-        let mut d = l[(j, j)];
-        for k in 0..j {
-            d -= l[(j, k)] * l[(j, k)] * l[(k, k)];
-        }
-        // Not `d > tol` negated: a NaN pivot must fail too.
-        if d.is_nan() || d <= scale * f64::EPSILON * N as f64 || !d.is_finite() {
-            return None;
-        }
-        l[(j, j)] = d;
-        for i in j + 1..N {
-            let mut v = l[(i, j)];
+    Some(Ldl::factor(a)?.solve(b))
+}
+
+/// The `L D L^T` factors of a symmetric positive definite matrix (unit lower `L` below the
+/// diagonal, `D` on it), for several solves with one matrix (an acceleration Jacobian's
+/// `2 N` columns).
+#[derive(Debug, Clone)]
+pub struct Ldl<const N: usize> {
+    l: SMatrix<f64, N, N>,
+}
+
+impl<const N: usize> Ldl<N> {
+    /// `None` when a pivot is not positive (not positive definite) or not finite.
+    #[inline]
+    pub fn factor(a: &SMatrix<f64, N, N>) -> Option<Self> {
+        let mut l = *a;
+        let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for j in 0..N {
+            let mut d = l[(j, j)];
             for k in 0..j {
-                v -= l[(i, k)] * l[(j, k)] * l[(k, k)];
+                d -= l[(j, k)] * l[(j, k)] * l[(k, k)];
             }
-            l[(i, j)] = v / d;
+            // Not `d > tol` negated: a NaN pivot must fail too.
+            if d.is_nan() || d <= scale * f64::EPSILON * N as f64 || !d.is_finite() {
+                return None;
+            }
+            l[(j, j)] = d;
+            for i in j + 1..N {
+                let mut v = l[(i, j)];
+                for k in 0..j {
+                    v -= l[(i, k)] * l[(j, k)] * l[(k, k)];
+                }
+                l[(i, j)] = v / d;
+            }
         }
+        Some(Self { l })
     }
-    let mut x = *b;
-    for i in 0..N {
-        for k in 0..i {
-            x[i] -= l[(i, k)] * x[k];
+
+    /// `x` with `A x = b`.
+    #[inline]
+    pub fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
+        let l = &self.l;
+        let mut x = *b;
+        for i in 0..N {
+            for k in 0..i {
+                x[i] -= l[(i, k)] * x[k];
+            }
         }
-    }
-    for i in 0..N {
-        x[i] /= l[(i, i)];
-    }
-    for i in (0..N).rev() {
-        for k in i + 1..N {
-            x[i] -= l[(k, i)] * x[k];
+        for i in 0..N {
+            x[i] /= l[(i, i)];
         }
+        for i in (0..N).rev() {
+            for k in i + 1..N {
+                x[i] -= l[(k, i)] * x[k];
+            }
+        }
+        x
     }
-    Some(x)
 }
 
 #[cfg(test)]

@@ -175,13 +175,12 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
     c_q: &Matrix<M, N>,
     c_qd: &Matrix<M, N>,
 ) -> Result<(Matrix<N, N>, Matrix<N, N>)> {
-    const { assert!(A == N + M, "augmented size must be N + M") };
-    let al = AugmentedLagrangian::new(t, mass, phi_q)?;
+    let saddle = Saddle::<N, M, A>::new(t, mass, phi_q)?;
     let solve = |r: &Matrix<N, N>, c: &Matrix<M, N>| -> Result<Matrix<N, N>> {
         let mut out = Matrix::<N, N>::zeros();
         for j in 0..N {
-            let s = al.solve_regularized(&(-r.column(j)), &(-c.column(j)))?;
-            out.set_column(j, &s.x);
+            let (x, _) = saddle.solve(&(-r.column(j)), &(-c.column(j)))?;
+            out.set_column(j, &x);
         }
         Ok(out)
     };
@@ -190,6 +189,59 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
         Ok((a_q, a_qd))
     } else {
         Err(Error::NonFinite { t })
+    }
+}
+
+/// `[M Phi_q^T; Phi_q 0]` factored once for several right-hand sides (the columns of a
+/// Jacobian): `L D L^T` of `M` without constraints; with them the dense LU of
+/// [`solve_augmented`] when small and well conditioned, else the augmented Lagrangian
+/// (regularised near a singular position, as there).
+#[derive(Debug)]
+pub enum Saddle<'a, const N: usize, const M: usize, const A: usize> {
+    Mass(crate::linalg::Ldl<N>),
+    Dense(Lu<f64, A>),
+    Augmented(AugmentedLagrangian<'a, N, M>),
+}
+
+impl<'a, const N: usize, const M: usize, const A: usize> Saddle<'a, N, M, A> {
+    /// Errors: [`Error::MassMatrixNotPositiveDefinite`] (and its relatives) without
+    /// constraints, those of [`AugmentedLagrangian::new`] with them.
+    pub fn new(t: f64, mass: &'a Matrix<N, N>, phi_q: &Matrix<M, N>) -> Result<Self> {
+        const { assert!(A == N + M, "augmented size must be N + M") };
+        if M == 0 {
+            return crate::linalg::Ldl::factor(mass)
+                .map(Saddle::Mass)
+                .ok_or_else(|| not_positive(t, mass));
+        }
+        if A <= DENSE_MAX {
+            let k = Matrix::<A, A>::from_fn(|i, j| match (i < N, j < N) {
+                (true, true) => mass[(i, j)],
+                (true, false) => phi_q[(j - N, i)],
+                (false, true) => phi_q[(i - N, j)],
+                (false, false) => 0.0,
+            });
+            if let Some(lu) = Lu::factor(k).filter(|lu| lu.pivot_ratio() >= DENSE_PIVOT_RATIO) {
+                return Ok(Saddle::Dense(lu));
+            }
+        }
+        AugmentedLagrangian::new(t, mass, phi_q).map(Saddle::Augmented)
+    }
+
+    /// `(x, lambda)` with `M x + Phi_q^T lambda = u`, `Phi_q x = b`.
+    pub fn solve(&self, u: &Vector<N>, b: &Vector<M>) -> Result<(Vector<N>, Vector<M>)> {
+        match self {
+            Saddle::Mass(ldl) => Ok((ldl.solve(u), Vector::<M>::zeros())),
+            Saddle::Dense(lu) => {
+                let z = lu.solve(&Vector::<A>::from_fn(
+                    |i, _| if i < N { u[i] } else { b[i - N] },
+                ));
+                Ok((
+                    Vector::<N>::from_fn(|i, _| z[i]),
+                    Vector::<M>::from_fn(|i, _| z[N + i]),
+                ))
+            }
+            Saddle::Augmented(al) => al.solve_regularized(u, b).map(|s| (s.x, s.lambda)),
+        }
     }
 }
 

@@ -151,7 +151,7 @@ pub fn emit(
         lin.params.len(),
         eq.outputs.len(),
     );
-    let d = 2 * n;
+    let (d, a) = (2 * n, n + m);
     let outs: Vec<Expr> = eq.outputs.iter().map(|o| o.expr).collect();
     let mut roots: Vec<Expr> = eq.mass.iter().flatten().copied().collect();
     roots.extend(outs.iter().copied());
@@ -199,7 +199,7 @@ pub fn emit(
                 ::mbd::__private::analysis::sensitivity::Residuals::<#n, #m, #p, #k> {
                     mass, qd, qdd, out, #(#names,)*
                 }
-                .assemble(t)
+                .assemble::<#a>(t)
             }
         }
     };

@@ -207,6 +207,79 @@ pub struct Row {
     /// The worst of: the frequency's relative error (absolute in Hz when the reference is
     /// 0), the damped frequency's, the damping ratio's (absolute).
     pub rel_error: f64,
+    /// The cost of the linearisation at this point (`modes --json` only: timing is left
+    /// out of the tests).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cost: Option<Cost>,
+}
+
+/// Time per call at one state, in microseconds, the least over 31 interleaved batches
+/// (a shared machine only ever adds time): one right-hand side, the exact `A`
+/// ([`linearize`]), and `A` by forward differences (`D + 1` right-hand sides, the
+/// cheapest numerical Jacobian); `ratio` is exact over forward differences.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Cost {
+    pub rhs_us: f64,
+    pub exact_a_us: f64,
+    pub forward_difference_us: f64,
+    pub ratio: f64,
+}
+
+/// [`Cost`] of a model at `y`; `None` when `timed` is false or an evaluation fails.
+pub fn cost<S: OdeSystem<D>, const D: usize>(timed: bool, m: &S, y: &Vector<D>) -> Option<Cost> {
+    use std::hint::black_box;
+    if !timed || m.rhs(0.0, y).is_err() || linearize(m, 0.0, y).is_err() {
+        return None;
+    }
+    let rhs = || {
+        black_box(m.rhs(0.0, black_box(y)).ok());
+    };
+    let exact = || {
+        black_box(linearize(m, 0.0, black_box(y)).ok());
+    };
+    let forward = || {
+        black_box(mbd::jacobian::forward_difference(|y| m.rhs(0.0, y), black_box(y)).ok());
+    };
+    let [rhs_us, exact_a_us, forward_difference_us] = least_us([&rhs, &exact, &forward]);
+    Some(Cost {
+        rhs_us,
+        exact_a_us,
+        forward_difference_us,
+        ratio: exact_a_us / forward_difference_us,
+    })
+}
+
+/// The least time per call (us) of each function over 31 rounds, the functions taking
+/// turns within a round; each batch long enough (about 1 ms) for the clock.
+fn least_us<const K: usize>(fs: [&dyn Fn(); K]) -> [f64; K] {
+    use std::time::Instant;
+    let batch = fs.map(|f| {
+        let mut n = 1u64;
+        while {
+            let s = Instant::now();
+            (0..n).for_each(|_| f());
+            s.elapsed().as_secs_f64() < 1e-3
+        } {
+            n *= 2;
+        }
+        n
+    });
+    let mut best = [f64::INFINITY; K];
+    for _ in 0..31 {
+        for k in 0..K {
+            let s = Instant::now();
+            (0..batch[k]).for_each(|_| fs[k]());
+            best[k] = best[k].min(s.elapsed().as_secs_f64() * 1e6 / batch[k] as f64);
+        }
+    }
+    best
+}
+
+/// Sets `cost` on the rows of one point.
+fn stamp(rows: &mut [Row], cost: Option<Cost>) {
+    for r in rows {
+        r.cost = cost;
+    }
 }
 
 /// A reference: natural frequency in rad/s, damping ratio (None for neutral).
@@ -254,6 +327,7 @@ fn row(
         reference_hz: w_ref / TAU,
         reference_damping_ratio: zeta_ref,
         rel_error,
+        cost: None,
     }
 }
 
@@ -285,6 +359,11 @@ fn rows_of(
 
 /// Every row of the report.
 pub fn rows() -> mbd::Result<Vec<Row>> {
+    rows_timed(false)
+}
+
+/// Every row of the report, with the cost of each point's linearisation when `timed`.
+pub fn rows_timed(timed: bool) -> mbd::Result<Vec<Row>> {
     let mut out = Vec::new();
     let [w1, w2] = double_pendulum_reference();
     let dp = DOUBLE;
@@ -295,6 +374,8 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
         &modes(&a)?,
         &[(w1, Some(0.0)), (w2, Some(0.0))],
     )?);
+    let hanging = cost(timed, &dp, &Vector::<4>::zeros());
+    stamp(&mut out, hanging);
     for (i, (nm, w)) in undamped_modes(&dp, 0.0, &Vector::<2>::zeros())?
         .iter()
         .zip([w1, w2])
@@ -317,8 +398,10 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
             } else {
                 (f * TAU - w).abs() / w
             },
+            cost: hanging,
         });
     }
+    let start = out.len();
     let [wn, zeta, _] = case30_reference();
     let block = case30::MODEL;
     let a = linearize(&block, 0.0, &Vector::<2>::zeros())?;
@@ -328,6 +411,11 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
         &modes(&a)?,
         &[(wn, Some(zeta))],
     )?);
+    stamp(
+        &mut out[start..],
+        cost(timed, &block, &Vector::<2>::zeros()),
+    );
+    let start = out.len();
     let s = cart_reference();
     let cart = case10::MODEL;
     let a = linearize(&cart, 0.0, &Vector::<4>::zeros())?;
@@ -345,17 +433,22 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
         &found,
         &[(0.0, None), (0.0, None), (s, Some(1.0)), (s, Some(-1.0))],
     )?);
-    let a = linearize(&cart, 0.0, &Vector::<4>::new(0.0, PI, 0.0, 0.0))?;
+    stamp(&mut out[start..], cost(timed, &cart, &Vector::<4>::zeros()));
+    let start = out.len();
+    let hanging = Vector::<4>::new(0.0, PI, 0.0, 0.0);
+    let a = linearize(&cart, 0.0, &hanging)?;
     out.extend(rows_of(
         "case 10 pendulum on cart",
         "hanging",
         &modes(&a)?,
         &[(0.0, None), (0.0, None), (s, Some(0.0))],
     )?);
+    stamp(&mut out[start..], cost(timed, &cart, &hanging));
     for ((y, w), point) in top_precessions(TOP_POINT.0, TOP_POINT.1)
         .into_iter()
         .zip(["slow precession", "fast precession"])
     {
+        let start = out.len();
         // The oscillatory mode alone: the four zeros of the cyclic coordinates come out at
         // the square root of rounding (a Jordan block), checked in the tests.
         let found: Vec<Mode> = modes(&linearize(&TOP, 0.0, &y)?)?
@@ -368,7 +461,9 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
             &found,
             &[(w, Some(0.0))],
         )?);
+        stamp(&mut out[start..], cost(timed, &TOP, &y));
     }
+    let start = out.len();
     let found = constrained_modes(&FOUR_BAR, 0.0, &Vector::<2>::zeros())?;
     out.extend(rows_of(
         "sprung parallelogram four-bar",
@@ -376,6 +471,10 @@ pub fn rows() -> mbd::Result<Vec<Row>> {
         &found,
         &[(four_bar_reference(), Some(0.0))],
     )?);
+    stamp(
+        &mut out[start..],
+        cost(timed, &FOUR_BAR, &Vector::<4>::zeros()),
+    );
     Ok(out)
 }
 

@@ -1,63 +1,25 @@
 //! Linear modes of mechanisms about operating points against closed forms
-//! ([`mechanisms::modes`]), and the cost of one exact linearisation beside finite-difference
-//! Jacobians of the same model.
+//! ([`mechanisms::modes`]), each point with the cost of its exact linearisation beside a
+//! finite-difference Jacobian of the same model.
 //!
 //! `cargo run --release -p mechanisms --bin modes [-- --json]`
 
-use mbd::OdeSystem;
-use mbd::analysis::linear::{central_difference, linearize};
-use mbd::jacobian::forward_difference;
 use mbd::prelude::Vector;
-use mechanisms::modes::{self, DOUBLE, FOUR_BAR, GOAL};
-use std::hint::black_box;
-use std::time::Instant;
+use mechanisms::modes::{self, Cost, DOUBLE, FOUR_BAR, GOAL};
 
-/// Median over 51 batches of the time per call, in microseconds.
-fn median_us<F: FnMut()>(mut f: F) -> f64 {
-    let mut batch = 1u64;
-    while {
-        let s = Instant::now();
-        (0..batch).for_each(|_| f());
-        s.elapsed().as_secs_f64() < 2e-3
-    } {
-        batch *= 2;
+fn print_cost(name: &str, c: Option<Cost>) {
+    match c {
+        Some(c) => println!(
+            "  {name:<48} rhs {:7.3} us, exact A {:7.3} us, forward differences {:7.3} us: exact / differences {:.2}",
+            c.rhs_us, c.exact_a_us, c.forward_difference_us, c.ratio
+        ),
+        None => println!("  {name:<48} (not timed: an evaluation failed)"),
     }
-    let mut v: Vec<f64> = (0..51)
-        .map(|_| {
-            let s = Instant::now();
-            (0..batch).for_each(|_| f());
-            s.elapsed().as_secs_f64() * 1e6 / batch as f64
-        })
-        .collect();
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// One model at one state: one rhs, the exact `A`, forward and central differences
-/// (`D + 1` and `2 D` right-hand sides).
-fn timings<S: OdeSystem<D>, const D: usize>(name: &str, m: &S, y: &Vector<D>) {
-    let rhs = median_us(|| {
-        black_box(m.rhs(0.0, black_box(y)).unwrap());
-    });
-    let exact = median_us(|| {
-        black_box(linearize(m, 0.0, black_box(y)).unwrap());
-    });
-    let forward = median_us(|| {
-        black_box(forward_difference(|y| m.rhs(0.0, y), black_box(y)).unwrap());
-    });
-    let central = median_us(|| {
-        black_box(central_difference(m, 0.0, black_box(y), 1e-5).unwrap());
-    });
-    println!("{name} (D = {D}), median time per call:");
-    println!("  rhs                          {rhs:8.3} us");
-    println!("  exact A (generated)          {exact:8.3} us");
-    println!("  forward differences (D+1 f)  {forward:8.3} us");
-    println!("  central differences (2D f)   {central:8.3} us");
 }
 
 fn main() {
     let json = std::env::args().any(|a| a == "--json");
-    let rows = match modes::rows() {
+    let rows = match modes::rows_timed(true) {
         Ok(rows) => rows,
         Err(e) => {
             eprintln!("modes: {e}");
@@ -78,7 +40,7 @@ fn main() {
         }
     } else {
         println!(
-            "{:<30} {:<27} {:>2} {:<11} {:>14} {:>14} {:>9} {:>14} {:>9}  stable",
+            "{:<30} {:<27} {:>2} {:<11} {:>14} {:>14} {:>9} {:>14} {:>9}  {:<8} {:>8} {:>8}",
             "mechanism",
             "point",
             "#",
@@ -87,14 +49,23 @@ fn main() {
             "f_d [Hz]",
             "zeta",
             "ref f_n [Hz]",
-            "error"
+            "error",
+            "stable",
+            "A [us]",
+            "FD [us]"
         );
         for r in &rows {
             let zeta = r
                 .damping_ratio
                 .map_or("-".to_string(), |z| format!("{z:.6}"));
+            let (exact, fd) = r.cost.map_or(("-".into(), "-".into()), |c| {
+                (
+                    format!("{:.3}", c.exact_a_us),
+                    format!("{:.3}", c.forward_difference_us),
+                )
+            });
             println!(
-                "{:<30} {:<27} {:>2} {:<11} {:>14.10} {:>14.10} {:>9} {:>14.10} {:>9.1e}  {}",
+                "{:<30} {:<27} {:>2} {:<11} {:>14.10} {:>14.10} {:>9} {:>14.10} {:>9.1e}  {:<8} {:>8} {:>8}",
                 r.mechanism,
                 r.point,
                 r.mode,
@@ -104,20 +75,26 @@ fn main() {
                 zeta,
                 r.reference_hz,
                 r.rel_error,
-                if r.unstable { "UNSTABLE" } else { "yes" }
+                if r.unstable { "UNSTABLE" } else { "yes" },
+                exact,
+                fd
             );
         }
-        println!("{} rows, {failed} above the goal {GOAL:e}\n", rows.len());
-        timings(
-            "double pendulum, moving",
-            &DOUBLE,
-            &Vector::<4>::new(0.7, -0.4, 1.3, -2.1),
+        println!("{} rows, {failed} above the goal {GOAL:e}", rows.len());
+        println!(
+            "A [us]: the exact A (one generated evaluation: accelerations, the residuals' \
+             derivatives, one factorisation, 2N solves); FD [us]: forward differences \
+             (D + 1 right-hand sides); least time over 31 interleaved batches.\n"
+        );
+        println!("moving states:");
+        print_cost(
+            "double pendulum (D = 4)",
+            modes::cost(true, &DOUBLE, &Vector::<4>::new(0.7, -0.4, 1.3, -2.1)),
         );
         let (p, v) = (0.3, 0.8);
-        timings(
-            "sprung four-bar (augmented), moving on its loop",
-            &FOUR_BAR,
-            &Vector::<4>::new(p, p, v, v),
+        print_cost(
+            "sprung four-bar, augmented, on its loop (D = 4)",
+            modes::cost(true, &FOUR_BAR, &Vector::<4>::new(p, p, v, v)),
         );
     }
     if failed > 0 {
