@@ -23,6 +23,10 @@ pub const GOAL: f64 = 1e-10;
 #[coords(a, b)]
 #[particle(p1, mass = m, at = [l * sin(a), -l * cos(a)])]
 #[particle(p2, mass = m, at = [l * sin(a) + l * sin(b), -l * cos(a) - l * cos(b)])]
+#[output(x1 = position(p1)[0])]
+#[output(y1 = position(p1)[1])]
+#[output(x2 = position(p2)[0])]
+#[output(y2 = position(p2)[1])]
 pub struct DoublePendulum {
     pub m: f64,
     pub l: f64,
@@ -91,6 +95,10 @@ pub fn cart_reference() -> f64 {
 #[particle(pin_a, mass = 0.5 * m, at = [r * sin(phi), -r * cos(phi)])]
 #[particle(pin_b, mass = 0.5 * m, at = [d + r * sin(psi), -r * cos(psi)])]
 #[spring(spring, from = anchor, to = pin_a, k = k, length = w)]
+#[output(xa = position(pin_a)[0])]
+#[output(ya = position(pin_a)[1])]
+#[output(xb = position(pin_b)[0])]
+#[output(yb = position(pin_b)[1])]
 pub struct SprungFourBar {
     pub m: f64,
     pub r: f64,

@@ -2,7 +2,9 @@
 //! ([`mechanisms::modes`]), each point with the cost of its exact linearisation beside a
 //! finite-difference Jacobian of the same model.
 //!
-//! `cargo run --release -p mechanisms --bin modes [-- --json]`
+//! `cargo run --release -p mechanisms --bin modes [-- --json] [--svg DIR]`: with `--svg`,
+//! the mode shapes of the planar mechanisms as SVG files in `DIR`
+//! ([`mechanisms::mode_svg`]).
 
 use mbd::prelude::Vector;
 use mechanisms::modes::{self, Cost, DOUBLE, FOUR_BAR, GOAL};
@@ -17,8 +19,30 @@ fn print_cost(name: &str, c: Option<Cost>) {
     }
 }
 
+/// Writes the mode-shape drawings into `dir`.
+fn write_svgs(dir: &str) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
+    for (name, svg) in mechanisms::mode_svg::drawings().map_err(|e| e.to_string())? {
+        let path = std::path::Path::new(dir).join(name);
+        std::fs::write(&path, svg).map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 fn main() {
-    let json = std::env::args().any(|a| a == "--json");
+    let args: Vec<String> = std::env::args().collect();
+    let json = args.iter().any(|a| a == "--json");
+    if let Some(i) = args.iter().position(|a| a == "--svg") {
+        let Some(dir) = args.get(i + 1) else {
+            eprintln!("modes: --svg needs a directory");
+            std::process::exit(2);
+        };
+        if let Err(e) = write_svgs(dir) {
+            eprintln!("modes: {e}");
+            std::process::exit(1);
+        }
+    }
     let rows = match modes::rows_timed(true) {
         Ok(rows) => rows,
         Err(e) => {
