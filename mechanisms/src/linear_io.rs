@@ -314,4 +314,32 @@ mod tests {
             }
         }
     }
+
+    /// The sprung four-bar (a closed loop, augmented form) in independent coordinates,
+    /// with the crank torque `tau` as input and pin A's `x = r sin(phi)` as output `xa`.
+    /// On the loop `phi = psi`: `T = m r^2 phi'^2 / 2`, stiffness `m g r + k r^2` (see
+    /// `modes::four_bar_reference`), generalised force `tau`. So `phi'' = tau / (m r^2)`
+    /// (both cranks: `T B_r = (0, 0, 1, 1) / (m r^2)`), and the static gain from `tau` to
+    /// `xa`, `D - C_r A_r^-1 B_r`, is `r / (m g r + k r^2) = 1 / (m g + k r)`.
+    #[test]
+    fn four_bar_state_space_in_independent_coordinates() {
+        use crate::modes::{FOUR_BAR, SprungFourBar};
+        use mbd::analysis::constrained_state_space;
+        let SprungFourBar { m, r, k, g, .. } = FOUR_BAR;
+        let (ss, tm) = constrained_state_space(&FOUR_BAR, 0.0, &Vector::<2>::zeros()).unwrap();
+        assert_eq!(
+            (ss.a.nrows(), ss.b.ncols(), ss.inputs.clone()),
+            (2, 1, vec!["tau"])
+        );
+        let b_full = &tm * &ss.b;
+        let phi_dd = 1.0 / (m * r * r);
+        for (i, want) in [0.0, 0.0, phi_dd, phi_dd].into_iter().enumerate() {
+            assert!((b_full[(i, 0)] - want).abs() <= 1e-14 * phi_dd, "{b_full}");
+        }
+        let xa = ss.outputs.iter().position(|o| *o == "xa").unwrap();
+        let gain =
+            ss.d[(xa, 0)] - (ss.c.row(xa) * ss.a.clone().try_inverse().unwrap() * &ss.b)[(0, 0)];
+        let want = 1.0 / (m * g + k * r);
+        assert!((gain - want).abs() <= 1e-13 * want, "{gain} vs {want}");
+    }
 }

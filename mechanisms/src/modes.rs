@@ -99,6 +99,8 @@ pub fn cart_reference() -> f64 {
 #[output(ya = position(pin_a)[1])]
 #[output(xb = position(pin_b)[0])]
 #[output(yb = position(pin_b)[1])]
+#[generalized_force(drive, along = phi, value = tau)]
+#[input(tau)]
 pub struct SprungFourBar {
     pub m: f64,
     pub r: f64,
@@ -106,9 +108,11 @@ pub struct SprungFourBar {
     pub k: f64,
     pub w: f64,
     pub g: f64,
+    /// A torque on the first crank (an input, 0 in the report).
+    pub tau: f64,
 }
 
-/// `m = 2 kg`, `r = 0.5 m`, `d = 1.5 m`, `k = 30 N/m`, `w = 1 m`.
+/// `m = 2 kg`, `r = 0.5 m`, `d = 1.5 m`, `k = 30 N/m`, `w = 1 m`, unforced.
 pub const FOUR_BAR: SprungFourBar = SprungFourBar {
     m: 2.0,
     r: 0.5,
@@ -116,6 +120,7 @@ pub const FOUR_BAR: SprungFourBar = SprungFourBar {
     k: 30.0,
     w: 1.0,
     g: 9.81,
+    tau: 0.0,
 };
 
 /// The sprung four-bar's one frequency in rad/s, by hand. On the loop `psi = phi` (the
