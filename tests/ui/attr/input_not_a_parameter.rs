@@ -1,6 +1,6 @@
 use mbd::Mechanism;
 
-// An input must be a parameter (a field): `force` is not one, and `m` is named twice.
+// An input must be a parameter (a field): `force` is not one, and `p` is named twice.
 #[derive(Mechanism)]
 #[mechanism(jacobian)]
 #[coords(x)]
