@@ -197,6 +197,10 @@ pub fn acceleration_jacobian<const N: usize, const M: usize, const A: usize>(
 /// [`solve_augmented`] when small and well conditioned, else the augmented Lagrangian
 /// (regularised near a singular position, as there).
 #[derive(Debug)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "built once per Jacobian on the stack, never stored"
+)]
 pub enum Saddle<'a, const N: usize, const M: usize, const A: usize> {
     Mass(crate::linalg::Ldl<N>),
     Dense(Lu<f64, A>),

@@ -54,7 +54,7 @@ pub fn panels(
             .max_by(|&i, &j| m.shape[i].norm().total_cmp(&m.shape[j].norm()))
             .unwrap_or(0);
         let pivot = m.shape[k];
-        if !(pivot.norm() > 0.0) {
+        if pivot.norm().is_nan() || pivot.norm() == 0.0 {
             continue;
         }
         let v: Vec<f64> = (0..n).map(|i| (m.shape[i] / pivot).re).collect();

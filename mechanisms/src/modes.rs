@@ -164,20 +164,20 @@ pub const TOP: HeavyTop = HeavyTop {
 /// The top's steady precessions at `theta0` with spin `omega3` about its axis, slow and
 /// fast: `[(state, nutation frequency in rad/s); 2]`.
 ///
-/// With `I1 = a1 + m l^2` (about the fixed point), `T = I1 (theta'^2 + phi'^2 sin^2) / 2
-/// + c3 omega3^2 / 2`, `omega3 = psi' + phi' cos(theta)`, `V = m g l cos(theta)`. `phi`,
-/// `psi` are cyclic: `p_psi = c3 omega3 =: a` and `p_phi = I1 phi' sin^2 + a cos =: b` are
-/// conserved, and Routh's reduction leaves `I1 theta'' = -U'(theta)` with
-/// `U = (b - a cos)^2 / (2 I1 sin^2) + m g l cos`. With `Omega = phi' = (b - a cos) /
-/// (I1 sin^2)`, `U' = sin (a Omega - I1 Omega^2 cos - m g l)`: steady precession where
-/// `I1 cos Omega^2 - a Omega + m g l = 0`, `Omega = (a -+ sqrt(a^2 - 4 I1 m g l cos)) /
-/// (2 I1 cos)`. Differentiating once more, with `dOmega/dtheta = (a - 2 I1 Omega cos) /
-/// (I1 sin)` and the bracket zero at the steady state, `U'' = (a - 2 I1 Omega cos)^2 / I1
-/// + I1 Omega^2 sin^2`, so the nutation frequency is
-/// `w^2 = U'' / I1 = ((a - 2 I1 Omega cos) / I1)^2 + Omega^2 sin^2`
+/// With `I1 = a1 + m l^2` (about the fixed point), the kinetic energy is
+/// `T = I1 (theta'^2 + phi'^2 sin^2) / 2 + c3 omega3^2 / 2`, `omega3 = psi' + phi' cos`,
+/// and `V = m g l cos(theta)`. `phi`, `psi` are cyclic: `p_psi = c3 omega3 =: a` and
+/// `p_phi = I1 phi' sin^2 + a cos =: b` are conserved, and Routh's reduction leaves
+/// `I1 theta'' = -U'(theta)` with `U = (b - a cos)^2 / (2 I1 sin^2) + m g l cos`. With
+/// `Omega = phi' = (b - a cos) / (I1 sin^2)`, `U' = sin (a Omega - I1 Omega^2 cos - m g l)`:
+/// steady precession where `I1 cos Omega^2 - a Omega + m g l = 0`, that is
+/// `Omega = (a -+ sqrt(a^2 - 4 I1 m g l cos)) / (2 I1 cos)`. Differentiating once more,
+/// with `dOmega/dtheta = (a - 2 I1 Omega cos) / (I1 sin)` and the bracket zero at the
+/// steady state, `U'' = (a - 2 I1 Omega cos)^2 / I1 + I1 Omega^2 sin^2`, so the nutation
+/// frequency is `w^2 = U'' / I1 = ((a - 2 I1 Omega cos) / I1)^2 + Omega^2 sin^2`
 /// (fast top, `Omega -> 0`: `w -> a / I1`, the classical `I3 omega3 / I1`). The linearised
 /// equations about the steady motion do not depend on `phi`, `psi` (cyclic), so `A` is
-/// constant along it: `+- i w` and four zeros (the cyclic angles and their momenta).
+/// constant along it: a pair `+-i w` and four zeros (the cyclic angles and their momenta).
 pub fn top_precessions(theta0: f64, omega3: f64) -> [(Vector<6>, f64); 2] {
     let HeavyTop { m, l, a1, c3, g } = TOP;
     let i1 = a1 + m * l * l;

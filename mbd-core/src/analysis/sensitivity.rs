@@ -186,7 +186,7 @@ pub fn equilibrium_sensitivity<S: Parametric<D>, const D: usize>(
     let k = lp.a.view((n, 0), (n, n)).into_owned();
     let rhs = -lp.f_p.rows(n, n);
     let sv = k.clone().singular_values();
-    if !(sv.min() > 1e-12 * sv.max()) {
+    if sv.min().is_nan() || sv.min() <= 1e-12 * sv.max() {
         return Err(bad("dqdd/dq is singular (a neutral direction)".into()));
     }
     let dq = k
