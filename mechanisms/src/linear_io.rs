@@ -56,6 +56,28 @@ pub struct TorquedPendulum {
     pub tau: f64,
 }
 
+/// A pendulum in Cartesian coordinates closed by its rod (augmented form: one constraint
+/// and its multiplier), the rod's length relaxed so that `reaction(e)` is its tension; a
+/// horizontal push on the bob as input. The tension depends on the multiplier: the outputs'
+/// derivatives through `lambda`.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian, augmented)]
+#[gravity(0.0, -g)]
+#[coords(x, y)]
+#[relaxed(e)]
+#[constraint(x * x + y * y == (l + e) * (l + e))]
+#[particle(bob, mass = m, at = [x, y])]
+#[generalized_force(pushing, along = x, value = push)]
+#[input(push)]
+#[output(tension = reaction(e))]
+#[output(a_y = der(der(y)))]
+pub struct RodPendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+    pub push: f64,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -341,5 +363,74 @@ mod tests {
             ss.d[(xa, 0)] - (ss.c.row(xa) * ss.a.clone().try_inverse().unwrap() * &ss.b)[(0, 0)];
         let want = 1.0 / (m * g + k * r);
         assert!((gain - want).abs() <= 1e-13 * want, "{gain} vs {want}");
+    }
+
+    /// The rod pendulum at a moving state on its constraint, pushed: `B`, `C`, `D` against
+    /// central differences (their error falls as `h^2`), the tension's through the
+    /// multiplier. By hand, hanging at rest at `(0, -l)`: the tension is `m g`; a push `u`
+    /// gives `x'' = u / m`, `y'' = 0` and leaves the tension (`m g + m l theta'^2`) alone,
+    /// so `B = (0, 0, 1/m, 0)` and `D = 0`.
+    #[test]
+    fn outputs_through_the_multiplier() {
+        let model = RodPendulum {
+            m: 1.3,
+            l: 0.9,
+            g: 9.81,
+            push: 0.4,
+        };
+        let (c, s) = (0.6f64, -0.8f64);
+        let (w, l) = (1.7, model.l);
+        // On the constraint and tangent to it: (x, y) = l (c, s), v = w l (-s, c).
+        let y = Vector::<4>::new(l * c, l * s, -w * l * s, w * l * c);
+        let ss = state_space(&model, 0.0, &y).unwrap();
+        let with = |push: f64| RodPendulum {
+            push,
+            ..model.clone()
+        };
+        let fd = |h: f64| {
+            let (p, m) = (with(0.4 + h), with(0.4 - h));
+            let fb = (p.rhs(0.0, &y).unwrap() - m.rhs(0.0, &y).unwrap()) / (2.0 * h);
+            let (op, om) = (
+                p.output_values(0.0, &y).unwrap(),
+                m.output_values(0.0, &y).unwrap(),
+            );
+            let mut err_c = 0.0f64;
+            for j in 0..4 {
+                let mut e = Vector::<4>::zeros();
+                e[j] = h;
+                let (cp, cm) = (
+                    model.output_values(0.0, &(y + e)).unwrap(),
+                    model.output_values(0.0, &(y - e)).unwrap(),
+                );
+                for k in 0..2 {
+                    err_c = err_c.max(((cp[k] - cm[k]) / (2.0 * h) - ss.c[(k, j)]).abs());
+                }
+            }
+            let err_b = (0..4)
+                .map(|i| (fb[i] - ss.b[(i, 0)]).abs())
+                .fold(0.0, f64::max);
+            let err_d = (0..2)
+                .map(|k| ((op[k] - om[k]) / (2.0 * h) - ss.d[(k, 0)]).abs())
+                .fold(0.0, f64::max);
+            [err_b, err_c, err_d]
+        };
+        let (e1, e2) = (fd(2e-3), fd(1e-3));
+        for i in 0..3 {
+            assert!(e1[i] < 1e-4, "{e1:?}");
+            if e1[i] > 1e-10 {
+                let ratio = e1[i] / e2[i];
+                assert!(
+                    (3.6..=4.4).contains(&ratio),
+                    "{i}: ratio {ratio}, {e1:?} {e2:?}"
+                );
+            }
+        }
+        // Hanging at rest: tension m g, no dependence on the push.
+        let hanging = Vector::<4>::new(0.0, -l, 0.0, 0.0);
+        let ss = state_space(&model, 0.0, &hanging).unwrap();
+        let out = model.output_values(0.0, &hanging).unwrap();
+        assert!((out[0].abs() - model.m * model.g).abs() <= 1e-12 * model.m * model.g);
+        assert!(ss.d.amax() <= 1e-14, "{}", ss.d);
+        assert!((ss.b[(2, 0)] - 1.0 / model.m).abs() <= 1e-14 && ss.b[(3, 0)].abs() <= 1e-14);
     }
 }
