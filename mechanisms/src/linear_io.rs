@@ -84,7 +84,7 @@ mod tests {
     use crate::case30_damped_vibration::{self as case30, DampedBlock};
     use mbd::analysis::sensitivity::{Parametric, Sensitivity, equilibrium_sensitivity};
     use mbd::analysis::{StateSpace, state_space};
-    use mbd::integrate::{Dopri5, Integrator, Options};
+    use mbd::integrate::{Dopri5, Integrator, Options, Radau5};
     use mbd::nalgebra::DMatrix;
 
     /// The cart-pole's `A, B, C, D` at rest upright, by hand. `T = (M + m) x'^2 / 2 +
@@ -276,7 +276,8 @@ mod tests {
     /// state by DOPRI5 (rtol = atol = 1e-12), against the closed form above at five times
     /// and against central differences of whole runs (`h = 1e-4` relative: truncation
     /// `O(h^2)` about 1e-9 relative, the runs' own error over `2h` about 1e-8): agreement
-    /// to 1e-9 of the sensitivity's scale with the closed form, 1e-6 with the differences.
+    /// to 1e-9 of the sensitivity's scale with the closed form, 1e-6 with the differences;
+    /// and through Radau IIA 5 at 1e-10, to 1e-7.
     #[test]
     fn trajectory_sensitivities_are_the_closed_form() {
         let model = case30::MODEL;
@@ -334,6 +335,28 @@ mod tests {
                     "t {t1} p {p}: {got} vs fd {fd}"
                 );
             }
+        }
+        // The same augmented system through an implicit method (Radau IIA 5, Jacobian of
+        // the augmented right-hand side by differences), rtol = atol = 1e-10.
+        let loose = Options {
+            rtol: 1e-10,
+            atol: 1e-10,
+            ..Options::default()
+        };
+        let ya = *Radau5::new(loose)
+            .solve(&sens, 0.0, ya0, 1.0, &[])
+            .unwrap()
+            .last()
+            .1;
+        let s = sens.sensitivities(&ya);
+        let exact = block_sensitivity(1.0);
+        for j in 0..2 {
+            assert!(
+                (s[(0, j)] - exact[j]).abs() <= 1e-7 * scale,
+                "{} vs {}",
+                s[(0, j)],
+                exact[j]
+            );
         }
     }
 
