@@ -60,6 +60,20 @@ pub trait Mechanism<const N: usize> {
     /// Total mechanical energy: kinetic plus the potential of gravity and springs. Conserved
     /// by a model without dampers, friction, loads or drives; the stress suite watches it.
     fn energy(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> f64;
+
+    /// Inverse dynamics: the generalised forces `M qdd - f` that must act besides the
+    /// model's own (gravity, springs, dampers, loads) for the accelerations `qdd` (before
+    /// constraint forces, for a model with constraints). The default forms `M` and `f`;
+    /// the derive overrides it for a joint tree with recursive Newton-Euler (O(n)).
+    fn inverse_dynamics(
+        &self,
+        t: f64,
+        q: &Vector<N>,
+        qd: &Vector<N>,
+        qdd: &Vector<N>,
+    ) -> Vector<N> {
+        self.mass_matrix(t, q) * qdd - self.forces(t, q, qd)
+    }
 }
 
 /// Holonomic constraints `Phi(q, t) = 0` on a [`Mechanism`] (`M` equations).

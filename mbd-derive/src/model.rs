@@ -150,6 +150,8 @@ pub struct Equations {
     /// `(M qdd)_i` over the free coordinates (the `qdd` symbols standing for a column of the
     /// identity): a long tree's mass matrix, formed column by column at run time.
     pub mass_times: Option<Vec<Expr>>,
+    /// `(M qdd - f)_i` by recursive Newton-Euler (a pure joint tree): inverse dynamics.
+    pub inverse_dynamics: Option<Vec<Expr>>,
     /// `qdd` of a one-coordinate model without constraints, `f / m` with shared factors
     /// cancelled.
     pub single_qdd: Option<Expr>,
@@ -339,6 +341,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         frictionless,
         recursive_qdd: red.recursive_qdd,
         mass_times: red.mass_times,
+        inverse_dynamics: red.inverse,
         single_qdd,
         rolled: red.rolled,
         init_q,

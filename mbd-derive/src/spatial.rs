@@ -690,3 +690,53 @@ pub fn mass_times(g: &mut Graph, nodes: &[Node], accel: &[Expr]) -> Vec<Expr> {
     }
     out
 }
+
+/// Inverse dynamics by recursive Newton-Euler: the generalised forces `M a - f` (per full
+/// coordinate) that, besides the applied `tau`, give the accelerations `a` (per full
+/// coordinate). Outward: each frame's velocity and acceleration with the given `a` (gravity
+/// as an upward acceleration of the ground) and its own force `I a + v x* I v`; inward: each
+/// step's effort `S . f` less `tau`, the force handed to the parent. O(n) code, shared with
+/// the other recursions through the graph.
+pub fn inverse_dynamics(
+    g: &mut Graph,
+    nodes: &[Node],
+    inp: &Inputs<'_>,
+    accel: &[Expr],
+) -> Vec<Expr> {
+    let zero = g.zero();
+    let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
+    let base = Sv {
+        a: [zero; 3],
+        l: inp.gravity.map(|x| g.neg(x)),
+    };
+    let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
+    let mut acc: Vec<Sv> = Vec::with_capacity(nodes.len());
+    let mut force: Vec<Sv> = Vec::with_capacity(nodes.len());
+    for (node, x) in nodes.iter().zip(&xs) {
+        let parent = node.parent.map(|p| out[p].v);
+        let rate = node.step.coord().map(|j| inp.velocity[j]);
+        let o = outward(g, node, x, parent, rate);
+        let ap = x.motion(g, node.parent.map_or(base, |p| acc[p]));
+        let mut a = sv_add(g, ap, o.c);
+        if let (Some(s), Some(j)) = (o.s, node.step.coord()) {
+            let sa = sv_scale(g, s, accel[j]);
+            a = sv_add(g, a, sa);
+        }
+        let ia = si_mul(g, &o.inertia, a);
+        force.push(sv_add(g, ia, o.p));
+        acc.push(a);
+        out.push(o);
+    }
+    let mut efforts: Vec<Expr> = inp.tau.iter().map(|&t| g.neg(t)).collect();
+    for i in (0..nodes.len()).rev() {
+        if let (Some(s), Some(j)) = (out[i].s, nodes[i].step.coord()) {
+            let effort = sv_dot(g, s, force[i]);
+            efforts[j] = g.add(effort, efforts[j]);
+        }
+        if let Some(p) = nodes[i].parent {
+            let up = xs[i].force(g, force[i]);
+            force[p] = sv_add(g, force[p], up);
+        }
+    }
+    efforts
+}

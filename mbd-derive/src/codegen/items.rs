@@ -130,6 +130,8 @@ struct Acceleration {
     body: TokenStream,
     /// Statements of `mass_matrix`, `forces` and `energy`.
     statements: usize,
+    /// `inverse_dynamics` by recursive Newton-Euler (a pure joint tree).
+    inverse: Option<TokenStream>,
 }
 
 fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
@@ -222,7 +224,29 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
         friction_acceleration,
         body: acceleration,
         statements: mass_len + force_only.len() + energy.len(),
+        inverse: inverse_dynamics(eq, sh),
     }
+}
+
+/// A joint tree's `inverse_dynamics`: recursive Newton-Euler with the given `qdd`, O(n)
+/// code in place of the trait's `M qdd - f` (O(n^2) work and a mass matrix). `#[inline]`, so
+/// that a crate which never calls it never compiles it.
+fn inverse_dynamics(eq: &Equations, sh: &mut Shape<'_>) -> Option<TokenStream> {
+    let rows = eq.inverse_dynamics.as_ref()?;
+    let n = sh.n;
+    let b = Block::new(eq, rows);
+    sh.parts.names.push("inverse_dynamics");
+    sh.parts.statements += b.len();
+    let (s, fill) = (b.stmts(), b.vector("tau", n, rows));
+    Some(quote! {
+        #[inline]
+        fn inverse_dynamics(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>,
+            qdd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
+            #s
+            #fill
+            tau
+        }
+    })
 }
 
 fn mechanism_impl(
@@ -235,7 +259,7 @@ fn mechanism_impl(
     let coord_names: Vec<String> = eq.free.iter().map(|c| c.to_string()).collect();
     let (check, direction) = (&sh.check, &sh.direction);
     let (mass_matrix, forces_body, energy) = (&accel.mass_matrix, &accel.forces, &accel.energy);
-    let acceleration = &accel.body;
+    let (acceleration, inverse) = (&accel.body, &accel.inverse);
     // A one-coordinate acceleration is a few operations: called out of line from another
     // crate (where integrators and `rhs` are instantiated), the call costs as much as the body.
     let inline_acceleration = eq.single_qdd.is_some().then(|| quote!(#[inline]));
@@ -262,6 +286,7 @@ fn mechanism_impl(
             fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
                 #energy
             }
+            #inverse
         }
     }
 }

@@ -25,6 +25,9 @@ pub(super) struct Inertial {
     pub rolled: Option<tree::Rolled>,
     /// The spatial recursion's steps (a planar tree's, converted).
     pub steps: Vec<spatial::Node>,
+    /// `M zdd - f` by recursive Newton-Euler (`zdd` every coordinate's acceleration symbol),
+    /// where `M` and `f` come from the recursions.
+    pub inverse_full: Option<Vec<Expr>>,
 }
 
 /// What the choice of evaluation needs to know about the constraints.
@@ -70,6 +73,10 @@ pub(super) fn inertial(
     let by_recursion = (recursive && spatial::covers(&steps, nz))
         .then(|| spatial::mass_and_forces(g, &steps, &inputs));
     let m_by_recursion = by_recursion.is_some();
+    let inverse_full = m_by_recursion.then(|| {
+        let accel: Vec<Expr> = kinematics.coords.iter().map(|c| c.zdd).collect();
+        spatial::inverse_dynamics(g, &steps, &inputs, &accel)
+    });
     let mut reactions = Vec::new();
     let kin = kinematics.kin(scope.t, scope.dim, &mut reactions);
     let (m_full, f_full, kinetic) = match by_recursion {
@@ -99,6 +106,7 @@ pub(super) fn inertial(
         qdd_recursive,
         rolled,
         steps,
+        inverse_full,
     }
 }
 

@@ -22,6 +22,8 @@ pub(super) struct Reduced {
     pub phi: Vec<Expr>,
     pub recursive_qdd: Option<Vec<Expr>>,
     pub mass_times: Option<Vec<Expr>>,
+    /// `M qdd - f` over the free coordinates by recursive Newton-Euler (pure trees).
+    pub inverse: Option<Vec<Expr>>,
     pub rolled: Option<(tree::Rolled, usize)>,
 }
 
@@ -51,6 +53,7 @@ pub(super) fn reduce(
         m_by_recursion,
         qdd_recursive,
         steps,
+        inverse_full,
         ..
     } = inertial;
     let (recursive, m_by_recursion) = (*recursive, *m_by_recursion);
@@ -101,7 +104,14 @@ pub(super) fn reduce(
         let rows = spatial::mass_times(g, steps, &accel);
         full_rows.extend(free_idx.iter().map(|&i| rows[i]));
     }
+    let n_rows_lazy = full_rows.len();
+    if let Some(rows) = inverse_full {
+        full_rows.extend(free_idx.iter().map(|&i| rows[i]));
+    }
     let mut reduced = g.substitute_all(&full_rows, &map);
+    let inverse = inverse_full
+        .is_some()
+        .then(|| reduced.split_off(n_rows_lazy));
     let mass_times = lazy_mass.then(|| reduced.split_off(n_rows_inits));
     let reduced_inits = reduced.split_off(n_rows_recursive);
     let recursive_qdd = recursive.then(|| reduced.split_off(n_rows));
@@ -120,6 +130,7 @@ pub(super) fn reduce(
         free_idx,
         recursive_qdd,
         mass_times,
+        inverse,
         rolled,
     }
 }
