@@ -3,7 +3,9 @@
 //! articulated-body algorithm (`mechanisms::spatial_chain_by_hand`, the same algorithm), and
 //! the forward dynamics of a 7-dof arm of revolute joints about mixed axes with offsets.
 //! Also the smallest recursive tree (two bodies) against its own mass-matrix form: the
-//! threshold from which the derive takes the recursion (`RECURSIVE_FROM_BODIES`).
+//! threshold from which the derive takes the recursion (`RECURSIVE_FROM_BODIES`). And the
+//! arm's inverse dynamics: generated recursive Newton-Euler against `M qdd - f` (the trait's
+//! default, from the same model's generated `M` and `f`).
 //!
 //! `cargo bench -p mechanisms --bench spatial`
 
@@ -165,6 +167,39 @@ fn benches(c: &mut Criterion) {
     println!("arm7 forward dynamics: least over batches {least:.1} ns");
     c.bench_function("arm7 forward dynamics", |bch| {
         bch.iter(|| MechanismModel::acceleration(&arm, 0.0, black_box(&q), black_box(&qd)))
+    });
+
+    assert!(Arm7::GENERATED.parts.contains(&"inverse_dynamics"));
+    let qdd = Vector::<7>::from([2.0, -1.5, 0.7, 3.1, -0.4, 1.9, -2.6]);
+    let by_mass = |q: &Vector<7>, qd: &Vector<7>, qdd: &Vector<7>| {
+        arm.mass_matrix(0.0, q) * qdd - arm.forces(0.0, q, qd)
+    };
+    let rnea = arm.inverse_dynamics(0.0, &q, &qd, &qdd);
+    assert!((rnea - by_mass(&q, &qd, &qdd)).amax() <= 1e-12 * rnea.amax());
+    interleaved(
+        "arm7 inverse dynamics (both generated)",
+        ("Newton-Euler", "M qdd - f"),
+        &|| {
+            drop(black_box(arm.inverse_dynamics(
+                0.0,
+                black_box(&q),
+                black_box(&qd),
+                black_box(&qdd),
+            )))
+        },
+        &|| {
+            drop(black_box(by_mass(
+                black_box(&q),
+                black_box(&qd),
+                black_box(&qdd),
+            )))
+        },
+    );
+    c.bench_function("arm7 inverse dynamics newton-euler", |bch| {
+        bch.iter(|| arm.inverse_dynamics(0.0, black_box(&q), black_box(&qd), black_box(&qdd)))
+    });
+    c.bench_function("arm7 inverse dynamics M qdd - f", |bch| {
+        bch.iter(|| by_mass(black_box(&q), black_box(&qd), black_box(&qdd)))
     });
 }
 
