@@ -297,7 +297,10 @@ mod tests {
         let rhs = Vector::<A>::from_fn(|i, _| if i < N { u[i] } else { b[i - N] });
         let z = Lu::factor(k).unwrap().solve(&rhs);
         assert!((x - z.fixed_rows::<N>(0)).norm() < 1e-12, "{x} vs {z}");
-        assert!((lambda - z.fixed_rows::<M>(N)).norm() < 1e-12, "{lambda} vs {z}");
+        assert!(
+            (lambda - z.fixed_rows::<M>(N)).norm() < 1e-12,
+            "{lambda} vs {z}"
+        );
     }
 
     /// The sparse form (as generated code passes it) gives the same solution.

@@ -87,7 +87,11 @@ pub fn rates(
         let a = tder(g, v);
         rhs.push(vec![drop(g, v, s.zd), drop(g, a, s.zdd)]);
     }
-    let at = |i: usize| dep.iter().position(|&d| d == i).expect("a dependent coordinate");
+    let at = |i: usize| {
+        dep.iter()
+            .position(|&d| d == i)
+            .expect("a dependent coordinate")
+    };
     let steps: Vec<(Vec<usize>, Vec<usize>)> = pivots
         .iter()
         .map(|(rows, cs)| (rows.clone(), cs.iter().map(|&c| at(c)).collect()))
@@ -237,7 +241,13 @@ pub struct Split<'a> {
 /// `M zdd = f` in all coordinates projected on the free ones by `zd = R qd`: the free rows
 /// of `m` become `R^T M R` (free columns) and `R^T M` (driven columns), and of `f`
 /// `R^T (f - M a0)`, `a0` the dependents' accelerations with the free `qdd` at zero.
-pub fn project(g: &mut Graph, m: &mut [Vec<Expr>], f: &mut [Expr], split: &Split<'_>, s: &Symbols<'_>) {
+pub fn project(
+    g: &mut Graph,
+    m: &mut [Vec<Expr>],
+    f: &mut [Expr],
+    split: &Split<'_>,
+    s: &Symbols<'_>,
+) {
     let nz = m.len();
     let zero = g.zero();
     let sym = |g: &Graph, e: Expr| g.as_sym(e).expect("coordinate symbol");
@@ -254,7 +264,11 @@ pub fn project(g: &mut Graph, m: &mut [Vec<Expr>], f: &mut [Expr], split: &Split
             col
         })
         .collect();
-    let rest: HashMap<Sym, Expr> = split.free.iter().map(|&j| (sym(g, s.zdd[j]), zero)).collect();
+    let rest: HashMap<Sym, Expr> = split
+        .free
+        .iter()
+        .map(|&j| (sym(g, s.zdd[j]), zero))
+        .collect();
     let mut a0 = vec![zero; nz];
     for &(i, _, acc) in split.dependent {
         a0[i] = g.substitute(acc, &rest);

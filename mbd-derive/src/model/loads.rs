@@ -3,10 +3,10 @@
 //! last (its potential enters only the energy). `lower` meets the user's expressions once;
 //! `generalized` works on what it returns, without `syn`.
 
+use super::ParamCheck;
 use super::checks::check;
 use super::kinematics::{Kin, Kinematics};
 use super::scope::Scope;
-use super::ParamCheck;
 use crate::lower::{Binding, Context, Value};
 use crate::parse::{End, Load, Mechanism};
 use crate::sym::{Expr, Func, Graph, Sym};

@@ -9,10 +9,10 @@ use super::kinematics::{Kin, Kinematics};
 use super::scope::Scope;
 use super::{Coord, CoordKind, Names, Role};
 use crate::closure;
-use crate::velocity;
 use crate::lower::{Context, Lowerer};
 use crate::parse::{self, Errors, Mechanism};
 use crate::sym::{Expr, Graph, Sym};
+use crate::velocity;
 use std::collections::HashMap;
 use syn::Ident;
 

@@ -7,9 +7,9 @@ use super::inertial::Inertial;
 use super::scope::Scope;
 use super::{Coord, CoordKind, LAZY_MASS_FROM, Role};
 use crate::spatial;
-use crate::velocity;
 use crate::sym::{Expr, Sym};
 use crate::tree;
+use crate::velocity;
 use std::collections::HashMap;
 
 /// The equations in the free coordinates.
@@ -36,7 +36,12 @@ pub(super) fn reduce(
     minimal: Option<&velocity::Minimal>,
 ) -> Reduced {
     if minimal.is_some() {
-        super::minimal::project(&mut scope.g, coords, &mut inertial.m_full, &mut inertial.f_full);
+        super::minimal::project(
+            &mut scope.g,
+            coords,
+            &mut inertial.m_full,
+            &mut inertial.f_full,
+        );
     }
     let map = reduction_map(scope, coords);
     let g = &mut scope.g;
