@@ -178,8 +178,9 @@ impl BandLu {
             b.swap(k, self.piv[k]);
             let bk = b[k];
             if bk != 0.0 {
-                for i in k + 1..=(k + self.kl).min(n - 1) {
-                    b[i] -= self.a[self.at(i, k)] * bk;
+                let last = (k + self.kl).min(n - 1);
+                for (i, bi) in b.iter_mut().enumerate().take(last + 1).skip(k + 1) {
+                    *bi -= self.a[self.at(i, k)] * bk;
                 }
             }
         }

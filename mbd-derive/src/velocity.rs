@@ -163,19 +163,11 @@ fn block_solve(
                     g.dot(&lead, &col)
                 })
                 .collect();
-            for c in 0..m {
-                let sub: Vec<Expr> = rows.iter().map(|&r| a[r][c]).collect();
-                let d = g.dot(&f, &sub);
-                a[i][c] = g.sub(a[i][c], d);
-            }
+            a[i] = minus_rows(g, &a, i, rows, &f);
             for &c in cols {
                 a[i][c] = g.zero();
             }
-            for c in 0..k {
-                let sub: Vec<Expr> = rows.iter().map(|&r| b[r][c]).collect();
-                let d = g.dot(&f, &sub);
-                b[i][c] = g.sub(b[i][c], d);
-            }
+            b[i] = minus_rows(g, &b, i, rows, &f);
         }
         inverses.push(inv);
     }
@@ -207,6 +199,17 @@ fn block_solve(
         }
     }
     x
+}
+
+/// Row `i` of `mat` minus `sum_j f_j` times row `rows[j]`.
+fn minus_rows(g: &mut Graph, mat: &[Vec<Expr>], i: usize, rows: &[usize], f: &[Expr]) -> Vec<Expr> {
+    (0..mat[i].len())
+        .map(|c| {
+            let sub: Vec<Expr> = rows.iter().map(|&r| mat[r][c]).collect();
+            let d = g.dot(f, &sub);
+            g.sub(mat[i][c], d)
+        })
+        .collect()
 }
 
 /// The inverse of a `1x1` or `2x2` block (Cramer's rule: one reciprocal of the determinant).
