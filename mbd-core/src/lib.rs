@@ -6,6 +6,7 @@
 
 pub mod analysis;
 pub mod augmented;
+pub mod banded;
 pub mod closure;
 pub mod ensemble;
 pub mod error;

@@ -42,10 +42,14 @@ fn not_positive<const N: usize>(t: f64, mass: &Matrix<N, N>) -> Error {
 /// not finite, or `a` is not finite.
 #[inline]
 pub fn one_coordinate(t: f64, m: f64, a: f64) -> Result<Vector<1>> {
-    if !(m > 0.0 && m.is_finite()) {
-        return Err(not_positive(t, &Matrix::<1, 1>::new(m)));
+    // Two plain comparisons each (`is_finite` here became integer class tests).
+    if m > 0.0 && m < f64::INFINITY && a.abs() < f64::INFINITY {
+        Ok(Vector::<1>::new(a))
+    } else if !(m > 0.0 && m < f64::INFINITY) {
+        Err(not_positive(t, &Matrix::<1, 1>::new(m)))
+    } else {
+        Err(Error::NonFinite { t })
     }
-    finite(t, Vector::<1>::new(a))
 }
 
 /// `(qdd, lambda)` from `[M Phi_q^T; Phi_q 0] [qdd; lambda] = [f; gamma]` (`A = N + M`), by
@@ -70,8 +74,40 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
     {
         return Ok(qdd_lambda);
     }
+    // Larger ones, while banded and well conditioned: one banded LU (crate::banded).
+    if A > DENSE_MAX
+        && let Some(qdd_lambda) = crate::banded::saddle_point(mass, f, phi_q, gamma)
+    {
+        return Ok(qdd_lambda);
+    }
     let s = AugmentedLagrangian::new(t, mass, phi_q)?.solve_regularized(f, gamma)?;
     Ok((finite(t, s.x)?, finite(t, s.lambda)?))
+}
+
+/// [`solve_augmented`] with `M` and `Phi_q` given by their non-zeros `(row, column, value)`
+/// (`M` by its lower triangle and diagonal): what generated code passes for a large
+/// assembly, whose dense matrices are mostly zeros. One banded LU (crate::banded) while it is
+/// well conditioned, else the augmented Lagrangian on the dense matrices built from them.
+pub fn solve_augmented_sparse<const N: usize, const M: usize, const A: usize>(
+    t: f64,
+    mass: &[(usize, usize, f64)],
+    f: &Vector<N>,
+    phi_q: &[(usize, usize, f64)],
+    gamma: &Vector<M>,
+) -> Result<(Vector<N>, Vector<M>)> {
+    if let Some(qdd_lambda) = crate::banded::saddle_point_sparse::<N, M>(mass, f, phi_q, gamma) {
+        return Ok(qdd_lambda);
+    }
+    let mut m = Matrix::<N, N>::zeros();
+    for &(i, j, v) in mass {
+        m[(i, j)] = v;
+        m[(j, i)] = v;
+    }
+    let mut p = Matrix::<M, N>::zeros();
+    for &(k, j, v) in phi_q {
+        p[(k, j)] = v;
+    }
+    solve_augmented::<N, M, A>(t, &m, f, &p, gamma)
 }
 
 /// Saddle-point systems up to this size (`N + M`) are first tried by one dense LU on the

@@ -69,6 +69,9 @@ pub struct Solution {
     /// driven coordinates, `t`), in the order solved.
     pub solved: Vec<(usize, Form)>,
     pub domain: Vec<Domain>,
+    /// The solve's steps in order: the constraint rows each used and the coordinates (model
+    /// indices) it fixed; the pivots of the implicit-function rule ([`rates`]).
+    pub pivots: Vec<(Vec<usize>, Vec<usize>)>,
 }
 
 /// One search state: equations left, coordinates not yet solved (indices into the
@@ -76,6 +79,10 @@ pub struct Solution {
 #[derive(Clone)]
 struct State {
     eqs: Vec<Expr>,
+    /// The original constraint row of each of `eqs`.
+    rows: Vec<usize>,
+    /// `(rows, unknowns)` of each step so far.
+    pivots: Vec<(Vec<usize>, Vec<usize>)>,
     open: Vec<usize>,
     solved: Vec<(usize, Form)>,
     domain: Vec<(Expr, usize)>,
@@ -102,6 +109,8 @@ pub fn solve(
     }
     let start = State {
         eqs: phi.to_vec(),
+        rows: (0..phi.len()).collect(),
+        pivots: Vec::new(),
         open: (0..unknowns.len()).collect(),
         solved: Vec::new(),
         domain: Vec::new(),
@@ -121,6 +130,11 @@ pub fn solve(
                 arg,
                 coord: unknowns[u].name.clone(),
             })
+            .collect(),
+        pivots: done
+            .pivots
+            .into_iter()
+            .map(|(rows, us)| (rows, us.into_iter().map(|u| unknowns[u].index).collect()))
             .collect(),
     })
 }
@@ -191,13 +205,13 @@ fn steps(g: &mut Graph, st: &State, unknowns: &[Unknown], env: &HashMap<Sym, f64
 /// (a pair's first form names the second coordinate).
 fn apply(g: &mut Graph, st: &State, step: Step, unknowns: &[Unknown]) -> State {
     let mut next = st.clone();
-    next.eqs = st
-        .eqs
-        .iter()
-        .enumerate()
-        .filter(|(k, _)| !step.used.contains(k))
-        .map(|(_, e)| *e)
-        .collect();
+    let kept = |k: &usize| !step.used.contains(k);
+    next.eqs = (0..st.eqs.len()).filter(kept).map(|k| st.eqs[k]).collect();
+    next.rows = (0..st.eqs.len()).filter(kept).map(|k| st.rows[k]).collect();
+    next.pivots.push((
+        step.used.iter().map(|&k| st.rows[k]).collect(),
+        step.forms.iter().map(|f| f.0).collect(),
+    ));
     next.domain.extend(step.domain);
     for (u, form) in step.forms {
         next.solved.push((u, form));

@@ -221,6 +221,22 @@ impl<'a> Block<'a> {
         }
         quote!(let mut #id = ::mbd::__private::Matrix::<#r, #c>::zeros(); #(#sets)*)
     }
+
+    /// `let name = [(i, j, entry), ..];` for the non-zero entries (`lower`: on and below the
+    /// diagonal only, for a symmetric matrix): a large assembly's sparse `M` and `Phi_q`.
+    pub(crate) fn triplets(&self, name: &str, entries: &[Vec<Expr>], lower: bool) -> TokenStream {
+        let id = format_ident!("{}", name);
+        let mut items = Vec::new();
+        for (i, row) in entries.iter().enumerate() {
+            for (j, e) in row.iter().enumerate() {
+                if !self.eq.g.is_zero(*e) && (!lower || j <= i) {
+                    let v = self.leaf(*e);
+                    items.push(quote!((#i, #j, #v)));
+                }
+            }
+        }
+        quote!(let #id: [(usize, usize, f64); _] = [#(#items),*];)
+    }
 }
 
 /// Minimal coordinates of a closed loop: every `asin`/`acos` argument of the closed forms

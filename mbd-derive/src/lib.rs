@@ -22,6 +22,7 @@ mod skeleton;
 mod spatial;
 mod sym;
 mod tree;
+mod velocity;
 
 use proc_macro::TokenStream;
 use syn::DeriveInput;

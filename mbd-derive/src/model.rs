@@ -234,14 +234,14 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
 
     // Constraints, closed in minimal coordinates where the loop has a closed form.
     let mut loops = constraints::gather(ast, &mut scope, &kin);
-    let closure_domain = minimal::minimal_coordinates(ast, &mut scope, &mut kin, &mut loops);
+    let minimal = minimal::minimal_coordinates(ast, &mut scope, &mut kin, &mut loops);
 
     // Forces and inertial forms in full coordinates.
     let loads = loads::lower(ast, &mut scope, &kin, &mut reactions);
     let forces = loads::generalized(&mut scope, &kin, loads, &mut checks);
     let closed = inertial::Closed {
         constrained: !loops.phi.is_empty(),
-        minimal: closure_domain.is_some(),
+        minimal: minimal.is_some(),
     };
     let mut inertial = inertial::inertial(ast, &mut scope, &mut kin, &forces, closed, form);
 
@@ -252,6 +252,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         &mut inertial,
         &loops.phi,
         ast.jacobian,
+        minimal.as_ref(),
     );
     let free_idx = &red.free_idx;
     let zsyms = kin.z_syms(&scope.g);
@@ -269,6 +270,12 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, full, &red.map);
     let observed = (&mut outputs[..], &mut events[..]);
     outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);
+    if let Some(min) = &minimal {
+        let observed = outputs.iter_mut().map(|o| &mut o.expr);
+        for e in observed.chain(events.iter_mut().map(|e| &mut e.expr)) {
+            *e = min.close(&mut scope.g, &[*e])[0];
+        }
+    }
     let frictionless = coulomb::apply(
         &mut scope,
         &finisher,
@@ -346,7 +353,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         rolled: red.rolled,
         init_q,
         init_qd,
-        closure_domain,
+        closure_domain: minimal.map(|m| m.domain),
         checks,
     };
     checks::non_finite(ast, &eqs, &mut errors);

@@ -9,6 +9,10 @@ use crate::sym::Expr;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
+/// Saddle-point systems larger than this (`N + M`) are emitted with sparse `M` and `Phi_q`
+/// (`solve::solve_augmented_sparse`); smaller ones keep the dense stack matrices.
+const SPARSE_FROM: usize = 24;
+
 /// Counts what was generated, for the validation report.
 struct Parts {
     names: Vec<&'static str>,
@@ -323,6 +327,15 @@ fn constrained_impl(
         );
         let solve_full = match &friction_acceleration {
             Some(solve) => solve.clone(),
+            // A large assembly: `M` and `Phi_q` by their non-zeros (a banded solve).
+            None if a > SPARSE_FROM => {
+                let f_m = full.triplets("mass", &eq.mass, true);
+                let f_pq = full.triplets("phi_q", &eq.phi_q, false);
+                quote! {
+                    #f_s #f_m #f_f #f_pq #f_g
+                    ::mbd::__private::solve::solve_augmented_sparse::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
+                }
+            }
             None => quote! {
                 #f_s #f_m #f_f #f_pq #f_g
                 ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))

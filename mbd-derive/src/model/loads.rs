@@ -3,10 +3,10 @@
 //! last (its potential enters only the energy). `lower` meets the user's expressions once;
 //! `generalized` works on what it returns, without `syn`.
 
+use super::ParamCheck;
 use super::checks::check;
 use super::kinematics::{Kin, Kinematics};
 use super::scope::Scope;
-use super::{CoordKind, ParamCheck};
 use crate::lower::{Binding, Context, Value};
 use crate::parse::{End, Load, Mechanism};
 use crate::sym::{Expr, Func, Graph, Sym};
@@ -344,16 +344,8 @@ fn apply_load(g: &mut Graph, load: &Applied, kin: &Kin<'_>, axes: &Axes, q_full:
             }
         }
         Applied::Generalized { coord, value } => {
-            // Along a dependent coordinate `x = h(q)`: virtual work `v dh/dq_k`.
-            if let CoordKind::Dependent([h, ..]) = kin.coords[*coord].kind {
-                for (k, zs) in axes.z.iter().enumerate() {
-                    let d = g.diff(h, *zs);
-                    let w = g.mul(*value, d);
-                    q_full[k] = g.add(q_full[k], w);
-                }
-            } else {
-                q_full[*coord] = g.add(q_full[*coord], *value);
-            }
+            // Along a dependent coordinate too: the projection takes it to the free ones.
+            q_full[*coord] = g.add(q_full[*coord], *value);
         }
     }
 }

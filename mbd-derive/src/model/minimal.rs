@@ -1,16 +1,18 @@
-//! Minimal coordinates for a closed loop (the closed forms are closure.rs's): where the
-//! closure has a closed form, each dependent coordinate becomes that form in the kinematics
-//! (bodies, points, the coordinate's own name), its constraints are dropped and the rest of
-//! the derivation sees an unconstrained model.
+//! Minimal coordinates for a closed loop (the closed forms are closure.rs's, the rates and
+//! the projection velocity.rs's): where the closure has a closed form, each dependent
+//! coordinate keeps its symbol with its rates by the implicit-function rule, its constraints
+//! are dropped, and the equations are projected on the independent coordinates before the
+//! closed form replaces it.
 
 use super::constraints::Constraints;
-use super::kinematics::{BodyKin, Kin, Kinematics};
+use super::kinematics::{Kin, Kinematics};
 use super::scope::Scope;
 use super::{Coord, CoordKind, Names, Role};
 use crate::closure;
-use crate::lower::{Binding, Context, Lowerer, Value};
+use crate::lower::{Context, Lowerer};
 use crate::parse::{self, Errors, Mechanism};
 use crate::sym::{Expr, Graph, Sym};
+use crate::velocity;
 use std::collections::HashMap;
 use syn::Ident;
 
@@ -22,7 +24,7 @@ pub(super) fn minimal_coordinates(
     scope: &mut Scope,
     kin: &mut Kinematics,
     loops: &mut Constraints<'_>,
-) -> Option<Vec<closure::Domain>> {
+) -> Option<velocity::Minimal> {
     if loops.phi.is_empty() || ast.loop_form == parse::LoopForm::Augmented {
         return None;
     }
@@ -66,21 +68,35 @@ pub(super) fn minimal_coordinates(
         return None;
     };
     check_closure_defaults(g, loops, &env, ast, &mut scope.errors);
-    eliminate(scope, kin, &solution.solved);
+    let forms = keep_symbols(scope, kin, &loops.phi, &solution);
     loops.phi.clear();
     loops.tokens.clear();
-    Some(solution.domain)
+    Some(velocity::Minimal {
+        domain: solution.domain,
+        forms,
+    })
 }
 
-/// Replaces each solved coordinate by its closed form everywhere: `z -> h` (sin z, cos z by
-/// the form's own), `z' -> dh/dt`, `z'' -> d2h/dt2`; then numbers the state anew.
-fn eliminate(scope: &mut Scope, kin: &mut Kinematics, solved: &[(usize, closure::Form)]) {
+/// The dependent coordinates stay symbols (velocity.rs): their rates by the implicit-function
+/// rule become their kind; their closed forms (returned) replace them after the projection.
+/// Then numbers the state anew.
+fn keep_symbols(
+    scope: &mut Scope,
+    kin: &mut Kinematics,
+    phi: &[Expr],
+    solution: &closure::Solution,
+) -> Vec<(Sym, closure::Form)> {
     let g = &mut scope.g;
     let coords = &mut kin.coords;
-    let mut map: HashMap<Sym, Expr> = HashMap::new();
-    let mut forms = Vec::new();
-    let mut eliminations = Vec::new();
-    {
+    let dep: Vec<usize> = solution.solved.iter().map(|s| s.0).collect();
+    let [z, zd, zdd] = [|c: &Coord| c.z, |c: &Coord| c.zd, |c: &Coord| c.zdd]
+        .map(|f| coords.iter().map(f).collect::<Vec<Expr>>());
+    let symbols = velocity::Symbols {
+        z: &z,
+        zd: &zd,
+        zdd: &zdd,
+    };
+    let rates = {
         let mut none = Vec::new();
         let kin = Kin {
             coords,
@@ -89,70 +105,49 @@ fn eliminate(scope: &mut Scope, kin: &mut Kinematics, solved: &[(usize, closure:
             dim: scope.dim,
             reactions: &mut none,
         };
-        for &(i, form) in solved {
-            let h = form.value;
-            eliminations.push((g.as_sym(coords[i].z).expect("symbol"), form));
-            let hd = kin.tder(g, h);
-            let hdd = kin.tder(g, hd);
-            let c = &coords[i];
-            for (s, v) in [(c.zd, hd), (c.zdd, hdd)] {
-                map.insert(g.as_sym(s).expect("symbol"), v);
-            }
-            forms.push((i, [h, hd, hdd]));
-        }
-    }
-    let mut dependent_names = Vec::new();
-    for (i, form) in forms {
-        coords[i].kind = CoordKind::Dependent(form);
-        dependent_names.push((coords[i].name.to_string(), form[0]));
-    }
-    let mut memos: Vec<HashMap<Expr, Expr>> = vec![HashMap::new(); eliminations.len()];
-    let mut close = |g: &mut Graph, e: Expr| {
-        let mut e = g.substitute(e, &map);
-        for ((x, form), memo) in eliminations.iter().zip(memos.iter_mut()) {
-            e = closure::eliminate(g, e, *x, *form, memo);
-        }
-        e
+        velocity::rates(g, phi, &dep, &solution.pivots, &symbols, &|g, e| {
+            kin.tder(g, e)
+        })
     };
-    for b in kin.bodies.iter_mut() {
-        for e in kinematics_of(b) {
-            *e = close(g, *e);
-        }
-    }
-    for binding in scope.names.values_mut() {
-        if let Binding::Value(v) = binding {
-            *v = match v {
-                Value::Scalar(e) => Value::Scalar(close(g, *e)),
-                Value::Vector(v) => Value::Vector(v.iter().map(|&e| close(g, e)).collect()),
-                Value::Matrix(m) => Value::Matrix(m.map(|row| row.map(|e| close(g, e)))),
-            };
-        }
-    }
-    for (name, h) in dependent_names {
-        scope.names.insert(name, Binding::Value(Value::Scalar(h)));
+    let mut forms = Vec::new();
+    for (k, &(i, form)) in solution.solved.iter().enumerate() {
+        let (v, a) = (rates.velocity[k], rates.acceleration[k]);
+        coords[i].kind = CoordKind::Dependent([form.value, v, a]);
+        forms.push((g.as_sym(coords[i].z).expect("symbol"), form));
     }
     renumber(g, &mut scope.roles, coords);
+    forms
 }
 
-/// Every expression of a body's position and orientation.
-fn kinematics_of(b: &mut BodyKin) -> impl Iterator<Item = &mut Expr> {
-    let BodyKin {
-        r,
-        angle,
-        rot,
-        origin,
-        frame_angle,
-        frame_rot,
-        frame_omega,
-        ..
-    } = b;
-    r.iter_mut()
-        .chain(angle.iter_mut())
-        .chain(rot.iter_mut().flatten().flatten())
-        .chain(origin.iter_mut())
-        .chain(frame_angle.iter_mut())
-        .chain(frame_rot.iter_mut().flatten().flatten())
-        .chain(frame_omega.iter_mut().flatten())
+/// `M zdd = f` of a model in minimal coordinates projected on its independent coordinates
+/// (velocity.rs).
+pub(super) fn project(g: &mut Graph, coords: &[Coord], m: &mut [Vec<Expr>], f: &mut [Expr]) {
+    let pick = |k: fn(&CoordKind) -> bool| -> Vec<usize> {
+        (0..coords.len()).filter(|&i| k(&coords[i].kind)).collect()
+    };
+    let free = pick(|k| matches!(k, CoordKind::Free));
+    let driven = pick(|k| matches!(k, CoordKind::Driven(_)));
+    let dependent: Vec<(usize, Expr, Expr)> = coords
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| match c.kind {
+            CoordKind::Dependent([_, v, a]) => Some((i, v, a)),
+            _ => None,
+        })
+        .collect();
+    let [z, zd, zdd] = [|c: &Coord| c.z, |c: &Coord| c.zd, |c: &Coord| c.zdd]
+        .map(|f| coords.iter().map(f).collect::<Vec<Expr>>());
+    let split = velocity::Split {
+        free: &free,
+        driven: &driven,
+        dependent: &dependent,
+    };
+    let symbols = velocity::Symbols {
+        z: &z,
+        zd: &zd,
+        zdd: &zdd,
+    };
+    velocity::project(g, m, f, &split, &symbols);
 }
 
 /// The state is the independent coordinates, in the order of `coords`.

@@ -1,5 +1,6 @@
 //! Reduction from full to free coordinates in one pass over the shared graph: driven
-//! `z -> s(t)` (with `s'`, `s''`, `s'''`), relaxed `z -> 0`, dependent `z -> h(q)`; the
+//! `z -> s(t)` (with `s'`, `s''`, `s'''`), relaxed `z -> 0`, dependent rates by the closure
+//! (minimal coordinates: the equations projected first, the closed form substituted last); the
 //! driven coordinates' known accelerations move to the right side.
 
 use super::inertial::Inertial;
@@ -8,6 +9,7 @@ use super::{Coord, CoordKind, LAZY_MASS_FROM, Role};
 use crate::spatial;
 use crate::sym::{Expr, Sym};
 use crate::tree;
+use crate::velocity;
 use std::collections::HashMap;
 
 /// The equations in the free coordinates.
@@ -33,7 +35,16 @@ pub(super) fn reduce(
     inertial: &mut Inertial,
     phi_full: &[Expr],
     jacobian: bool,
+    minimal: Option<&velocity::Minimal>,
 ) -> Reduced {
+    if minimal.is_some() {
+        super::minimal::project(
+            &mut scope.g,
+            coords,
+            &mut inertial.m_full,
+            &mut inertial.f_full,
+        );
+    }
     let map = reduction_map(scope, coords);
     let g = &mut scope.g;
     let zero = g.zero();
@@ -109,6 +120,9 @@ pub(super) fn reduce(
         full_rows.extend(free_idx.iter().map(|&i| rows[i]));
     }
     let mut reduced = g.substitute_all(&full_rows, &map);
+    if let Some(min) = minimal {
+        reduced = min.close(g, &reduced);
+    }
     let inverse = inverse_full
         .is_some()
         .then(|| reduced.split_off(n_rows_lazy));
@@ -151,7 +165,8 @@ fn reduction_map(scope: &mut Scope, coords: &[Coord]) -> HashMap<Sym, Expr> {
                 (*law, d1, d2, d3)
             }
             CoordKind::Relaxed => (zero, zero, zero, zero),
-            CoordKind::Dependent([h, hd, hdd]) => (*h, *hd, *hdd, zero),
+            // The position stays a symbol until `velocity::Minimal::close`.
+            CoordKind::Dependent([_, hd, hdd]) => (c.z, *hd, *hdd, zero),
         };
         for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd), (c.zddd, zddd)] {
             map.insert(g.as_sym(s).expect("symbol"), v);
