@@ -300,7 +300,7 @@ fn constrained_impl(
             Some(solve) => solve.clone(),
             None => quote! {
                 #f_s #f_m #f_f #f_pq #f_g
-                ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
+                ::mbd::__private::solve::solve_constrained::<Self, #n, #m, #a>(self, t, q, qd, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
             },
         };
         quote! {
