@@ -435,6 +435,12 @@ fn replay<const D: usize>(
     kept: Vec<Kept<D>>,
 ) -> Result<Solution<D>> {
     let dense = kept.iter().all(|k| k.2.is_some());
+    // The failed run's own counters are lost with it: its accepted steps at least.
+    let work = Stats {
+        n_steps: kept.len(),
+        n_accepted: kept.len(),
+        ..Stats::default()
+    };
     let mut recorder = Recorder::with(events, t, y, dense, crate::integrate::Record::Steps);
     for (t1, y1, seg) in kept {
         let flow = match seg {
@@ -445,7 +451,7 @@ fn replay<const D: usize>(
             break;
         }
     }
-    recorder.finish(Stats::default())
+    recorder.finish(work)
 }
 
 fn start<const D: usize>(t0: f64, y0: Vector<D>) -> Solution<D> {
