@@ -52,7 +52,10 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
             Vec::new()
         } else {
             let svd = nalgebra::SVD::new(p.transpose() * &p, true, true);
-            let v = svd.v_t.ok_or(Error::SingularConstraintJacobian { t })?.transpose();
+            let v = svd
+                .v_t
+                .ok_or(Error::SingularConstraintJacobian { t })?
+                .transpose();
             // Columns of `v` for the k smallest singular values.
             let mut order: Vec<usize> = (0..N).collect();
             order.sort_by(|&a, &b| svd.singular_values[a].total_cmp(&svd.singular_values[b]));
@@ -100,7 +103,12 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
     }
 
     /// The consistent `(q, qd)` with the independent parts of `y`, and the QR at `q`.
-    fn rebuild(&self, t: f64, y: &Vector<N>, yd: &Vector<N>) -> Result<(Vector<N>, Vector<N>, Factored)> {
+    fn rebuild(
+        &self,
+        t: f64,
+        y: &Vector<N>,
+        yd: &Vector<N>,
+    ) -> Result<(Vector<N>, Vector<N>, Factored)> {
         let singular = || Error::SingularPosition {
             t,
             detail: format!(
@@ -121,7 +129,8 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
         };
         let fq = self.factor(t, &q).ok_or_else(singular)?;
         let zd = DVector::from_iterator(self.free.len(), self.free.iter().map(|&i| yd[i]));
-        let rhs = -(DVector::from_iterator(M, self.sys.phi_t(t, &q).iter().copied()) + &fq.pi * &zd);
+        let rhs =
+            -(DVector::from_iterator(M, self.sys.phi_t(t, &q).iter().copied()) + &fq.pi * &zd);
         let xd = Self::solve(&fq, &rhs).ok_or_else(singular)?;
         let mut qd = Vector::<N>::zeros();
         for (j, &c) in self.free.iter().enumerate() {
@@ -186,7 +195,13 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
     }
 
     /// `qdd = R z'' + c` from the reduced equations at a consistent `(q, qd)`.
-    fn accelerations(&self, t: f64, q: &Vector<N>, qd: &Vector<N>, f: &Factored) -> Result<Vector<N>> {
+    fn accelerations(
+        &self,
+        t: f64,
+        q: &Vector<N>,
+        qd: &Vector<N>,
+        f: &Factored,
+    ) -> Result<Vector<N>> {
         let (k, n) = (self.free.len(), self.dependent.len());
         let singular = || Error::SingularConstraintJacobian { t };
         let gamma = DVector::from_iterator(M, self.sys.gamma(t, q, qd).iter().copied());
@@ -208,7 +223,10 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
         let force = DVector::from_iterator(N, self.sys.forces(t, q, qd).iter().copied());
         let mr = r.transpose() * &mass * &r;
         let fr = r.transpose() * (force - &mass * &c);
-        let zdd = mr.cholesky().ok_or(Error::SingularMassMatrix { t })?.solve(&fr);
+        let zdd = mr
+            .cholesky()
+            .ok_or(Error::SingularMassMatrix { t })?
+            .solve(&fr);
         let qdd = r * zdd + c;
         let out = Vector::<N>::from_iterator(qdd.iter().copied());
         if out.iter().all(|v| v.is_finite()) {

@@ -26,11 +26,11 @@ use crate::analysis::redundancy::{pivot_remainders, rank_with};
 use crate::analysis::{check_passages, rank_and_redundant};
 use crate::error::{Error, Num, Result};
 use crate::integrate::{
-    Dopri5, Event, Flow, GeneralizedAlpha, Integrator, Options, Recorder, Segment, Solution,
-    Stats, Step,
+    Dopri5, Event, Flow, GeneralizedAlpha, Integrator, Options, Recorder, Segment, Solution, Stats,
+    Step,
 };
-use crate::partition::Partitioned;
 use crate::model::{Constrained, OdeSystem, Vector};
+use crate::partition::Partitioned;
 
 /// How [`solve`] bridges singular positions.
 #[derive(Debug, Clone, PartialEq)]
@@ -119,7 +119,15 @@ where
 {
     drive::<S, N, M, D>(sys, (t0, y0, t1), events, settings, |t, y, observer| {
         let (q, qd) = split::<N, D>(&y);
-        method.solve_constrained_observed::<S, N, M, A, D>(sys, t, q, qd, t1, events, Some(observer))
+        method.solve_constrained_observed::<S, N, M, A, D>(
+            sys,
+            t,
+            q,
+            qd,
+            t1,
+            events,
+            Some(observer),
+        )
     })
 }
 
@@ -203,7 +211,10 @@ where
             steps,
             error,
             q: q.iter().copied().collect(),
-            rows: rows.into_iter().filter(|r| !redundant0.contains(r)).collect(),
+            rows: rows
+                .into_iter()
+                .filter(|r| !redundant0.contains(r))
+                .collect(),
         });
         (t, y) = (out.t_end, out.y_end);
         if out.stopped_by.is_some() || t >= t1 {
@@ -292,7 +303,10 @@ fn extrapolate<S: Constrained<N, M>, const N: usize, const M: usize, const D: us
     (t1, y1): (f64, &Vector<D>),
     rank0: usize,
 ) -> Option<f64> {
-    let (m0, m1) = (measure::<S, N, M, D>(sys, t0, y0, rank0), measure::<S, N, M, D>(sys, t1, y1, rank0));
+    let (m0, m1) = (
+        measure::<S, N, M, D>(sys, t0, y0, rank0),
+        measure::<S, N, M, D>(sys, t1, y1, rank0),
+    );
     let t = t1 + m1 * (t1 - t0) / (m0 - m1);
     (m1 < m0 && t.is_finite() && t > t1).then_some(t)
 }
@@ -305,7 +319,10 @@ fn extrapolate<S: Constrained<N, M>, const N: usize, const M: usize, const D: us
 /// square of the vanishing singular value), halved until its error estimate meets the
 /// tolerance (or as far as rounding allows), then on to as far past `t*` as `ta` was
 /// before it. The run, `t*`, and the step's error estimate.
-#[allow(clippy::too_many_arguments, reason = "the states and times of one bridge")]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the states and times of one bridge"
+)]
 fn bridge<S, const N: usize, const M: usize, const D: usize>(
     sys: &S,
     before: Option<(f64, Vector<D>)>,
@@ -331,9 +348,14 @@ where
     // guess; other stops are located by the measure's trend.
     let guess = match cause {
         Error::SingularPosition { .. } => None,
-        _ => before.and_then(|(tp, yp)| extrapolate::<S, N, M, D>(sys, (tp, &yp), (ta, &ya), rank0)),
+        _ => {
+            before.and_then(|(tp, yp)| extrapolate::<S, N, M, D>(sys, (tp, &yp), (ta, &ya), rank0))
+        }
     };
-    let t_star = guess.filter(|&t| t < tf + 4.0 * (tf - ta)).unwrap_or(tf).max(ta);
+    let t_star = guess
+        .filter(|&t| t < tf + 4.0 * (tf - ta))
+        .unwrap_or(tf)
+        .max(ta);
     let mut h = (t_star - ta) / 0.6;
     let far = (t_star + (t_star - ta).max(tf - ta)).min(t1);
     if t_star + 0.45 * h >= t1 || h <= 0.0 {
@@ -368,8 +390,13 @@ where
             ),
         });
     };
-    let mut record =
-        Recorder::with(events, part.t_end, part.y_end, true, crate::integrate::Record::Steps);
+    let mut record = Recorder::with(
+        events,
+        part.t_end,
+        part.y_end,
+        true,
+        crate::integrate::Record::Steps,
+    );
     let stopped = record.accept(seg, &y1) == Flow::Stop;
     let work = Stats {
         n_rhs: 8,

@@ -83,7 +83,10 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
 /// (rows that vanish only at one instant) keeps the error: its rows are independent at
 /// the projected state, and its accelerations are not determined by one state there.
 /// Generated closed-loop models call it.
-#[allow(clippy::too_many_arguments, reason = "the state and the blocks of one system")]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the state and the blocks of one system"
+)]
 pub fn solve_constrained<S: Constrained<N, M>, const N: usize, const M: usize, const A: usize>(
     sys: &S,
     t: f64,
@@ -109,7 +112,9 @@ fn redundant_at_projection<S: Constrained<N, M>, const N: usize, const M: usize>
     q: &Vector<N>,
     qd: &Vector<N>,
 ) -> Option<(Vector<N>, Vector<M>)> {
-    use crate::analysis::{NewtonOptions, project_positions, project_velocities, rank_and_redundant};
+    use crate::analysis::{
+        NewtonOptions, project_positions, project_velocities, rank_and_redundant,
+    };
     let (mut q, mut qd) = (*q, *qd);
     project_positions(sys, t, &mut q, &NewtonOptions::default()).ok()?;
     project_velocities(sys, t, &q, &mut qd).ok()?;

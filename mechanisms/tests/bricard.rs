@@ -197,7 +197,11 @@ fn runs_at_every_tolerance() {
         }
         .unwrap_or_else(|e| panic!("{name} {tol:e}: {e}"));
         assert_eq!(sol.t_end, 10.0);
-        let de = sol.y.iter().map(|y| (energy(y) - e0).abs()).fold(0.0, f64::max);
+        let de = sol
+            .y
+            .iter()
+            .map(|y| (energy(y) - e0).abs())
+            .fold(0.0, f64::max);
         let phi = sol
             .y
             .iter()

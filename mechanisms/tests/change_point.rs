@@ -141,9 +141,18 @@ fn the_bridge_reports_the_change_point_on_every_method() {
     };
     let s = Settings::new(1e-8);
     let runs = vec![
-        ("DOPRI5", passage::solve(&Dopri5::new(o.clone()), &m, 0.0, y0, 1.0, &[], &s)),
-        ("Radau5", passage::solve(&Radau5::new(o), &m, 0.0, y0, 1.0, &[], &s)),
-        ("RK4", passage::solve(&Rk4::new(1e-3), &m, 0.0, y0, 1.0, &[], &s)),
+        (
+            "DOPRI5",
+            passage::solve(&Dopri5::new(o.clone()), &m, 0.0, y0, 1.0, &[], &s),
+        ),
+        (
+            "Radau5",
+            passage::solve(&Radau5::new(o), &m, 0.0, y0, 1.0, &[], &s),
+        ),
+        (
+            "RK4",
+            passage::solve(&Rk4::new(1e-3), &m, 0.0, y0, 1.0, &[], &s),
+        ),
         (
             "generalized-alpha",
             passage::solve_generalized_alpha::<_, 2, 2, 4, 4>(
@@ -161,7 +170,10 @@ fn the_bridge_reports_the_change_point_on_every_method() {
         match run.map(|p| p.passages.len()) {
             Err(Error::SingularPosition { t, detail }) => {
                 eprintln!("{name}: t = {t}: {detail}");
-                assert!((T_CHANGE..T_CHANGE + 0.2).contains(&t), "{name}: at t = {t}");
+                assert!(
+                    (T_CHANGE..T_CHANGE + 0.2).contains(&t),
+                    "{name}: at t = {t}"
+                );
                 assert!(detail.contains("q = "), "{name}: {detail}");
             }
             other => panic!("{name}: expected SingularPosition, got {other:?}"),

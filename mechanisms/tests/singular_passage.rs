@@ -37,7 +37,11 @@ fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, what: &str) -> f64 {
     assert!(spread < 1e-6, "{what}: cranks {spread} apart");
     for p in &run.passages {
         let th = reference.at(p.t).unwrap()[0];
-        assert!(th.sin().abs() < 1e-3, "{what}: passage at t = {} where th = {th}", p.t);
+        assert!(
+            th.sin().abs() < 1e-3,
+            "{what}: passage at t = {} where th = {th}",
+            p.t
+        );
         assert_eq!(p.rows.len(), fa::LOOPS, "{what}: rows {:?}", p.rows);
     }
     err
@@ -52,12 +56,23 @@ fn dopri5_is_bridged_on_the_parallelogram_branch() {
     let y0 = a.benchmark_state(1.0);
     let mut errors = vec![];
     for tol in [1e-9, 1e-10] {
-        let run = passage::solve(&Dopri5::new(options(tol)), &a, 0.0, y0, T1, &[], &Settings::new(tol))
-            .unwrap();
+        let run = passage::solve(
+            &Dopri5::new(options(tol)),
+            &a,
+            0.0,
+            y0,
+            T1,
+            &[],
+            &Settings::new(tol),
+        )
+        .unwrap();
         assert!(!run.passages.is_empty(), "{tol:e}: no passage bridged");
         errors.push(check(&a, &run, &format!("DOPRI5 {tol:e}")));
     }
-    assert!(errors[0] < 1e-5 && errors[1] < 0.5 * errors[0], "{errors:?}");
+    assert!(
+        errors[0] < 1e-5 && errors[1] < 0.5 * errors[0],
+        "{errors:?}"
+    );
 }
 
 /// Radau5 at 1e-8 (its Newton iteration or the index-1 solve stops at a flat position).
@@ -79,8 +94,16 @@ fn big_stack(f: fn()) {
 fn radau5() {
     let a = FourBarAssembly::benchmark();
     let y0 = a.benchmark_state(1.0);
-    let run = passage::solve(&Radau5::new(options(1e-8)), &a, 0.0, y0, T1, &[], &Settings::new(1e-8))
-        .unwrap();
+    let run = passage::solve(
+        &Radau5::new(options(1e-8)),
+        &a,
+        0.0,
+        y0,
+        T1,
+        &[],
+        &Settings::new(1e-8),
+    )
+    .unwrap();
     let err = check(&a, &run, "Radau5 1e-8");
     assert!(err < 1e-4, "{err:e}");
 }
@@ -96,16 +119,17 @@ fn generalized_alpha() {
     let a = FourBarAssembly::benchmark();
     let y0 = a.benchmark_state(1.0);
     let h = 1e-3;
-    let run = passage::solve_generalized_alpha::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
-        &GeneralizedAlpha::new(0.9, h),
-        &a,
-        0.0,
-        y0,
-        T1,
-        &[],
-        &Settings::new(h * h),
-    )
-    .unwrap();
+    let run =
+        passage::solve_generalized_alpha::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
+            &GeneralizedAlpha::new(0.9, h),
+            &a,
+            0.0,
+            y0,
+            T1,
+            &[],
+            &Settings::new(h * h),
+        )
+        .unwrap();
     let err = check(&a, &run, "generalized-alpha 1e-3");
     assert!(err < 1e-3, "{err:e}");
 }
