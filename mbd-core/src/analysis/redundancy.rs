@@ -55,7 +55,7 @@ fn pivots<const M: usize, const N: usize>(phi_q: &Matrix<M, N>) -> (Vec<f64>, Ve
         order.push(k);
         let relative = if scale > 0.0 { norm / scale } else { 0.0 };
         norms.push(if relative.is_nan() { 0.0 } else { relative });
-        if !(norm > 0.0) {
+        if norm.is_nan() || norm <= 0.0 {
             continue;
         }
         let e = rows[k] / norm;
