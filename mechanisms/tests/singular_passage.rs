@@ -24,12 +24,12 @@ fn options(tol: f64) -> Options {
 /// Tip error against the reduction, crank spread, and every passage at a flat position of
 /// the reduction (`|sin th| < 1e-3` there: within 2.5e-4 s of the instant at the 4 rad/s
 /// the cranks turn there) with its 40 lost rows named.
-fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, what: &str) -> f64 {
-    let reference = fa::reference(a, 1.0, T1).unwrap();
+fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, t1: f64, what: &str) -> f64 {
+    let reference = fa::reference(a, 1.0, t1).unwrap();
     let sol = &run.solution;
-    assert_eq!(sol.t_end, T1, "{what}");
+    assert_eq!(sol.t_end, t1, "{what}");
     let spread = sol.y.iter().map(|y| a.spread(y).0).fold(0.0, f64::max);
-    let err = fa::tip_error(a, sol, &reference, T1, 60);
+    let err = fa::tip_error(a, sol, &reference, t1, 60);
     eprintln!(
         "{what}: tip error {err:e}, crank spread {spread:e}, passages at {:?}",
         run.passages.iter().map(|p| p.t).collect::<Vec<_>>()
@@ -67,7 +67,7 @@ fn dopri5_is_bridged_on_the_parallelogram_branch() {
         )
         .unwrap();
         assert!(!run.passages.is_empty(), "{tol:e}: no passage bridged");
-        errors.push(check(&a, &run, &format!("DOPRI5 {tol:e}")));
+        errors.push(check(&a, &run, T1, &format!("DOPRI5 {tol:e}")));
     }
     assert!(
         errors[0] < 1e-5 && errors[1] < 0.5 * errors[0],
@@ -104,12 +104,13 @@ fn radau5() {
         &Settings::new(1e-8),
     )
     .unwrap();
-    let err = check(&a, &run, "Radau5 1e-8");
+    let err = check(&a, &run, T1, "Radau5 1e-8");
     assert!(err < 1e-4, "{err:e}");
 }
 
 /// Generalized-α (index 3) at h = 1e-3, whose Newton iteration fails at the first flat
-/// position unbridged.
+/// position unbridged (the first second only: its forward-difference Jacobian of 161
+/// columns per step is slow).
 #[test]
 fn generalized_alpha_is_bridged_on_the_parallelogram_branch() {
     big_stack(generalized_alpha);
@@ -125,11 +126,12 @@ fn generalized_alpha() {
             &a,
             0.0,
             y0,
-            T1,
+            1.0,
             &[],
             &Settings::new(h * h),
         )
         .unwrap();
-    let err = check(&a, &run, "generalized-alpha 1e-3");
+    assert_eq!(run.passages.len(), 1);
+    let err = check(&a, &run, 1.0, "generalized-alpha 1e-3");
     assert!(err < 1e-3, "{err:e}");
 }
