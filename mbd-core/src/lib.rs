@@ -16,6 +16,8 @@ pub mod integrate;
 pub mod jacobian;
 pub mod linalg;
 pub mod model;
+pub mod partition;
+pub mod passage;
 pub mod solve;
 
 pub use error::{Error, Result};

@@ -3,7 +3,7 @@
 use crate::augmented::AugmentedLagrangian;
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
-use crate::model::{Matrix, Vector};
+use crate::model::{Constrained, Matrix, Vector};
 
 /// `qdd` from `M qdd = f` by `L D L^T`. A mass matrix is symmetric positive definite; one
 /// that is not is refused, not solved: NaN or infinite entries ([`Error::NonFinite`]), a
@@ -87,9 +87,21 @@ pub fn solve_augmented<const N: usize, const M: usize, const A: usize>(
 /// [`solve_augmented`] with `M` and `Phi_q` given by their non-zeros `(row, column, value)`
 /// (`M` by its lower triangle and diagonal): what generated code passes for a large
 /// assembly, whose dense matrices are mostly zeros. One banded LU (crate::banded) while it is
-/// well conditioned, else the augmented Lagrangian on the dense matrices built from them.
-pub fn solve_augmented_sparse<const N: usize, const M: usize, const A: usize>(
+/// well conditioned, else [`solve_constrained`] on the dense matrices built from them.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the state and the blocks of one system"
+)]
+pub fn solve_augmented_sparse<
+    S: Constrained<N, M>,
+    const N: usize,
+    const M: usize,
+    const A: usize,
+>(
+    sys: &S,
     t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
     mass: &[(usize, usize, f64)],
     f: &Vector<N>,
     phi_q: &[(usize, usize, f64)],
@@ -107,7 +119,63 @@ pub fn solve_augmented_sparse<const N: usize, const M: usize, const A: usize>(
     for &(k, j, v) in phi_q {
         p[(k, j)] = v;
     }
-    solve_augmented::<N, M, A>(t, &m, f, &p, gamma)
+    solve_constrained::<S, N, M, A>(sys, t, q, qd, &m, f, &p, gamma)
+}
+
+/// [`solve_augmented`] for a closed loop's state `(q, qd)`; where it stops with
+/// [`Error::SingularPosition`], the accelerations at the state projected onto the
+/// constraint manifolds (mass-orthogonally, to the default tolerance) if the rows that are
+/// nearly dependent at `(q, qd)` are dependent to rounding there: redundant constraints
+/// (the Bricard linkage), whose rows are only nearly dependent off the manifold, so that
+/// the drift of an integrated state looks like a singular position. A singular position
+/// (rows that vanish only at one instant) keeps the error: its rows are independent at
+/// the projected state, and its accelerations are not determined by one state there.
+/// Generated closed-loop models call it.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the state and the blocks of one system"
+)]
+pub fn solve_constrained<S: Constrained<N, M>, const N: usize, const M: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+    mass: &Matrix<N, N>,
+    f: &Vector<N>,
+    phi_q: &Matrix<M, N>,
+    gamma: &Vector<M>,
+) -> Result<(Vector<N>, Vector<M>)> {
+    match solve_augmented::<N, M, A>(t, mass, f, phi_q, gamma) {
+        Err(e @ Error::SingularPosition { .. }) => redundant_at_projection(sys, t, q, qd).ok_or(e),
+        other => other,
+    }
+}
+
+/// The accelerations and multipliers at the projection of `(q, qd)` when `Phi_q` there
+/// has dependent rows to [`crate::analysis::RANK_TOL`] and the augmented solve converges
+/// (consistent to rounding); `None` otherwise.
+fn redundant_at_projection<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Option<(Vector<N>, Vector<M>)> {
+    use crate::analysis::{
+        NewtonOptions, project_positions, project_velocities, rank_and_redundant,
+    };
+    let (mut q, mut qd) = (*q, *qd);
+    project_positions(sys, t, &mut q, &NewtonOptions::default()).ok()?;
+    project_velocities(sys, t, &q, &mut qd).ok()?;
+    let phi_q = sys.phi_q(t, &q);
+    if rank_and_redundant(&phi_q).1.is_empty() {
+        return None;
+    }
+    let mass = sys.mass_matrix(t, &q);
+    let s = AugmentedLagrangian::new(t, &mass, &phi_q)
+        .ok()?
+        .solve(&sys.forces(t, &q, &qd), &sys.gamma(t, &q, &qd))
+        .ok()?;
+    Some((finite(t, s.x).ok()?, finite(t, s.lambda).ok()?))
 }
 
 /// Saddle-point systems up to this size (`N + M`) are first tried by one dense LU on the

@@ -11,6 +11,7 @@ pub mod chain_by_hand;
 pub mod fourbar_assembly;
 pub mod handwritten;
 pub mod linear_io;
+pub mod loop_rows;
 pub mod mode_svg;
 pub mod modes;
 pub mod sim;

@@ -439,6 +439,7 @@ pub fn cases() -> Vec<Problem> {
     ]
     .into_iter()
     .chain(crate::stick_slip::problems())
+    .chain(crate::loop_rows::problems())
     .collect()
 }
 

@@ -122,3 +122,61 @@ fn no_passage_before_the_change_point() {
         assert_eq!(check_passages::<_, 2, 2, 4>(&m, &sol), Ok(()), "{name}");
     }
 }
+
+/// Through the bridge of `mbd::passage` (which carries a mobile loop across its singular
+/// positions), the driven change-point four-bar has no degree of freedom to be carried
+/// by: every method, the index-3 generalized-α included, ends with the same typed error
+/// at the change point, naming the configuration.
+#[test]
+fn the_bridge_reports_the_change_point_on_every_method() {
+    use mbd::integrate::GeneralizedAlpha;
+    use mbd::passage::{self, Settings};
+    let m = mechanism();
+    let (q0, qd0) = start(&m);
+    let y0 = mbd::Vector::<4>::new(q0[0], q0[1], qd0[0], qd0[1]);
+    let o = Options {
+        rtol: 1e-8,
+        atol: 1e-8,
+        ..Default::default()
+    };
+    let s = Settings::new(1e-8);
+    let runs = vec![
+        (
+            "DOPRI5",
+            passage::solve(&Dopri5::new(o.clone()), &m, 0.0, y0, 1.0, &[], &s),
+        ),
+        (
+            "Radau5",
+            passage::solve(&Radau5::new(o), &m, 0.0, y0, 1.0, &[], &s),
+        ),
+        (
+            "RK4",
+            passage::solve(&Rk4::new(1e-3), &m, 0.0, y0, 1.0, &[], &s),
+        ),
+        (
+            "generalized-alpha",
+            passage::solve_generalized_alpha::<_, 2, 2, 4, 4>(
+                &GeneralizedAlpha::new(0.9, 1e-3),
+                &m,
+                0.0,
+                y0,
+                1.0,
+                &[],
+                &s,
+            ),
+        ),
+    ];
+    for (name, run) in runs {
+        match run.map(|p| p.passages.len()) {
+            Err(Error::SingularPosition { t, detail }) => {
+                eprintln!("{name}: t = {t}: {detail}");
+                assert!(
+                    (T_CHANGE..T_CHANGE + 0.2).contains(&t),
+                    "{name}: at t = {t}"
+                );
+                assert!(detail.contains("q = "), "{name}: {detail}");
+            }
+            other => panic!("{name}: expected SingularPosition, got {other:?}"),
+        }
+    }
+}

@@ -333,12 +333,12 @@ fn constrained_impl(
                 let f_pq = full.triplets("phi_q", &eq.phi_q, false);
                 quote! {
                     #f_s #f_m #f_f #f_pq #f_g
-                    ::mbd::__private::solve::solve_augmented_sparse::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
+                    ::mbd::__private::solve::solve_augmented_sparse::<Self, #n, #m, #a>(self, t, q, qd, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
                 }
             }
             None => quote! {
                 #f_s #f_m #f_f #f_pq #f_g
-                ::mbd::__private::solve::solve_augmented::<#n, #m, #a>(t, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
+                ::mbd::__private::solve::solve_constrained::<Self, #n, #m, #a>(self, t, q, qd, &mass, &f, &phi_q, &gamma).map_err(|e| self.diagnose(e))
             },
         };
         quote! {

@@ -3,9 +3,13 @@
 //! every method, with the error of crank 0's tip against the one-coordinate reference and
 //! how far the cranks drifted from a parallelogram.
 //!
+//! DOPRI5, Radau5 and generalized-alpha run through `mbd::passage`, which bridges the singular
+//! positions their index-1 accelerations (or Newton iterations) stop at; `bridged` counts them.
+//!
 //! `cargo run --release -p mechanisms --bin loops [-- --quick] [--only DOPRI5|Radau5|ALI3-P|gen-a]`
 
-use mbd::integrate::{Ali3, GeneralizedAlpha, Integrator, Radau5};
+use mbd::integrate::{Ali3, GeneralizedAlpha, Radau5};
+use mbd::passage::{self, Settings};
 use mbd::{Dopri5, OdeSystem, Options, Solution};
 use mechanisms::fourbar_assembly::{self as fa, FourBarAssembly};
 use std::time::Instant;
@@ -39,7 +43,7 @@ fn row(
     setting: &str,
     a: &FourBarAssembly,
     r: &Solution<2>,
-    run: impl FnOnce() -> mbd::Result<Solution<{ fa::D }>>,
+    run: impl FnOnce() -> mbd::Result<(Solution<{ fa::D }>, usize)>,
 ) {
     // `--only NAME` runs one method's rows.
     let args: Vec<String> = std::env::args().collect();
@@ -52,11 +56,11 @@ fn row(
     let out = run();
     let secs = start.elapsed().as_secs_f64();
     match out {
-        Ok(sol) => {
+        Ok((sol, passages)) => {
             let err = fa::tip_error(a, &sol, r, T1, OUTPUTS);
             let spread = sol.y.iter().map(|y| a.spread(y).0).fold(0.0, f64::max);
             println!(
-                "{name:<8} {setting:<10} ok   tip error {err:9.2e}  max crank spread {spread:9.2e}  {:8.1} ms  steps {:7}  rhs {:8}",
+                "{name:<8} {setting:<10} ok   tip error {err:9.2e}  max crank spread {spread:9.2e}  {:8.1} ms  steps {:7}  rhs {:8}  bridged {passages:3}",
                 secs * 1e3,
                 sol.stats.n_accepted,
                 sol.stats.n_rhs
@@ -91,7 +95,16 @@ fn main() {
             ..Default::default()
         };
         row("DOPRI5", &format!("{tol:.0e}"), &a, &reference, || {
-            Dopri5::new(opts).solve(&a, 0.0, y0, T1, &[])
+            passage::solve(
+                &Dopri5::new(opts),
+                &a,
+                0.0,
+                y0,
+                T1,
+                &[],
+                &Settings::new(tol),
+            )
+            .map(|p| (p.solution, p.passages.len()))
         });
     }
     let radau: &[f64] = if quick {
@@ -106,7 +119,16 @@ fn main() {
             ..Default::default()
         };
         row("Radau5", &format!("{tol:.0e}"), &a, &reference, || {
-            Radau5::new(opts).solve(&a, 0.0, y0, T1, &[])
+            passage::solve(
+                &Radau5::new(opts),
+                &a,
+                0.0,
+                y0,
+                T1,
+                &[],
+                &Settings::new(tol),
+            )
+            .map(|p| (p.solution, p.passages.len()))
         });
     }
     let ali3: &[f64] = if quick {
@@ -118,23 +140,24 @@ fn main() {
         let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
         let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
         row("ALI3-P", &format!("h={h:.0e}"), &a, &reference, || {
-            Ali3::new(h).solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
+            Ali3::new(h)
+                .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
+                .map(|s| (s, 0))
         });
     }
     let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };
     for &h in alpha {
-        let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
-        let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
         row("gen-a", &format!("h={h:.0e}"), &a, &reference, || {
-            GeneralizedAlpha::new(0.9, h)
-                .solve_constrained::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
-                    &a,
-                    0.0,
-                    q0,
-                    qd0,
-                    T1,
-                    &[],
-                )
+            passage::solve_generalized_alpha::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
+                &GeneralizedAlpha::new(0.9, h),
+                &a,
+                0.0,
+                y0,
+                T1,
+                &[],
+                &Settings::new(h * h),
+            )
+            .map(|p| (p.solution, p.passages.len()))
         });
     }
 }

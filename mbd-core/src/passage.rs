@@ -1,0 +1,522 @@
+//! Singular passages of closed loops: any integrator of the index-1 equations, bridged
+//! across the singular positions of a mobile mechanism by index-3 steps.
+//!
+//! Where a closed loop passes a singular position (the 40-loop assembly lying flat: the
+//! closure Jacobian loses rank), the accelerations of the index-1 form `[M Phi_q^T;
+//! Phi_q 0] [qdd; lambda] = [f; gamma]` are only the *limit* of the solutions around the
+//! instant: there the rows that vanished leave the acceleration problem with other
+//! solutions, and near it the drift of an integrated state is divided by the vanishing
+//! singular values. The right-hand side then stops with [`Error::SingularPosition`] rather
+//! than return accelerations that are not the mechanism's; a solver's Newton iteration may
+//! fail there too. The position-level (index-3) equations carry what the acceleration
+//! problem lacks (the curvature of the branch): [`solve`] runs the integrator, and when it
+//! stops at a singular position it carries the state across the window with the index-3
+//! augmented Lagrangian integrator [`Ali3`] from the last accepted step, at step sizes
+//! halved until two of them agree to the requested tolerance, then restarts the
+//! integrator on the far side. Every bridge is reported ([`Passage`]).
+//!
+//! A mechanism without degrees of freedom (driven, `Phi_q` of rank `N` at the start) has
+//! no inertia of its own to carry it: at a singular position (a change point or a toggle)
+//! two continuations satisfy the equations and the drive does not choose. There the run
+//! ends with [`Error::SingularPosition`] naming the time and the configuration, whichever
+//! integrator was asked, also when it stepped across without noticing
+//! ([`crate::analysis::check_passages`]).
+
+use crate::analysis::redundancy::{pivot_remainders, rank_with};
+use crate::analysis::{check_passages, rank_and_redundant};
+use crate::error::{Error, Num, Result};
+use crate::integrate::{
+    Dopri5, Event, Flow, GeneralizedAlpha, Integrator, Options, Recorder, Segment, Solution, Stats,
+    Step,
+};
+use crate::model::{Constrained, OdeSystem, Vector};
+use crate::partition::Partitioned;
+
+/// How [`solve`] bridges singular positions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Error allowed in a bridge's end state, `tol (1 + |y_i|)` per component: the
+    /// index-3 steps are halved until the ends of two step sizes agree to it (say the
+    /// integrator's `rtol`).
+    pub tol: f64,
+    /// Bridges allowed before [`Error::TooManySteps`].
+    pub max_passages: usize,
+    /// Halvings of the bridge's step before the passage counts as not determined.
+    pub max_halvings: usize,
+}
+
+impl Settings {
+    /// Bridges to `tol`, at most 10 000 of them, 14 halvings (from 4 to 65 536 steps).
+    pub fn new(tol: f64) -> Self {
+        Settings {
+            tol,
+            max_passages: 10_000,
+            max_halvings: 14,
+        }
+    }
+}
+
+/// One bridged passage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Passage {
+    /// Where the integrator stopped, and why.
+    pub t: f64,
+    pub cause: Error,
+    /// The bridge: from the last accepted step to the restart.
+    pub from: f64,
+    pub to: f64,
+    /// Steps of the bridge, and the relative error estimate of its step over the
+    /// singular instant (NaN when the run ended before it).
+    pub steps: usize,
+    pub error: f64,
+    /// The configuration at `t` (from the bridge's dense output).
+    pub q: Vec<f64>,
+    /// The constraint rows that lost rank at `q`: dependent on the others to `1e-3` of the
+    /// largest row, beyond those redundant at the start.
+    pub rows: Vec<usize>,
+}
+
+/// A run with its passages.
+#[derive(Debug, Clone)]
+pub struct Passed<const D: usize> {
+    pub solution: Solution<D>,
+    pub passages: Vec<Passage>,
+}
+
+/// Integrate the closed loop `sys` (states `y = [q; qd]`) from `(t0, y0)` to `t1` with
+/// `integrator`, bridging its singular positions (module docs). `events` are located in
+/// the integrator's steps and in the bridges'.
+pub fn solve<I, S, const N: usize, const M: usize, const D: usize>(
+    integrator: &I,
+    sys: &S,
+    t0: f64,
+    y0: Vector<D>,
+    t1: f64,
+    events: &[Event<'_, D>],
+    settings: &Settings,
+) -> Result<Passed<D>>
+where
+    I: Integrator,
+    S: Constrained<N, M> + OdeSystem<D>,
+{
+    drive::<S, N, M, D>(sys, (t0, y0, t1), events, settings, |t, y, observer| {
+        integrator.solve_observed(sys, t, y, t1, events, Some(observer))
+    })
+}
+
+/// [`solve`] with the generalized-α method in index-3 form (`A = N + M`).
+pub fn solve_generalized_alpha<S, const N: usize, const M: usize, const A: usize, const D: usize>(
+    method: &GeneralizedAlpha,
+    sys: &S,
+    t0: f64,
+    y0: Vector<D>,
+    t1: f64,
+    events: &[Event<'_, D>],
+    settings: &Settings,
+) -> Result<Passed<D>>
+where
+    S: Constrained<N, M> + OdeSystem<D>,
+{
+    drive::<S, N, M, D>(sys, (t0, y0, t1), events, settings, |t, y, observer| {
+        let (q, qd) = split::<N, D>(&y);
+        method.solve_constrained_observed::<S, N, M, A, D>(
+            sys,
+            t,
+            q,
+            qd,
+            t1,
+            events,
+            Some(observer),
+        )
+    })
+}
+
+/// One accepted step as the observer saw it.
+type Kept<const D: usize> = (f64, Vector<D>, Option<Segment<D>>);
+
+/// The loop of [`solve`]: `run(t, y, observer)` integrates from `(t, y)` to the end.
+fn drive<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    (t0, y0, t1): (f64, Vector<D>, f64),
+    events: &[Event<'_, D>],
+    settings: &Settings,
+    mut run: impl FnMut(f64, Vector<D>, &mut dyn FnMut(&Step<'_, D>) -> Flow) -> Result<Solution<D>>,
+) -> Result<Passed<D>>
+where
+    S: Constrained<N, M> + OdeSystem<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    crate::integrate::positive_finite("tol", settings.tol)?;
+    crate::integrate::validate_problem(t0, &y0, t1)?;
+    let (rank0, _) = rank_and_redundant(&sys.phi_q(t0, &split::<N, D>(&y0).0));
+    let mut out = start(t0, y0);
+    let mut passages: Vec<Passage> = Vec::new();
+    let (mut t, mut y) = (t0, y0);
+    loop {
+        let mut kept: Vec<Kept<D>> = Vec::new();
+        let mut observe = |s: &Step<'_, D>| {
+            kept.push((s.t, *s.y, s.segment.cloned()));
+            Flow::Continue
+        };
+        let cause = match run(t, y, &mut observe) {
+            Ok(part) => {
+                append(&mut out, part);
+                break;
+            }
+            Err(e) => e,
+        };
+        let Some(tf) = singular_at::<S, N, M, D>(sys, &cause, rank0, &kept, (t, &y)) else {
+            return Err(cause);
+        };
+        // Start where the integrator's steps were still clear of the singular position.
+        let clear = kept
+            .iter()
+            .rposition(|(tk, yk, _)| !near::<S, N, M, D>(sys, *tk, yk, rank0))
+            .map_or(0, |k| k + 1);
+        kept.truncate(clear);
+        append(&mut out, replay(events, t, y, kept)?);
+        let (ta, ya) = (out.t_end, out.y_end);
+        if rank0 >= N {
+            return Err(undetermined(tf, &split::<N, D>(&ya).0, &cause));
+        }
+        if passages.len() >= settings.max_passages {
+            return Err(Error::TooManySteps {
+                t: ta,
+                steps: passages.len(),
+            });
+        }
+        let n = out.t.len();
+        let before = (n >= 2 && out.t[n - 2] < ta).then(|| (out.t[n - 2], out.y[n - 2]));
+        let (bridge, t_star, error) = bridge::<S, N, M, D>(
+            sys,
+            before,
+            (ta, ya),
+            (tf, t1),
+            &cause,
+            events,
+            settings,
+            rank0,
+        )?;
+        let q_stop = bridge.at(t_star.clamp(ta, bridge.t_end));
+        let steps = bridge.stats.n_accepted;
+        append(&mut out, bridge);
+        let q = split::<N, D>(&q_stop.unwrap_or(out.y_end)).0;
+        let rows = rank_with(&sys.phi_q(tf, &q), NEAR).1;
+        let redundant0 = rank_and_redundant(&sys.phi_q(t0, &split::<N, D>(&y0).0)).1;
+        passages.push(Passage {
+            t: t_star,
+            cause,
+            from: ta,
+            to: out.t_end,
+            steps,
+            error,
+            q: q.iter().copied().collect(),
+            rows: rows
+                .into_iter()
+                .filter(|r| !redundant0.contains(r))
+                .collect(),
+        });
+        (t, y) = (out.t_end, out.y_end);
+        if out.stopped_by.is_some() || t >= t1 {
+            break;
+        }
+    }
+    if rank0 >= N {
+        check_passages::<S, N, M, D>(sys, &out)?;
+    }
+    Ok(Passed {
+        solution: out,
+        passages,
+    })
+}
+
+/// The time of a stop at (or near) a singular position: `cause` is
+/// [`Error::SingularPosition`], or a solver's failure (Newton, step size, a singular
+/// matrix) where `Phi_q` has lost rank against the start (rows dependent to `1e-2` of
+/// the largest) at the configuration extrapolated from the last accepted state. `None`
+/// for any other stop.
+fn singular_at<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    cause: &Error,
+    rank0: usize,
+    kept: &[Kept<D>],
+    (t, y): (f64, &Vector<D>),
+) -> Option<f64> {
+    let (tk, yk) = kept.last().map_or((t, y), |(tk, yk, _)| (*tk, yk));
+    let tf = match *cause {
+        Error::SingularPosition { t, .. } => return Some(t.max(tk)),
+        Error::NewtonFailed { t, .. }
+        | Error::StepSizeUnderflow { t, .. }
+        | Error::SingularConstraintJacobian { t }
+        | Error::SingularMassMatrix { t } => t.max(tk),
+        _ => return None,
+    };
+    let (q, qd) = split::<N, D>(yk);
+    let y = crate::integrate::stack::<N, D>(&(q + qd * (tf - tk)), &qd);
+    near::<S, N, M, D>(sys, tf, &y, rank0).then_some(tf)
+}
+
+/// Rows of `Phi_q` dependent on the others to this fraction of the largest row count as
+/// lost: the window around a singular position that the index-3 steps bridge.
+const NEAR: f64 = 1e-2;
+
+/// Whether `Phi_q` at `y` has lost rank against `rank0` to [`NEAR`].
+fn near<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    rank0: usize,
+) -> bool {
+    rank_with(&sys.phi_q(t, &split::<N, D>(y).0), NEAR).0 < rank0
+}
+
+/// The typed error of a mechanism without degrees of freedom at a singular position.
+fn undetermined<const N: usize>(t: f64, q: &Vector<N>, cause: &Error) -> Error {
+    Error::SingularPosition {
+        t,
+        detail: format!(
+            "the constraint Jacobian of a mechanism without degrees of freedom lost rank \
+             ({cause}): a bifurcation, where the motion may continue on another assembly \
+             branch and the drives do not choose; q = {:?}",
+            q.as_slice()
+        ),
+    }
+}
+
+/// How far from a singular position `q` is: the remainder of the `rank0`-th row of
+/// `Phi_q` taken by pivoted Gram–Schmidt, relative to the largest row (zero there, and
+/// about proportional to the distance near a simple passage).
+fn measure<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    rank0: usize,
+) -> f64 {
+    let r = pivot_remainders(&sys.phi_q(t, &split::<N, D>(y).0));
+    r.get(rank0.max(1) - 1).copied().unwrap_or(0.0)
+}
+
+/// The time where [`measure`] extrapolates linearly to zero from two states, if it falls.
+fn extrapolate<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    (t0, y0): (f64, &Vector<D>),
+    (t1, y1): (f64, &Vector<D>),
+    rank0: usize,
+) -> Option<f64> {
+    let (m0, m1) = (
+        measure::<S, N, M, D>(sys, t0, y0, rank0),
+        measure::<S, N, M, D>(sys, t1, y1, rank0),
+    );
+    let t = t1 + m1 * (t1 - t0) / (m0 - m1);
+    (m1 < m0 && t.is_finite() && t > t1).then_some(t)
+}
+
+/// Carry `(ta, ya)` across the singular position met at about `tf` in the independent
+/// coordinates chosen at `ta` ([`Partitioned`]), by DOPRI5 at `settings.tol`: to just
+/// before the singular instant `t*` (where [`measure`] extrapolates to zero), then one
+/// step of length `H` with `t*` at `0.55 H`, between its nodes `0.3` and `0.8` (no
+/// evaluation nearer than `H / 4`: accelerations there carry rounding divided by the
+/// square of the vanishing singular value), halved until its error estimate meets the
+/// tolerance (or as far as rounding allows), then on to as far past `t*` as `ta` was
+/// before it. The run, `t*`, and the step's error estimate.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the states and times of one bridge"
+)]
+fn bridge<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    before: Option<(f64, Vector<D>)>,
+    (ta, ya): (f64, Vector<D>),
+    (tf, t1): (f64, f64),
+    cause: &Error,
+    events: &[Event<'_, D>],
+    settings: &Settings,
+    rank0: usize,
+) -> Result<(Solution<D>, f64, f64)>
+where
+    S: Constrained<N, M>,
+{
+    let view = Partitioned::<S, N, M>::new(sys, ta, &split::<N, D>(&ya).0, rank0)?;
+    let tol = settings.tol.max(FLOOR);
+    let opts = Options {
+        rtol: tol,
+        atol: tol,
+        ..Options::default()
+    };
+    let dopri = Dopri5::new(opts);
+    // The index-1 solve stops within a few 1e-5 s of the instant: its time is the best
+    // guess; other stops are located by the measure's trend.
+    let guess = match cause {
+        Error::SingularPosition { .. } => None,
+        _ => {
+            before.and_then(|(tp, yp)| extrapolate::<S, N, M, D>(sys, (tp, &yp), (ta, &ya), rank0))
+        }
+    };
+    let t_star = guess
+        .filter(|&t| t < tf + 4.0 * (tf - ta))
+        .unwrap_or(tf)
+        .max(ta);
+    let mut h = (t_star - ta) / 0.6;
+    let far = (t_star + (t_star - ta).max(tf - ta)).min(t1);
+    if t_star + 0.45 * h >= t1 || h <= 0.0 {
+        let sol = dopri.solve(&view, ta, ya, far.max(tf).min(t1), events)?;
+        return Ok((sol, t_star, f64::NAN));
+    }
+    // The step over the instant with the smallest error estimate: halving `h` lowers the
+    // truncation error and raises the rounding of the evaluations nearer the instant.
+    let mut best: Option<(f64, Solution<D>, Vector<D>, Segment<D>)> = None;
+    for _ in 0..settings.max_halvings {
+        let s0 = t_star - 0.55 * h;
+        let part = dopri.solve(&view, ta, ya, s0, events)?;
+        if let Some((y1, seg, err)) = jump::<S, N, M, D>(&view, s0, &part.y_end, h)?
+            && best.as_ref().is_none_or(|b| err < b.0)
+        {
+            best = Some((err, part, y1, seg));
+        }
+        if best.as_ref().is_some_and(|b| b.0 <= tol) || s0 <= ta {
+            break;
+        }
+        h *= 0.5;
+    }
+    let Some((err, mut part, y1, seg)) = best.filter(|b| b.0 <= WORST) else {
+        return Err(Error::SingularPosition {
+            t: t_star,
+            detail: format!(
+                "the motion across the singular position near t = {} is not determined: \
+                 no step over it keeps its error estimate below {}; q = {:?}",
+                Num(t_star),
+                Num(WORST),
+                split::<N, D>(&ya).0.as_slice()
+            ),
+        });
+    };
+    let mut record = Recorder::with(
+        events,
+        part.t_end,
+        part.y_end,
+        true,
+        crate::integrate::Record::Steps,
+    );
+    let stopped = record.accept(seg, &y1) == Flow::Stop;
+    let work = Stats {
+        n_rhs: 8,
+        n_steps: 1,
+        n_accepted: 1,
+        ..Stats::default()
+    };
+    append(&mut part, record.finish(work)?);
+    if !stopped && part.t_end < t1 {
+        let rest = dopri.solve(&view, part.t_end, part.y_end, far.max(part.t_end), events)?;
+        append(&mut part, rest);
+    }
+    Ok((part, t_star, err))
+}
+
+/// The tightest tolerance a bridge is run to: near the instant the evaluations carry
+/// rounding divided by the square of the vanishing singular value, and the step over it
+/// cannot do better than about `1e-10` (measured on the 40-loop assembly: the error
+/// estimate's minimum over the step sizes is `2e-11 .. 1e-10`).
+const FLOOR: f64 = 1e-10;
+
+/// The largest relative error estimate a step over a singular instant may have: past it
+/// the motion across counts as not determined (a bifurcation, or evaluations too near
+/// the instant to resolve it).
+const WORST: f64 = 1e-6;
+
+/// One DOPRI5 step of `view` from `(s0, y0)` over `h`: the projected end, its cubic Hermite
+/// segment, and the relative error estimate; `None` when a stage met the singular
+/// position itself.
+#[allow(clippy::type_complexity, reason = "the end of one step")]
+fn jump<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+    view: &Partitioned<'_, S, N, M>,
+    s0: f64,
+    y0: &Vector<D>,
+    h: f64,
+) -> Result<Option<(Vector<D>, Segment<D>, f64)>> {
+    let tab = &crate::integrate::tableau::DOPRI5;
+    let mut k = [Vector::<D>::zeros(); 7];
+    let mut z = [Vector::<D>::zeros(); 7];
+    k[0] = view.rhs(s0, y0)?;
+    match tab.stages(view, s0, y0, h, &mut k, &mut z) {
+        Ok(()) => {}
+        Err(Error::SingularPosition { .. }) => return Ok(None),
+        Err(e) => return Err(e),
+    }
+    let mut y1 = y0 + crate::integrate::tableau::Erk::<7>::combine(&tab.b, &k, h);
+    let e = crate::integrate::tableau::Erk::<7>::combine(&tab.e, &k, h);
+    let err = (0..D)
+        .map(|i| e[i].abs() / (1.0 + y0[i].abs().max(y1[i].abs())))
+        .fold(0.0, f64::max);
+    view.project(s0 + h, &mut y1)?;
+    let f1 = view.rhs(s0 + h, &y1)?;
+    let seg = Segment::hermite(s0, h, y0, &k[0], &y1, &f1);
+    Ok(Some((y1, seg, err)))
+}
+
+/// The accepted steps of a run that stopped, recorded (and their events located) as the
+/// integrator would have: every step kept.
+fn replay<const D: usize>(
+    events: &[Event<'_, D>],
+    t: f64,
+    y: Vector<D>,
+    kept: Vec<Kept<D>>,
+) -> Result<Solution<D>> {
+    let dense = kept.iter().all(|k| k.2.is_some());
+    // The failed run's own counters are lost with it: its accepted steps at least.
+    let work = Stats {
+        n_steps: kept.len(),
+        n_accepted: kept.len(),
+        ..Stats::default()
+    };
+    let mut recorder = Recorder::with(events, t, y, dense, crate::integrate::Record::Steps);
+    for (t1, y1, seg) in kept {
+        let flow = match seg {
+            Some(seg) if recorder.needs_segment() => recorder.accept(seg, &y1),
+            _ => recorder.accept_point(t1, &y1),
+        };
+        if flow == Flow::Stop {
+            break;
+        }
+    }
+    recorder.finish(work)
+}
+
+fn start<const D: usize>(t0: f64, y0: Vector<D>) -> Solution<D> {
+    Solution {
+        t: vec![t0],
+        y: vec![y0],
+        segments: Vec::new(),
+        events: Vec::new(),
+        stats: Stats::default(),
+        stopped_by: None,
+        t_end: t0,
+        y_end: y0,
+    }
+}
+
+/// Add a run to the whole: its states after the first, segments, events and work.
+fn append<const D: usize>(out: &mut Solution<D>, part: Solution<D>) {
+    out.t.extend_from_slice(&part.t[1..]);
+    out.y.extend_from_slice(&part.y[1..]);
+    out.segments.extend(part.segments);
+    out.events.extend(part.events);
+    add(&mut out.stats, part.stats);
+    out.stopped_by = part.stopped_by;
+    (out.t_end, out.y_end) = (part.t_end, part.y_end);
+}
+
+fn add(s: &mut Stats, p: Stats) {
+    s.n_rhs += p.n_rhs;
+    s.n_jac += p.n_jac;
+    s.n_lu += p.n_lu;
+    s.n_steps += p.n_steps;
+    s.n_accepted += p.n_accepted;
+    s.n_rejected += p.n_rejected;
+}
+
+fn split<const N: usize, const D: usize>(y: &Vector<D>) -> (Vector<N>, Vector<N>) {
+    (
+        y.fixed_rows::<N>(0).into_owned(),
+        y.fixed_rows::<N>(N).into_owned(),
+    )
+}
