@@ -1,6 +1,6 @@
 //! Work-precision report: error against run time for every model that integrates in time
 //! and every integrator; the generated/hand-written ratio of three models; mbd against a
-//! peer crate (`ode_solvers`) on the same generated right-hand side.
+//! peer crate (`differential-equations`) on the same generated right-hand side.
 //!
 //! `cargo run --release -p mechanisms --bin work-precision [-- --json] [--out DIR]
 //! [--repeats N] [--only NAME] [--time-to-accuracy]`
@@ -352,7 +352,7 @@ fn summary_text(f: &Figures) -> String {
     }
     let _ = writeln!(
         s,
-        "\npeer: time to reach {RATIO_TARGET:e}, mbd / ode_solvers Dopri5 (same generated rhs)"
+        "\npeer: time to reach {RATIO_TARGET:e}, mbd / differential-equations DOPRI5 (same generated rhs)"
     );
     for (name, m, tm, tp, r) in &f.peer {
         let _ = writeln!(
@@ -465,7 +465,7 @@ fn write_report(
     }
     let _ = writeln!(
         md,
-        "\n## Against a peer: mbd / `ode_solvers` Dopri5, time to {RATIO_TARGET:e}\n\n\
+        "\n## Against a peer: mbd / `differential-equations` DOPRI5, time to {RATIO_TARGET:e}\n\n\
          Both integrate the same generated right-hand side; the peer has no projection onto \
          the constraint manifolds, so on the slider-crank `DOPRI5 (no projection)` is the same \
          algorithm.\n\n\
