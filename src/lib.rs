@@ -366,6 +366,7 @@ pub use nalgebra;
 pub mod prelude {
     pub use crate::Mechanism;
     pub use mbd_core::ensemble::{self, Member};
+    pub use mbd_core::geometry::Drawable;
     pub use mbd_core::{
         Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Solution,
         Vector,

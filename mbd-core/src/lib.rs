@@ -10,6 +10,7 @@ pub mod closure;
 pub mod ensemble;
 pub mod error;
 pub mod friction;
+pub mod geometry;
 pub mod hybrid;
 pub mod integrate;
 pub mod jacobian;
@@ -18,6 +19,7 @@ pub mod model;
 pub mod solve;
 
 pub use error::{Error, Result};
+pub use geometry::{Drawable, Shape, ShapeKind};
 pub use integrate::{
     Auto, Direction, Dop853, Dopri5, Event, EventHit, Integrator, Options, Record, Rk4, Segment,
     Solution, Stats,
