@@ -13,10 +13,13 @@ pub mod handwritten;
 pub mod linear_io;
 pub mod mode_svg;
 pub mod modes;
+#[cfg(feature = "report")]
+pub mod plot;
+#[cfg(feature = "report")]
+pub mod report;
 pub mod sim;
 pub mod spatial_chain_by_hand;
 pub mod stick_slip;
-pub mod svg;
 pub mod validation;
 pub mod workprecision;
 
