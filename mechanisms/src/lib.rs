@@ -56,12 +56,19 @@ pub mod case30_damped_vibration;
 
 use validation::Case;
 
-/// A case's [`validation::Draw`]: its `MODEL` from its initial state.
+/// A case's [`validation::Draw`]: its `MODEL` from its initial state, over the span the
+/// report asks for or, where given, one of the model's own (a fast drive's turn).
 macro_rules! draw {
     ($case:ident) => {
         |span, at| {
             let model = $case::MODEL;
             sim::animate(&model, model.initial_state(), span, at)
+        }
+    };
+    ($case:ident, span = |$m:ident| $span:expr) => {
+        |_, at| {
+            let $m = $case::MODEL;
+            sim::animate(&$m, $m.initial_state(), $span, at)
         }
     };
 }
@@ -221,7 +228,7 @@ pub fn cases() -> Vec<Case> {
             title: "Slider-crank: maximum piston speed and its crank angle",
             generated: &[case19_slider_crank_max_speed::SliderCrank::GENERATED],
             run: case19_slider_crank_max_speed::run,
-            draw: draw!(case19_slider_crank_max_speed),
+            draw: draw!(case19_slider_crank_max_speed, span = |m| std::f64::consts::TAU / m.omega),
             source: include_str!("case19_slider_crank_max_speed.rs"),
         },
         Case {

@@ -71,6 +71,21 @@ fn decade(v: f64) -> String {
     format!("1e{}", v.log10().round() as i64)
 }
 
+/// About seven round values over `r` (steps of 1, 2 or 5 times a power of ten), as an axis
+/// would tick it: what the tick labels' width is estimated from.
+fn round_ticks(r: &Range<f64>) -> Vec<f64> {
+    let raw = (r.end - r.start) / 7.0;
+    let p = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|k| k * p)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * p);
+    let first = (r.start / step).ceil() as i64;
+    let last = (r.end / step).floor() as i64;
+    (first..=last).map(|k| k as f64 * step).collect()
+}
+
 fn widest(labels: impl Iterator<Item = String>) -> u32 {
     labels.map(|s| s.chars().count()).max().unwrap_or(1) as u32
 }
@@ -135,6 +150,7 @@ fn legend_marker(m: Marker, c: (i32, i32), colour: RGBColor) -> Polygon<(i32, i3
 #[allow(clippy::too_many_arguments, reason = "one plot's parts")]
 fn draw<X, Y>(
     buf: &mut String,
+    (x_unit, y_unit): (&dyn Fn(f64) -> f64, &dyn Fn(f64) -> f64),
     title: &str,
     labels: (&str, &str),
     x: X,
@@ -151,6 +167,7 @@ where
     Y::CoordDescType: ValueFormatter<f64>,
 {
     let e = |e: &dyn std::fmt::Display| e.to_string();
+    let corner = legend_corner(series, marks, &x_unit, &y_unit);
     let root = SVGBackend::with_string(buf, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let mut chart = ChartBuilder::on(&root)
@@ -209,13 +226,46 @@ where
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(corner)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK.mix(0.4))
         .label_font(("sans-serif", 12))
         .draw()
         .map_err(|x| e(&x))?;
     root.present().map_err(|x| e(&x))
+}
+
+/// The corner of the plot where the legend covers the fewest points: `x_unit` and `y_unit`
+/// map a value to its place along the axis, 0 at the start and 1 at the end.
+fn legend_corner(
+    series: &[Series],
+    marks: &[Mark],
+    x_unit: &dyn Fn(f64) -> f64,
+    y_unit: &dyn Fn(f64) -> f64,
+) -> SeriesLabelPosition {
+    let points: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .chain(marks.iter().map(|m| (m.1, m.2)))
+        .map(|(x, y)| (x_unit(x), y_unit(y)))
+        .collect();
+    let covered = |right: bool, top: bool| {
+        points
+            .iter()
+            .filter(|(u, v)| {
+                (if right { *u > 0.6 } else { *u < 0.4 }) && (if top { *v > 0.65 } else { *v < 0.35 })
+            })
+            .count()
+    };
+    [
+        (SeriesLabelPosition::UpperRight, covered(true, true)),
+        (SeriesLabelPosition::UpperLeft, covered(false, true)),
+        (SeriesLabelPosition::LowerRight, covered(true, false)),
+        (SeriesLabelPosition::LowerLeft, covered(false, false)),
+    ]
+    .into_iter()
+    .min_by_key(|c| c.1)
+    .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
 }
 
 /// A value with six significant figures, for legends.
@@ -238,13 +288,15 @@ pub fn line_plot(
             .chain(marks.iter().map(|m| (m.1, m.2)))
     };
     let (x, y) = (range(all().map(|p| p.0)), range(all().map(|p| p.1)));
-    let probe: Vec<f64> = (0..=8)
-        .map(|i| y.start + (y.end - y.start) * f64::from(i) / 8.0)
-        .collect();
-    let y_area = 30 + 8 * widest(probe.iter().map(|v| tick(*v)));
+    let y_area = 34 + 7 * widest(round_ticks(&y).into_iter().map(tick));
     let mut buf = String::new();
+    let (xu, yu) = (x.clone(), y.clone());
     draw(
         &mut buf,
+        (
+            &|v| (v - xu.start) / (xu.end - xu.start),
+            &|v| (v - yu.start) / (yu.end - yu.start),
+        ),
         title,
         (x_label, y_label),
         x,
@@ -291,8 +343,11 @@ pub fn log_log_plot(
     let x = decades(&mut pts().map(|p| p.0));
     let y = decades(&mut pts().map(|p| p.1));
     let mut buf = String::new();
+    let unit = |r: &Range<f64>, v: f64| (v.log10() - r.start.log10()) / (r.end / r.start).log10();
+    let (xu, yu) = (x.clone(), y.clone());
     draw(
         &mut buf,
+        (&|v| unit(&xu, v), &|v| unit(&yu, v)),
         title,
         (x_label, y_label),
         x.log_scale(),

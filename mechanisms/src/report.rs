@@ -111,11 +111,20 @@ pub fn case_plot(run: &CaseRun) -> Result<String, String> {
                 marks.extend(r.theory.map(|v| ("theory".to_string(), x, v)));
                 marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), x, v)));
             }
-            None => marks.push(("mbd".into(), x, y)),
+            None => marks.push(("compared instant".into(), x, y)),
         }
     }
     let title = format!("Case {}: {}", run.case.id, p.y_label);
     plot::line_plot(&title, p.x_label, p.y_label, &[curve], &marks)
+}
+
+/// Whether `exact` rounds to `printed` at `printed`'s own digits (its shortest decimal form):
+/// a theory value that does not is a corrected one.
+fn rounds_to(exact: f64, printed: f64) -> bool {
+    let text = format!("{printed}");
+    let decimals = text.split_once('.').map_or(0, |(_, d)| d.len());
+    let half_unit = 0.5 * 10f64.powi(-(decimals as i32));
+    (exact - printed).abs() <= half_unit * (1.0 + 1e-9)
 }
 
 fn table(rows: &[ReportRow]) -> String {
@@ -125,7 +134,7 @@ fn table(rows: &[ReportRow]) -> String {
     );
     let opt = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |v| format!("{v}"));
     for r in rows {
-        let corrected = r.theory.is_some_and(|t| crate::validation::error_pct(t, r.reference) > 0.05);
+        let corrected = r.theory.is_some_and(|t| !rounds_to(r.reference, t));
         let reference = if corrected {
             format!(
                 r#"<br><span class="corr">exact {}</span>"#,
@@ -287,6 +296,11 @@ nav small { display: block; font-size: 0.7em; color: #555; }
 /// moved frame by frame (about five seconds a run), with the stills drawn faintly.
 const SCRIPT: &str = r##"<script>
 (function () {
+  // `report.html?case=28` shows case 28 alone (for links and screenshots).
+  const only = new URLSearchParams(location.search).get("case");
+  if (only) document.querySelectorAll("body > *:not(script)").forEach(e => {
+    e.hidden = e.id !== "case" + only;
+  });
   const NS = "http://www.w3.org/2000/svg";
   function el(svg, tag, attrs) {
     const e = document.createElementNS(NS, tag);
@@ -384,5 +398,9 @@ mod tests {
         assert_eq!(pct(1.23e-8), "1.2e-8");
         assert_eq!(pct(1.0449), "1");
         assert_eq!(pct(0.012), "0.012");
+        assert!(rounds_to(0.2142857, 0.214));
+        assert!(!rounds_to(0.9101583, 0.909));
+        assert!(rounds_to(1714.4, 1714.0));
+        assert!(!rounds_to(74.047, 73.79));
     }
 }

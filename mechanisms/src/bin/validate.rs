@@ -154,7 +154,14 @@ fn draw(case: &Case, outcome: &Outcome) -> Result<mechanisms::validation::Animat
         (Some(k), Some(x)) if x > 0.0 => (x * k, p.mark.map(|m| m.0 * k)),
         _ => (DEFAULT_SPAN, None),
     };
-    (case.draw)(span, at.as_slice()).map_err(|e| e.to_string())
+    // A run the plain integrator cannot finish (friction's stop) is drawn to the compared
+    // instant, which the case itself reached.
+    (case.draw)(span, at.as_slice())
+        .or_else(|e| match at {
+            Some(t) if t > 0.0 => (case.draw)(t, &[t]),
+            _ => Err(e),
+        })
+        .map_err(|e| e.to_string())
 }
 
 /// How long a case whose plot is not over time is animated, in seconds.
