@@ -199,6 +199,7 @@ where
                 .map_err(|x| e(&x))?;
         }
         let on = if s.markers { s.points.as_slice() } else { &[] };
+        let markers = s.markers;
         chart
             .draw_series(on.iter().map(|&p| {
                 EmptyElement::at(p) + Polygon::new(outline(shape, 3), colour.filled())
@@ -206,8 +207,10 @@ where
             .map_err(|x| e(&x))?
             .label(s.name.as_str())
             .legend(move |(x, y)| {
+                let glyph = if markers { outline(shape, 3) } else { Vec::new() };
                 EmptyElement::at((x, y))
                     + PathElement::new(vec![(-8, 0), (8, 0)], colour.stroke_width(2))
+                    + Polygon::new(glyph, colour.filled())
             });
     }
     for (i, (name, mx, my)) in marks.iter().enumerate() {
