@@ -56,19 +56,26 @@ pub mod case30_damped_vibration;
 
 use validation::Case;
 
-/// A case's [`validation::Draw`]: its `MODEL` from its initial state, over the span the
-/// report asks for or, where given, one of the model's own (a fast drive's turn).
+/// A case's [`validation::Draw`]: its `MODEL` from its initial state, with its outputs (or
+/// `no_outputs`), over the span the report asks for or, where given, one of the model's
+/// own (a fast drive's turn).
 macro_rules! draw {
-    ($case:ident) => {
-        |span, at| {
+    ($case:ident :: $model:ident $(, span = |$m:ident| $span:expr)?) => {
+        |requested, at| {
             let model = $case::MODEL;
-            sim::animate(&model, model.initial_state(), span, at)
+            let own: Option<f64> = None $(.or(Some({ let $m = &model; $span })))?;
+            let span = own.unwrap_or(requested);
+            let outputs = |t: f64, y: &_| -> mbd::Result<Vec<(&'static str, f64)>> {
+                let values = model.output_values(t, y)?;
+                Ok(std::iter::zip($case::$model::OUTPUTS, values).collect())
+            };
+            sim::animate(&model, model.initial_state(), span, at, &outputs)
         }
     };
-    ($case:ident, span = |$m:ident| $span:expr) => {
-        |_, at| {
-            let $m = $case::MODEL;
-            sim::animate(&$m, $m.initial_state(), $span, at)
+    ($case:ident :: $model:ident, no_outputs) => {
+        |span, at| {
+            let model = $case::MODEL;
+            sim::animate(&model, model.initial_state(), span, at, &|_, _| Ok(Vec::new()))
         }
     };
 }
@@ -81,7 +88,7 @@ pub fn cases() -> Vec<Case> {
             title: "Vertical throw: height, time and speed at B",
             generated: &[case01_vertical_throw::VerticalThrow::GENERATED],
             run: case01_vertical_throw::run,
-            draw: draw!(case01_vertical_throw),
+            draw: draw!(case01_vertical_throw::VerticalThrow),
             source: include_str!("case01_vertical_throw.rs"),
         },
         Case {
@@ -89,7 +96,7 @@ pub fn cases() -> Vec<Case> {
             title: "Polar coordinates: speed and acceleration of B",
             generated: &[case02_polar_motion::PolarMotion::GENERATED],
             run: case02_polar_motion::run,
-            draw: draw!(case02_polar_motion),
+            draw: draw!(case02_polar_motion::PolarMotion),
             source: include_str!("case02_polar_motion.rs"),
         },
         Case {
@@ -97,7 +104,7 @@ pub fn cases() -> Vec<Case> {
             title: "Pin in a slotted arm driven by a crank: r', r'', θ', θ''",
             generated: &[case03_slotted_arm::SlottedArm::GENERATED],
             run: case03_slotted_arm::run,
-            draw: draw!(case03_slotted_arm),
+            draw: draw!(case03_slotted_arm::SlottedArm),
             source: include_str!("case03_slotted_arm.rs"),
         },
         Case {
@@ -105,7 +112,7 @@ pub fn cases() -> Vec<Case> {
             title: "Pendulum on the small-oscillation law: extreme accelerations",
             generated: &[case04_pendulum_acceleration::Pendulum::GENERATED],
             run: case04_pendulum_acceleration::run,
-            draw: draw!(case04_pendulum_acceleration),
+            draw: draw!(case04_pendulum_acceleration::Pendulum),
             source: include_str!("case04_pendulum_acceleration.rs"),
         },
         Case {
@@ -113,7 +120,7 @@ pub fn cases() -> Vec<Case> {
             title: "Crate sliding down an incline with friction: stop time and distance",
             generated: &[case05_crate_on_incline::CrateOnIncline::GENERATED],
             run: case05_crate_on_incline::run,
-            draw: draw!(case05_crate_on_incline),
+            draw: draw!(case05_crate_on_incline::CrateOnIncline),
             source: include_str!("case05_crate_on_incline.rs"),
         },
         Case {
@@ -121,7 +128,7 @@ pub fn cases() -> Vec<Case> {
             title: "Two sliders joined by a light bar: accelerations and bar force",
             generated: &[case06_sliders_and_link::SlidersAndLink::GENERATED],
             run: case06_sliders_and_link::run,
-            draw: draw!(case06_sliders_and_link),
+            draw: draw!(case06_sliders_and_link::SlidersAndLink),
             source: include_str!("case06_sliders_and_link.rs"),
         },
         Case {
@@ -129,7 +136,7 @@ pub fn cases() -> Vec<Case> {
             title: "Collar pulled up a smooth rod by a spring: speed at B",
             generated: &[case07_collar_spring::CollarOnRod::GENERATED],
             run: case07_collar_spring::run,
-            draw: draw!(case07_collar_spring),
+            draw: draw!(case07_collar_spring::CollarOnRod),
             source: include_str!("case07_collar_spring.rs"),
         },
         Case {
@@ -140,7 +147,7 @@ pub fn cases() -> Vec<Case> {
                 case08_slider_bumper::SliderOnBumper::GENERATED,
             ],
             run: case08_slider_bumper::run,
-            draw: draw!(case08_slider_bumper),
+            draw: draw!(case08_slider_bumper::SliderOnGuide),
             source: include_str!("case08_slider_bumper.rs"),
         },
         Case {
@@ -148,7 +155,7 @@ pub fn cases() -> Vec<Case> {
             title: "Particle sliding out of a rotating tube: exit time and angle",
             generated: &[case09_rotating_tube::TubeAndParticle::GENERATED],
             run: case09_rotating_tube::run,
-            draw: draw!(case09_rotating_tube),
+            draw: draw!(case09_rotating_tube::TubeAndParticle),
             source: include_str!("case09_rotating_tube.rs"),
         },
         Case {
@@ -156,7 +163,7 @@ pub fn cases() -> Vec<Case> {
             title: "Pendulum on a free cart falling from upright: θ' and v_x at the bottom",
             generated: &[case10_pendulum_on_cart::PendulumOnCart::GENERATED],
             run: case10_pendulum_on_cart::run,
-            draw: draw!(case10_pendulum_on_cart),
+            draw: draw!(case10_pendulum_on_cart::PendulumOnCart),
             source: include_str!("case10_pendulum_on_cart.rs"),
         },
         Case {
@@ -164,7 +171,7 @@ pub fn cases() -> Vec<Case> {
             title: "Reciprocating engine: speed of the rod's mass centre and ω_AB",
             generated: &[case11_engine_rod_velocity::Engine::GENERATED],
             run: case11_engine_rod_velocity::run,
-            draw: draw!(case11_engine_rod_velocity),
+            draw: draw!(case11_engine_rod_velocity::Engine),
             source: include_str!("case11_engine_rod_velocity.rs"),
         },
         Case {
@@ -172,7 +179,7 @@ pub fn cases() -> Vec<Case> {
             title: "Crank pin in a slotted link: the link's angular velocity",
             generated: &[case12_crank_slotted_link::SlottedLink::GENERATED],
             run: case12_crank_slotted_link::run,
-            draw: draw!(case12_crank_slotted_link),
+            draw: draw!(case12_crank_slotted_link::SlottedLink),
             source: include_str!("case12_crank_slotted_link.rs"),
         },
         Case {
@@ -180,7 +187,7 @@ pub fn cases() -> Vec<Case> {
             title: "Slider-crank: the rod's angular velocity and acceleration",
             generated: &[case13_slider_crank_rod::SliderCrank::GENERATED],
             run: case13_slider_crank_rod::run,
-            draw: draw!(case13_slider_crank_rod),
+            draw: draw!(case13_slider_crank_rod::SliderCrank),
             source: include_str!("case13_slider_crank_rod.rs"),
         },
         Case {
@@ -188,7 +195,7 @@ pub fn cases() -> Vec<Case> {
             title: "Crank, link and inclined slider: speeds of A and of the link's midpoint",
             generated: &[case14_inclined_slider::InclinedSlider::GENERATED],
             run: case14_inclined_slider::run,
-            draw: draw!(case14_inclined_slider),
+            draw: draw!(case14_inclined_slider::InclinedSlider),
             source: include_str!("case14_inclined_slider.rs"),
         },
         Case {
@@ -196,7 +203,7 @@ pub fn cases() -> Vec<Case> {
             title: "Four-bar linkage: angular velocities of coupler and rocker",
             generated: &[case15_four_bar::FourBar::GENERATED],
             run: case15_four_bar::run,
-            draw: draw!(case15_four_bar),
+            draw: draw!(case15_four_bar::FourBar),
             source: include_str!("case15_four_bar.rs"),
         },
         Case {
@@ -204,7 +211,7 @@ pub fn cases() -> Vec<Case> {
             title: "Two-input linkage: angular velocity of BC",
             generated: &[case16_two_input_linkage::TwoInputLinkage::GENERATED],
             run: case16_two_input_linkage::run,
-            draw: draw!(case16_two_input_linkage),
+            draw: draw!(case16_two_input_linkage::TwoInputLinkage),
             source: include_str!("case16_two_input_linkage.rs"),
         },
         Case {
@@ -212,7 +219,7 @@ pub fn cases() -> Vec<Case> {
             title: "Crank and slotted rocker: ω_BC and v_B",
             generated: &[case17_slotted_rocker::SlottedRocker::GENERATED],
             run: case17_slotted_rocker::run,
-            draw: draw!(case17_slotted_rocker),
+            draw: draw!(case17_slotted_rocker::SlottedRocker),
             source: include_str!("case17_slotted_rocker.rs"),
         },
         Case {
@@ -220,7 +227,7 @@ pub fn cases() -> Vec<Case> {
             title: "Rod sliding through a pivoted collar: angular acceleration of BD",
             generated: &[case18_rod_through_collar::RodThroughCollar::GENERATED],
             run: case18_rod_through_collar::run,
-            draw: draw!(case18_rod_through_collar),
+            draw: draw!(case18_rod_through_collar::RodThroughCollar),
             source: include_str!("case18_rod_through_collar.rs"),
         },
         Case {
@@ -228,7 +235,7 @@ pub fn cases() -> Vec<Case> {
             title: "Slider-crank: maximum piston speed and its crank angle",
             generated: &[case19_slider_crank_max_speed::SliderCrank::GENERATED],
             run: case19_slider_crank_max_speed::run,
-            draw: draw!(case19_slider_crank_max_speed, span = |m| std::f64::consts::TAU / m.omega),
+            draw: draw!(case19_slider_crank_max_speed::SliderCrank, span = |m| std::f64::consts::TAU / m.omega),
             source: include_str!("case19_slider_crank_max_speed.rs"),
         },
         Case {
@@ -236,7 +243,7 @@ pub fn cases() -> Vec<Case> {
             title: "Pendulum released from rest: bearing force at 60°",
             generated: &[case20_pendulum_bearing::Pendulum::GENERATED],
             run: case20_pendulum_bearing::run,
-            draw: draw!(case20_pendulum_bearing),
+            draw: draw!(case20_pendulum_bearing::Pendulum),
             source: include_str!("case20_pendulum_bearing.rs"),
         },
         Case {
@@ -244,7 +251,7 @@ pub fn cases() -> Vec<Case> {
             title: "Parallelogram linkage driven by a couple: pin force at D and angular acceleration",
             generated: &[case21_parallelogram_linkage::Parallelogram::GENERATED],
             run: case21_parallelogram_linkage::run,
-            draw: draw!(case21_parallelogram_linkage),
+            draw: draw!(case21_parallelogram_linkage::Parallelogram),
             source: include_str!("case21_parallelogram_linkage.rs"),
         },
         Case {
@@ -252,7 +259,7 @@ pub fn cases() -> Vec<Case> {
             title: "Platform on a driven parallelogram: pin force at D at t = 0 and 1 s",
             generated: &[case22_driven_platform::DrivenPlatform::GENERATED],
             run: case22_driven_platform::run,
-            draw: draw!(case22_driven_platform),
+            draw: draw!(case22_driven_platform::DrivenPlatform),
             source: include_str!("case22_driven_platform.rs"),
         },
         Case {
@@ -260,7 +267,7 @@ pub fn cases() -> Vec<Case> {
             title: "Block turned 90° by a reversing torque: time taken",
             generated: &[case23_block_reversing_torque::Block::GENERATED],
             run: case23_block_reversing_torque::run,
-            draw: draw!(case23_block_reversing_torque),
+            draw: draw!(case23_block_reversing_torque::Block, no_outputs),
             source: include_str!("case23_block_reversing_torque.rs"),
         },
         Case {
@@ -268,7 +275,7 @@ pub fn cases() -> Vec<Case> {
             title: "Crank-driven bar with a roller on the floor: normal force at B",
             generated: &[case24_crank_bar_roller::CrankBar::GENERATED],
             run: case24_crank_bar_roller::run,
-            draw: draw!(case24_crank_bar_roller),
+            draw: draw!(case24_crank_bar_roller::CrankBar),
             source: include_str!("case24_crank_bar_roller.rs"),
         },
         Case {
@@ -276,7 +283,7 @@ pub fn cases() -> Vec<Case> {
             title: "Engine with the crank at 90°: force in the wrist pin",
             generated: &[case25_engine_wrist_pin::Engine::GENERATED],
             run: case25_engine_wrist_pin::run,
-            draw: draw!(case25_engine_wrist_pin),
+            draw: draw!(case25_engine_wrist_pin::Engine),
             source: include_str!("case25_engine_wrist_pin.rs"),
         },
         Case {
@@ -284,7 +291,7 @@ pub fn cases() -> Vec<Case> {
             title: "Crank and bar released from rest: speed of B as OA passes the vertical",
             generated: &[case26_crank_bar_released::CrankAndBar::GENERATED],
             run: case26_crank_bar_released::run,
-            draw: draw!(case26_crank_bar_released),
+            draw: draw!(case26_crank_bar_released::CrankAndBar),
             source: include_str!("case26_crank_bar_released.rs"),
         },
         Case {
@@ -292,7 +299,7 @@ pub fn cases() -> Vec<Case> {
             title: "Bar with a spring released from rest: maximum angular speed",
             generated: &[case27_bar_spring_released::BarWithSpring::GENERATED],
             run: case27_bar_spring_released::run,
-            draw: draw!(case27_bar_spring_released),
+            draw: draw!(case27_bar_spring_released::BarWithSpring),
             source: include_str!("case27_bar_spring_released.rs"),
         },
         Case {
@@ -300,7 +307,7 @@ pub fn cases() -> Vec<Case> {
             title: "Falling bar with a spring: minimum angular speed and ω at 90°",
             generated: &[case28_falling_bar_spring::FallingBar::GENERATED],
             run: case28_falling_bar_spring::run,
-            draw: draw!(case28_falling_bar_spring),
+            draw: draw!(case28_falling_bar_spring::FallingBar),
             source: include_str!("case28_falling_bar_spring.rs"),
         },
         Case {
@@ -308,7 +315,7 @@ pub fn cases() -> Vec<Case> {
             title: "Disk spinning on a rotating frame: angular acceleration and acceleration of A",
             generated: &[case29_disk_on_rotating_frame::SpinningDisk::GENERATED],
             run: case29_disk_on_rotating_frame::run,
-            draw: draw!(case29_disk_on_rotating_frame),
+            draw: draw!(case29_disk_on_rotating_frame::SpinningDisk),
             source: include_str!("case29_disk_on_rotating_frame.rs"),
         },
         Case {
@@ -316,7 +323,7 @@ pub fn cases() -> Vec<Case> {
             title: "Free damped vibration: position after half a damped cycle",
             generated: &[case30_damped_vibration::DampedBlock::GENERATED],
             run: case30_damped_vibration::run,
-            draw: draw!(case30_damped_vibration),
+            draw: draw!(case30_damped_vibration::DampedBlock, no_outputs),
             source: include_str!("case30_damped_vibration.rs"),
         },
     ]

@@ -127,6 +127,65 @@ fn rounds_to(exact: f64, printed: f64) -> bool {
     (exact - printed).abs() <= half_unit * (1.0 + 1e-9)
 }
 
+/// Plots of the rows the case's own plot does not mark, each from the model's output of the
+/// same name over the drawing's run: the theory, RecurDyn and mbd values are marked where
+/// the curve takes mbd's value (interpolated between frames; at an extremum, its frame).
+/// A row without such an output, or whose value the curve does not reach (to 1e-3
+/// relative: another run or unit), gets none.
+pub fn row_plots(run: &CaseRun) -> Vec<(String, Result<String, String>)> {
+    let Ok(anim) = &run.animation else {
+        return Vec::new();
+    };
+    let marked = run.outcome.plot.mark.map(|m| m.1);
+    let mut out = Vec::new();
+    for r in run.rows.iter().filter(|r| Some(r.value) != marked) {
+        let curve: Vec<(f64, f64)> = anim
+            .frames
+            .iter()
+            .filter_map(|f| {
+                let v = f.outputs.iter().find(|o| o.0.eq_ignore_ascii_case(&r.quantity))?;
+                Some((f.t, v.1))
+            })
+            .collect();
+        let Some(t) = instant(&curve, r.value) else {
+            continue;
+        };
+        let mut marks: Vec<Mark> = vec![(format!("mbd {}", r.quantity), t, r.value)];
+        marks.extend(r.theory.map(|v| ("theory".to_string(), t, v)));
+        marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), t, v)));
+        let series = Series {
+            name: "mbd".into(),
+            points: curve,
+            line: true,
+            markers: false,
+        };
+        let title = format!("Case {}: {} [{}]", run.case.id, r.quantity, r.unit);
+        let label = format!("{} [{}]", r.quantity, r.unit);
+        out.push((
+            r.quantity.clone(),
+            plot::line_plot(&title, "t [s]", &label, &[series], &marks),
+        ));
+    }
+    out
+}
+
+/// Where `curve` takes `value`: the first crossing (linear between samples), else the
+/// closest sample if within 1e-3 relative (an extremum).
+fn instant(curve: &[(f64, f64)], value: f64) -> Option<f64> {
+    let tol = 1e-3 * value.abs().max(1e-9);
+    for w in curve.windows(2) {
+        let ((t0, v0), (t1, v1)) = (w[0], w[1]);
+        if (v0 - value) * (v1 - value) <= 0.0 && v0 != v1 {
+            return Some(t0 + (t1 - t0) * (value - v0) / (v1 - v0));
+        }
+    }
+    curve
+        .iter()
+        .min_by(|a, b| (a.1 - value).abs().total_cmp(&(b.1 - value).abs()))
+        .filter(|c| (c.1 - value).abs() <= tol)
+        .map(|c| c.0)
+}
+
 fn table(rows: &[ReportRow]) -> String {
     let mut s = String::from(
         "<table><tr><th>quantity</th><th>unit</th><th>theory</th><th>RecurDyn</th>\
@@ -219,12 +278,15 @@ fn section(run: &CaseRun) -> String {
             let _ = write!(s, "<p>Not drawn: {}</p>", esc(e));
         }
     }
-    match case_plot(run) {
-        Ok(svg) => {
-            let _ = write!(s, "<figure class=\"plot\">{svg}</figure>");
-        }
-        Err(e) => {
-            let _ = write!(s, "<p>No plot: {}</p>", esc(&e));
+    let plots = std::iter::once(("the manual's plot".to_string(), case_plot(run)));
+    for (what, svg) in plots.chain(row_plots(run)) {
+        match svg {
+            Ok(svg) => {
+                let _ = write!(s, "<figure class=\"plot\">{svg}</figure>");
+            }
+            Err(e) => {
+                let _ = write!(s, "<p>No plot of {}: {}</p>", esc(&what), esc(&e));
+            }
         }
     }
     s.push_str("</div>\n");

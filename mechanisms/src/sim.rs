@@ -44,13 +44,18 @@ pub fn sample<const D: usize>(
 /// How many frames an animation has (plus one per compared instant).
 pub const FRAMES: usize = 120;
 
+/// The model's outputs by name at a state (empty for a model without outputs).
+pub type Outputs<'a, const D: usize> = &'a dyn Fn(f64, &Vector<D>) -> mbd::Result<Vec<(&'static str, f64)>>;
+
 /// The mechanism drawn at `FRAMES + 1` uniform times over `[0, span]` and at each instant
-/// of `at` inside it (`stills`), from the run of [`integrate`] from `y0`.
+/// of `at` inside it (`stills`), with its `outputs`, from the run of [`integrate`] from
+/// `y0`.
 pub fn animate<S: OdeSystem<D> + Drawable<D>, const D: usize>(
     sys: &S,
     y0: Vector<D>,
     span: f64,
     at: &[f64],
+    outputs: Outputs<'_, D>,
 ) -> mbd::Result<Animation> {
     let sol = integrate(sys, y0, span, &[])?;
     let (t1, _) = sol.last();
@@ -59,6 +64,7 @@ pub fn animate<S: OdeSystem<D> + Drawable<D>, const D: usize>(
             Some(y) => Ok(Some(Frame {
                 t,
                 shapes: sys.geometry(t, &y)?,
+                outputs: outputs(t, &y)?,
             })),
             None => Ok(None),
         }

@@ -38,6 +38,8 @@ pub struct Outcome {
 pub struct Frame {
     pub t: f64,
     pub shapes: Vec<mbd::Shape>,
+    /// The model's outputs (`#[output]`) at `t`, by name.
+    pub outputs: Vec<(&'static str, f64)>,
 }
 
 /// The mechanism over a run: uniform frames to animate, and stills at the compared instants.
