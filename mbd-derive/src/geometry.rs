@@ -67,7 +67,10 @@ pub fn shapes(ast: &Mechanism) -> Vec<Shape<syn::Expr>> {
         };
         let far: syn::Expr = match &b.com {
             Some(syn::Expr::Array(a)) => {
-                let twice = a.elems.iter().map(|c| -> syn::Expr { parse_quote!(2.0 * (#c)) });
+                let twice = a
+                    .elems
+                    .iter()
+                    .map(|c| -> syn::Expr { parse_quote!(2.0 * (#c)) });
                 parse_quote!(position(#name, [#(#twice),*]))
             }
             _ => parse_quote!(position(#name)),

@@ -235,7 +235,10 @@ pub fn cases() -> Vec<Case> {
             title: "Slider-crank: maximum piston speed and its crank angle",
             generated: &[case19_slider_crank_max_speed::SliderCrank::GENERATED],
             run: case19_slider_crank_max_speed::run,
-            draw: draw!(case19_slider_crank_max_speed::SliderCrank, span = |m| std::f64::consts::TAU / m.omega),
+            draw: draw!(
+                case19_slider_crank_max_speed::SliderCrank,
+                span = |m| std::f64::consts::TAU / m.omega
+            ),
             source: include_str!("case19_slider_crank_max_speed.rs"),
         },
         Case {

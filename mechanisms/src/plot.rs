@@ -190,24 +190,37 @@ where
         .axis_desc_style(("sans-serif", 13))
         .draw()
         .map_err(|x| e(&x))?;
-    for (i, s) in series.iter().enumerate().filter(|(_, s)| !s.points.is_empty()) {
+    for (i, s) in series
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.points.is_empty())
+    {
         let colour = PALETTE[i % PALETTE.len()];
         let shape = MARKERS[i % MARKERS.len()];
         if s.line {
             chart
-                .draw_series(LineSeries::new(s.points.iter().copied(), colour.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    s.points.iter().copied(),
+                    colour.stroke_width(2),
+                ))
                 .map_err(|x| e(&x))?;
         }
         let on = if s.markers { s.points.as_slice() } else { &[] };
         let markers = s.markers;
         chart
-            .draw_series(on.iter().map(|&p| {
-                EmptyElement::at(p) + Polygon::new(outline(shape, 3), colour.filled())
-            }))
+            .draw_series(
+                on.iter().map(|&p| {
+                    EmptyElement::at(p) + Polygon::new(outline(shape, 3), colour.filled())
+                }),
+            )
             .map_err(|x| e(&x))?
             .label(s.name.as_str())
             .legend(move |(x, y)| {
-                let glyph = if markers { outline(shape, 3) } else { Vec::new() };
+                let glyph = if markers {
+                    outline(shape, 3)
+                } else {
+                    Vec::new()
+                };
                 EmptyElement::at((x, y))
                     + PathElement::new(vec![(-8, 0), (8, 0)], colour.stroke_width(2))
                     + Polygon::new(glyph, colour.filled())
@@ -256,7 +269,8 @@ fn legend_corner(
         points
             .iter()
             .filter(|(u, v)| {
-                (if right { *u > 0.6 } else { *u < 0.4 }) && (if top { *v > 0.65 } else { *v < 0.35 })
+                (if right { *u > 0.6 } else { *u < 0.4 })
+                    && (if top { *v > 0.65 } else { *v < 0.35 })
             })
             .count()
     };
@@ -296,10 +310,9 @@ pub fn line_plot(
     let (xu, yu) = (x.clone(), y.clone());
     draw(
         &mut buf,
-        (
-            &|v| (v - xu.start) / (xu.end - xu.start),
-            &|v| (v - yu.start) / (yu.end - yu.start),
-        ),
+        (&|v| (v - xu.start) / (xu.end - xu.start), &|v| {
+            (v - yu.start) / (yu.end - yu.start)
+        }),
         title,
         (x_label, y_label),
         x,
@@ -384,14 +397,7 @@ mod tests {
             line: true,
             markers: false,
         };
-        let svg = line_plot(
-            "t",
-            "t [s]",
-            "x [m]",
-            &[s],
-            &[("theory".into(), 5.0, 25.0)],
-        )
-        .unwrap();
+        let svg = line_plot("t", "t [s]", "x [m]", &[s], &[("theory".into(), 5.0, 25.0)]).unwrap();
         assert!(svg.starts_with("<svg"));
         for text in ["t [s]", "x [m]", "mbd", "theory: 25"] {
             assert!(svg.contains(text), "{text} missing");

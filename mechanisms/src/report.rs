@@ -143,7 +143,10 @@ pub fn row_plots(run: &CaseRun) -> Vec<(String, Result<String, String>)> {
             .frames
             .iter()
             .filter_map(|f| {
-                let v = f.outputs.iter().find(|o| o.0.eq_ignore_ascii_case(&r.quantity))?;
+                let v = f
+                    .outputs
+                    .iter()
+                    .find(|o| o.0.eq_ignore_ascii_case(&r.quantity))?;
                 Some((f.t, v.1))
             })
             .collect();

@@ -1,7 +1,7 @@
 //! The integration settings the cases share, in one place.
 
-use mbd::integrate::{Event, Integrator, Radau5, Solution};
 use crate::validation::{Animation, Frame};
+use mbd::integrate::{Event, Integrator, Radau5, Solution};
 use mbd::{Drawable, OdeSystem, Options, Vector};
 
 /// Tolerance of the reference runs: tight enough that the integration error is far below
@@ -45,7 +45,8 @@ pub fn sample<const D: usize>(
 pub const FRAMES: usize = 120;
 
 /// The model's outputs by name at a state (empty for a model without outputs).
-pub type Outputs<'a, const D: usize> = &'a dyn Fn(f64, &Vector<D>) -> mbd::Result<Vec<(&'static str, f64)>>;
+pub type Outputs<'a, const D: usize> =
+    &'a dyn Fn(f64, &Vector<D>) -> mbd::Result<Vec<(&'static str, f64)>>;
 
 /// The mechanism drawn at `FRAMES + 1` uniform times over `[0, span]` and at each instant
 /// of `at` inside it (`stills`), with its `outputs`, from the run of [`integrate`] from
@@ -57,6 +58,10 @@ pub fn animate<S: OdeSystem<D> + Drawable<D>, const D: usize>(
     at: &[f64],
     outputs: Outputs<'_, D>,
 ) -> mbd::Result<Animation> {
+    // A closed loop's `init` need not give consistent velocities (the cases complete them
+    // by a kinematic analysis): project onto the loop's manifolds first.
+    let mut y0 = y0;
+    sys.project(0.0, &mut y0)?;
     let sol = integrate(sys, y0, span, &[])?;
     let (t1, _) = sol.last();
     let draw = |t: f64| -> mbd::Result<Option<Frame>> {

@@ -72,7 +72,10 @@ pub struct Case {
 impl Case {
     /// The first paragraph of the case's documentation: the problem and its reference.
     pub fn summary(&self) -> String {
-        doc_paragraphs(self.source).into_iter().next().unwrap_or_default()
+        doc_paragraphs(self.source)
+            .into_iter()
+            .next()
+            .unwrap_or_default()
     }
 
     /// The documentation's paragraph on the manual's discrepancies (where the manual is

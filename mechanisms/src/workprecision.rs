@@ -32,12 +32,12 @@ use crate::{
     case27_bar_spring_released as c27, case28_falling_bar_spring as c28,
     case30_damped_vibration as c30,
 };
+use differential_equations::prelude::{ExplicitRungeKutta, IVP, ODE};
 use mbd::analysis::{NewtonOptions, kinematics};
 use mbd::integrate::{
     Dop853, Dopri5, Event, EventHit, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution,
 };
 use mbd::{Constrained, OdeSystem, Options, Stats, Vector};
-use differential_equations::prelude::{ExplicitRungeKutta, IVP, ODE};
 use std::cell::Cell;
 use std::fmt;
 use std::hint::black_box;
@@ -1155,7 +1155,7 @@ pub fn peer_dopri5<S: OdeSystem<D>, const D: usize>(
     ))
 }
 
-/// The peer's step budget (as `ode_solvers`' default, which it replaced).
+/// The peer's step budget: ample for every sweep (a run that needs more fails).
 const PEER_MAX_STEPS: usize = 100_000;
 
 // ---------------------------------------------------------------------------------------

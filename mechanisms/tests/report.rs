@@ -7,7 +7,10 @@ use mechanisms::validation::{Case, error_pct};
 use std::process::Command;
 
 fn case(id: &str) -> Case {
-    cases().into_iter().find(|c| c.id == id).expect("the case exists")
+    cases()
+        .into_iter()
+        .find(|c| c.id == id)
+        .expect("the case exists")
 }
 
 #[test]
@@ -18,7 +21,11 @@ fn validate_writes_a_self_contained_html_page() {
         .arg(&dir)
         .output()
         .expect("the binary runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let html = std::fs::read_to_string(dir.join("report.html")).expect("report.html");
     std::fs::remove_dir_all(&dir).ok();
     assert!(html.starts_with("<!DOCTYPE html>"));
@@ -33,7 +40,10 @@ fn validate_writes_a_self_contained_html_page() {
     assert!(html.contains("<section id=\"case28\">"));
     assert!(html.contains("Case 28: Falling bar with a spring"));
     // The drawing: the four shapes of the model, animated frames and a still.
-    assert!(html.contains(r#""kinds":["rigid","point","spring"]"#), "{html}");
+    assert!(
+        html.contains(r#""kinds":["rigid","point","spring"]"#),
+        "{html}"
+    );
     assert!(html.contains(r#""names":["bar","anchor_c","spring"]"#));
     // The table: the manual's values, mbd's at seven figures, run time in microseconds.
     assert!(html.contains("<td>0.909"), "the manual's theory");
@@ -44,7 +54,11 @@ fn validate_writes_a_self_contained_html_page() {
     assert!(html.contains("class=\"wrong\""));
     assert!(html.contains("is not the minimum even of its own formula"));
     // The plot marks theory, RecurDyn and mbd.
-    for mark in ["theory: 0.909", "RecurDyn: 0.901", "mbd omega_min: 0.910158"] {
+    for mark in [
+        "theory: 0.909",
+        "RecurDyn: 0.901",
+        "mbd omega_min: 0.910158",
+    ] {
         assert!(html.contains(mark), "{mark} missing");
     }
 }
@@ -59,7 +73,10 @@ fn the_drawing_follows_the_case_model() {
     for f in anim.frames.iter().chain(&anim.stills) {
         let bar = &f.shapes[0].points;
         let pivot = bar[2];
-        assert!(pivot[0].abs() < 1e-12 && pivot[1].abs() < 1e-12, "{pivot:?}");
+        assert!(
+            pivot[0].abs() < 1e-12 && pivot[1].abs() < 1e-12,
+            "{pivot:?}"
+        );
         let spring = &f.shapes[2].points;
         assert_eq!(spring[0], [-1.2, 0.0, 0.0]);
         assert_eq!(spring[1], bar[0]);
@@ -67,7 +84,11 @@ fn the_drawing_follows_the_case_model() {
     // Case 19: the crank's far end is the rod's pin B, the rod's other end the piston.
     let anim = (case("19").draw)(0.0, &[]).expect("drawn");
     for f in &anim.frames {
-        let (crank, rod, piston) = (&f.shapes[0].points, &f.shapes[1].points, &f.shapes[2].points);
+        let (crank, rod, piston) = (
+            &f.shapes[0].points,
+            &f.shapes[1].points,
+            &f.shapes[2].points,
+        );
         let gap = |a: [f64; 3], b: [f64; 3]| (a[0] - b[0]).hypot(a[1] - b[1]);
         assert!(gap(crank[1], rod[1]).min(gap(crank[1], rod[2])) < 1e-9);
         assert!(gap(piston[0], rod[1]).min(gap(piston[0], rod[2])) < 1e-9);

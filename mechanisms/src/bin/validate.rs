@@ -3,9 +3,9 @@
 //! `cargo run --release -p mechanisms --bin validate [-- --json] [--case N] [--out DIR]`
 
 use clap::Parser;
+use mechanisms::cases;
 use mechanisms::report::{CaseRun, ReportRow, sig};
 use mechanisms::validation::{Case, ManualRow, Outcome, error_pct, manual_rows};
-use mechanisms::cases;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -187,7 +187,8 @@ fn table(rows: &[ReportRow]) -> String {
             r.unit,
             fmt_opt(r.theory),
             fmt_opt(r.recurdyn),
-            r.recurdyn_error_pct.map_or_else(|| "-".to_string(), |e| sig(e, 2)),
+            r.recurdyn_error_pct
+                .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
             sig(r.value, 10),
             r.error_pct,
             sig(r.runtime_s * 1e6, 3),
@@ -212,7 +213,8 @@ fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io:
             r.unit,
             fmt_opt(r.theory),
             fmt_opt(r.recurdyn),
-            r.recurdyn_error_pct.map_or_else(|| "-".to_string(), |e| sig(e, 2)),
+            r.recurdyn_error_pct
+                .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
             sig(r.value, 10),
             r.error_pct,
             sig(r.reference, 10),
@@ -231,7 +233,13 @@ fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io:
             .collect();
         parts.sort_unstable();
         parts.dedup();
-        let _ = writeln!(md, "| {} | {} | {} |", case.id, statements, parts.join(", "));
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} |",
+            case.id,
+            statements,
+            parts.join(", ")
+        );
         let svg = mechanisms::report::case_plot(run).map_err(std::io::Error::other)?;
         std::fs::write(dir.join(format!("case{}.svg", case.id)), svg)?;
     }

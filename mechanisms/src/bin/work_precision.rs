@@ -355,7 +355,11 @@ fn summary_text(f: &Figures) -> String {
     };
     for (name, _, round_off, a, b) in &f.per_mechanism {
         if *round_off {
-            let _ = writeln!(s, "{name:<32} {:>49}", format!("round-off only: every run within {ROUND_OFF:.0e}"));
+            let _ = writeln!(
+                s,
+                "{name:<32} {:>49}",
+                format!("round-off only: every run within {ROUND_OFF:.0e}")
+            );
         } else {
             let _ = writeln!(s, "{:<32} {:>24} {:>24}", name, cell(a), cell(b));
         }
@@ -403,9 +407,8 @@ fn summary_text(f: &Figures) -> String {
 
 /// The report as JSON: the numeric settings it was made with, the summary, every row.
 fn json_report(rows: &[Row], f: &Figures, timing: Timing) -> serde_json::Value {
-    let fastest = |x: &Fastest| {
-        x.map(|(m, t)| serde_json::json!({ "method": m.name(), "time_s": t }))
-    };
+    let fastest =
+        |x: &Fastest| x.map(|(m, t)| serde_json::json!({ "method": m.name(), "time_s": t }));
     let methods: Vec<serde_json::Value> = ALL_METHODS
         .iter()
         .map(|m| {
@@ -595,10 +598,7 @@ fn write_report(
             })
             .collect();
         let file = format!("{}.svg", slug(p.name));
-        let round_off = f
-            .per_mechanism
-            .iter()
-            .any(|m| m.0 == p.name && m.2);
+        let round_off = f.per_mechanism.iter().any(|m| m.0 == p.name && m.2);
         let title = if round_off {
             format!("{}: work-precision (round-off only)", p.name)
         } else {
@@ -688,12 +688,11 @@ fn main() -> ExitCode {
         print!("{summary}");
     }
     if let Some(dir) = &args.out
-        && let Err(e) = write_report(dir, &all_rows, &curves, &problems, &figs, timing).and_then(
-            |()| {
+        && let Err(e) =
+            write_report(dir, &all_rows, &curves, &problems, &figs, timing).and_then(|()| {
                 let text = serde_json::to_string_pretty(&report).map_err(std::io::Error::other)?;
                 std::fs::write(dir.join("report.json"), text)
-            },
-        )
+            })
     {
         eprintln!("cannot write the report to {}: {e}", dir.display());
         return ExitCode::FAILURE;
