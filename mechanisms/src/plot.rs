@@ -146,17 +146,22 @@ fn legend_marker(m: Marker, c: (i32, i32), colour: RGBColor) -> Polygon<(i32, i3
     Polygon::new(pts.collect::<Vec<_>>(), colour.filled())
 }
 
+/// A tick label's format.
+type Format<'a> = &'a dyn Fn(&f64) -> String;
+/// A value's place along an axis: 0 at its start, 1 at its end.
+type Unit<'a> = &'a dyn Fn(f64) -> f64;
+
 /// Draws `series` and `marks` on axes built from `x` and `y`, with a legend.
 #[allow(clippy::too_many_arguments, reason = "one plot's parts")]
 fn draw<X, Y>(
     buf: &mut String,
-    (x_unit, y_unit): (&dyn Fn(f64) -> f64, &dyn Fn(f64) -> f64),
+    (x_unit, y_unit): (Unit<'_>, Unit<'_>),
     title: &str,
     labels: (&str, &str),
     x: X,
     y: Y,
     y_area: u32,
-    formats: (&dyn Fn(&f64) -> String, &dyn Fn(&f64) -> String),
+    formats: (Format<'_>, Format<'_>),
     series: &[Series],
     marks: &[Mark],
 ) -> Result<(), String>
@@ -167,7 +172,7 @@ where
     Y::CoordDescType: ValueFormatter<f64>,
 {
     let e = |e: &dyn std::fmt::Display| e.to_string();
-    let corner = legend_corner(series, marks, &x_unit, &y_unit);
+    let corner = legend_corner(series, marks, x_unit, y_unit);
     let root = SVGBackend::with_string(buf, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let mut chart = ChartBuilder::on(&root)
@@ -256,8 +261,8 @@ where
 fn legend_corner(
     series: &[Series],
     marks: &[Mark],
-    x_unit: &dyn Fn(f64) -> f64,
-    y_unit: &dyn Fn(f64) -> f64,
+    x_unit: Unit<'_>,
+    y_unit: Unit<'_>,
 ) -> SeriesLabelPosition {
     let points: Vec<(f64, f64)> = series
         .iter()
