@@ -172,7 +172,7 @@ where
     Y::CoordDescType: ValueFormatter<f64>,
 {
     let e = |e: &dyn std::fmt::Display| e.to_string();
-    let corner = legend_corner(series, marks, x_unit, y_unit);
+    let (corner, _) = legend_corner(series, marks, x_unit, y_unit);
     let root = SVGBackend::with_string(buf, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let mut chart = ChartBuilder::on(&root)
@@ -263,7 +263,7 @@ fn legend_corner(
     marks: &[Mark],
     x_unit: Unit<'_>,
     y_unit: Unit<'_>,
-) -> SeriesLabelPosition {
+) -> (SeriesLabelPosition, usize) {
     let points: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
@@ -287,7 +287,7 @@ fn legend_corner(
     ]
     .into_iter()
     .min_by_key(|c| c.1)
-    .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
+    .unwrap_or((SeriesLabelPosition::UpperRight, 0))
 }
 
 /// A value with six significant figures, for legends.
@@ -309,7 +309,12 @@ pub fn line_plot(
             .flat_map(|s| s.points.iter().copied())
             .chain(marks.iter().map(|m| (m.1, m.2)))
     };
-    let (x, y) = (range(all().map(|p| p.0)), range(all().map(|p| p.1)));
+    let (x, mut y) = (range(all().map(|p| p.0)), range(all().map(|p| p.1)));
+    // No corner free for the legend: room above the curves for it.
+    let unit = |r: &Range<f64>, v: f64| (v - r.start) / (r.end - r.start);
+    if legend_corner(series, marks, &|v| unit(&x, v), &|v| unit(&y, v)).1 > 0 {
+        y.end += 0.45 * (y.end - y.start);
+    }
     let y_area = 34 + 7 * widest(round_ticks(&y).into_iter().map(tick));
     let mut buf = String::new();
     let (xu, yu) = (x.clone(), y.clone());

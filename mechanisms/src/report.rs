@@ -413,7 +413,10 @@ const SCRIPT: &str = r##"<script>
     function place(shapes, frame) {
       shapes.forEach((parts, i) => {
         const p = frame.p[i].map(map), kind = data.kinds[i];
-        if (kind === "spring") parts[0].setAttribute("points", zigzag(p[0], p[1], 6, 5));
+        if (kind === "spring") {
+          const len = Math.hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
+          parts[0].setAttribute("points", zigzag(p[0], p[1], Math.max(3, Math.round(len / 10)), 5));
+        }
         else if (kind === "damper") { parts[0].setAttribute("x1", p[0][0]); parts[0].setAttribute("y1", p[0][1]); parts[0].setAttribute("x2", p[1][0]); parts[0].setAttribute("y2", p[1][1]); }
         else if (kind === "point") { parts[0].setAttribute("x", p[0][0] - 4); parts[0].setAttribute("y", p[0][1] - 4); }
         else if (kind === "particle") { parts[0].setAttribute("cx", p[0][0]); parts[0].setAttribute("cy", p[0][1]); }
