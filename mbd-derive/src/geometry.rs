@@ -137,6 +137,16 @@ pub fn lower(
         .collect()
 }
 
+/// Applies `f` to every coordinate of every point (the reduction to free coordinates).
+pub fn map(shapes: &mut [Shape<Vec<Expr>>], mut f: impl FnMut(Expr) -> Expr) {
+    for x in shapes
+        .iter_mut()
+        .flat_map(|s| s.points.iter_mut().flatten())
+    {
+        *x = f(*x);
+    }
+}
+
 /// `impl Drawable` for `ident`: `split` binds `q`, `qd` from `y`, `check` is the closure's
 /// domain check. Returns the code and its statements.
 pub fn emit(

@@ -276,9 +276,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, full, &red.map);
     let observed = (&mut outputs[..], &mut events[..]);
     outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);
-    for x in geometry.iter_mut().flat_map(|s| s.points.iter_mut().flatten()) {
-        *x = finisher.finish(&mut scope.g, *x);
-    }
+    crate::geometry::map(&mut geometry, |x| finisher.finish(&mut scope.g, x));
     let frictionless = coulomb::apply(
         &mut scope,
         &finisher,
