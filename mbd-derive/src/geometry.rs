@@ -189,3 +189,16 @@ pub fn emit(
     };
     (code, b.len())
 }
+
+/// `impl Drawable` beside a failed derive's errors (see `skeleton.rs`), where asked for.
+pub fn skeleton(ast: &Mechanism, d: usize, never: &TokenStream) -> Option<TokenStream> {
+    let (ident, p) = (&ast.ident, quote!(::mbd::__private));
+    ast.geometry.then(|| {
+        quote! {
+            #[allow(unused_variables, unreachable_code, clippy::all)]
+            impl #p::Drawable<#d> for #ident {
+                fn geometry(&self, t: f64, y: &#p::Vector<#d>) -> #p::Result<::std::vec::Vec<#p::Shape>> { #never }
+            }
+        }
+    })
+}
