@@ -6,13 +6,15 @@ use mbd::prelude::*;
 use mbd::{ShapeKind, Vector};
 
 /// A double pendulum as a joint tree hanging from a pin at `(0, h)`, with a spring from a
-/// fixed point to the lower link's mass centre and a damper to a point given by position.
+/// fixed point to the lower link's mass centre, a point fixed on the lower link (its tip) and
+/// a damper to a point given by position.
 #[derive(Debug, Mechanism)]
 #[mechanism(geometry)]
 #[gravity(0.0, -9.81)]
 #[body(upper, joint = revolute(a), at = [0.0, h], com = [l / 2.0, 0.0], mass = m, inertia = m * l * l / 12.0)]
 #[body(lower, parent = upper, joint = revolute(b), at = [l, 0.0], com = [l / 2.0, 0.0], mass = m, inertia = m * l * l / 12.0)]
 #[point(anchor, at = [2.0 * l, h])]
+#[point(tip, on = lower, at = [l, 0.0])]
 #[spring(pull, from = anchor, to = lower, k = 10.0)]
 #[damper(drag, from = [0.0, 0.0], to = upper, c = 1.0)]
 pub struct Hanging {
@@ -59,6 +61,7 @@ fn a_tree_is_drawn_joint_to_joint_with_its_spring_and_damper() {
             (ShapeKind::Link, "upper"),
             (ShapeKind::Link, "lower"),
             (ShapeKind::Point, "anchor"),
+            (ShapeKind::Point, "tip"),
             (ShapeKind::Spring, "pull"),
             (ShapeKind::Damper, "drag"),
         ]
@@ -88,10 +91,12 @@ fn a_tree_is_drawn_joint_to_joint_with_its_spring_and_damper() {
     close(lower[2], lower_com);
     close(lower[3], tip);
     close(shapes[2].points[0], [2.0 * l, h, 0.0]);
-    close(shapes[3].points[0], [2.0 * l, h, 0.0]);
-    close(shapes[3].points[1], lower_com);
-    close(shapes[4].points[0], [0.0, 0.0, 0.0]);
-    close(shapes[4].points[1], upper[2]);
+    // A body-fixed point moves with its body.
+    close(shapes[3].points[0], tip);
+    close(shapes[4].points[0], [2.0 * l, h, 0.0]);
+    close(shapes[4].points[1], lower_com);
+    close(shapes[5].points[0], [0.0, 0.0, 0.0]);
+    close(shapes[5].points[1], upper[2]);
     assert!(Hanging::GENERATED.parts.contains(&"geometry"));
     assert!(!Plain::GENERATED.parts.contains(&"geometry"));
 }
