@@ -222,7 +222,7 @@ pub struct Row {
     pub rel_error: f64,
     /// The cost of the linearisation at this point (`modes --json` only: timing is left
     /// out of the tests).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "report", serde(skip_serializing_if = "Option::is_none"))]
     pub cost: Option<Cost>,
 }
 
@@ -230,7 +230,8 @@ pub struct Row {
 /// (a shared machine only ever adds time): one right-hand side, the exact `A`
 /// ([`linearize`]), and `A` by forward differences (`D + 1` right-hand sides, the
 /// cheapest numerical Jacobian); `ratio` is exact over forward differences.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "report", derive(serde::Serialize))]
 pub struct Cost {
     pub rhs_us: f64,
     pub exact_a_us: f64,
