@@ -37,7 +37,7 @@
 //! | attribute | meaning |
 //! |---|---|
 //! | `#[gravity(gx, gy)]` / `#[gravity(gx, gy, gz)]` | gravity; 3 components make the mechanism spatial |
-//! | `#[mechanism(planar \| spatial, jacobian, recursive \| mass_matrix, augmented \| minimal)]` | dimension; `jacobian` generates exact `d qdd/dq`, `d qdd/dqd` for implicit methods; a joint tree's accelerations come from the articulated-body recursion (O(n), chosen from 2 tree bodies) or the mass-matrix solve: force either; closed loops: `augmented` keeps every coordinate with the constraints and multipliers, `minimal` demands minimal coordinates (a compile error says why not), default: minimal where the closure has a closed form |
+//! | `#[mechanism(planar \| spatial, jacobian, geometry, recursive \| mass_matrix, augmented \| minimal)]` | dimension; `jacobian` generates exact `d qdd/dq`, `d qdd/dqd` for implicit methods; `geometry` generates `impl Drawable` (`geometry(t, y)`: each body, point, spring and damper as points in ground coordinates, for drawings and animations); a joint tree's accelerations come from the articulated-body recursion (O(n), chosen from 2 tree bodies) or the mass-matrix solve: force either; closed loops: `augmented` keeps every coordinate with the constraints and multipliers, `minimal` demands minimal coordinates (a compile error says why not), default: minimal where the closure has a closed form |
 //! | `#[coords(a, b, ..)]` | free generalised coordinates; with constraints that the derive solves in closed form the state is the ones the closure leaves (the first-listed), in this order, and the others follow from the closure (`X::COORDINATES` names the state) |
 //! | `#[drive(theta = omega * t)]` | a driven coordinate: a known function of time (not in `coords`) |
 //! | `#[relaxed(ux, uy)]` | coordinates pinned at zero, kept only so that `reaction(ux)` is the joint's reaction |
@@ -366,6 +366,7 @@ pub use nalgebra;
 pub mod prelude {
     pub use crate::Mechanism;
     pub use mbd_core::ensemble::{self, Member};
+    pub use mbd_core::geometry::Drawable;
     pub use mbd_core::{
         Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Solution,
         Vector,

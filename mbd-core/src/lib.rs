@@ -11,6 +11,7 @@ pub mod closure;
 pub mod ensemble;
 pub mod error;
 pub mod friction;
+pub mod geometry;
 pub mod hybrid;
 pub mod integrate;
 pub mod jacobian;
@@ -21,6 +22,7 @@ pub mod passage;
 pub mod solve;
 
 pub use error::{Error, Result};
+pub use geometry::{Drawable, Shape, ShapeKind};
 pub use integrate::{
     Auto, Direction, Dop853, Dopri5, Event, EventHit, Integrator, Options, Record, Rk4, Segment,
     Solution, Stats,

@@ -12,6 +12,7 @@ mod closure;
 mod codegen;
 mod expand;
 mod friction;
+mod geometry;
 mod guard;
 mod linear;
 mod lower;

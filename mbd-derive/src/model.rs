@@ -140,6 +140,8 @@ pub struct Equations {
     /// Derivatives by the parameters and of the outputs (linear.rs), with `jacobian`.
     pub linear: Option<crate::linear::LinearEq>,
     pub outputs: Vec<OutputEq>,
+    /// The drawn shapes (`#[mechanism(geometry)]`), reduced like the outputs.
+    pub geometry: Vec<crate::geometry::Shape<Vec<Expr>>>,
     pub events: Vec<EventEq>,
     pub frictions: Vec<FrictionEq>,
     /// The forces without friction, for the stick test (present when there is friction).
@@ -264,17 +266,24 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     // Outputs, events and friction, with reactions on request.
     let mut answers = kin.kin(scope.t, scope.dim, &mut reactions);
     let (mut outputs, mut events) = outputs::lower(ast, &mut scope, &mut answers);
+    let dims = scope.dim.len();
+    let mut geometry = crate::geometry::lower(crate::geometry::shapes(ast), |e| {
+        let context = crate::lower::Context::Output;
+        scope.lowerer(Some(&mut answers)).vector(e, context, dims)
+    });
     let at = (&kin.coords[..], &free_idx[..]);
     let mut frictions = coulomb::lower(ast, &mut scope, &mut answers, at, &mut checks);
     let full = (&inertial, &loops.phi[..], &con.lambdas[..]);
     let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, full, &red.map);
     let observed = (&mut outputs[..], &mut events[..]);
     outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);
+    crate::geometry::map(&mut geometry, |x| finisher.finish(&mut scope.g, x));
     if let Some(min) = &minimal {
         let observed = outputs.iter_mut().map(|o| &mut o.expr);
         for e in observed.chain(events.iter_mut().map(|e| &mut e.expr)) {
             *e = min.close(&mut scope.g, &[*e])[0];
         }
+        crate::geometry::map(&mut geometry, |x| min.close(&mut scope.g, &[x])[0]);
     }
     let frictionless = coulomb::apply(
         &mut scope,
@@ -343,6 +352,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         jacobian,
         linear,
         outputs,
+        geometry,
         events,
         frictions,
         frictionless,

@@ -231,6 +231,8 @@ pub struct Mechanism {
     pub inits: Vec<Init>,
     /// Generate exact Jacobians `d qdd / dq`, `d qdd / dqd` for implicit methods.
     pub jacobian: bool,
+    /// Generate `Drawable` (`#[mechanism(geometry)]`, see `geometry.rs`).
+    pub geometry: bool,
     pub evaluation: Evaluation,
     pub evaluation_span: Span,
     pub loop_form: LoopForm,
@@ -470,6 +472,7 @@ impl Mechanism {
             events: Vec::new(),
             inits: Vec::new(),
             jacobian: false,
+            geometry: false,
             evaluation: Evaluation::Auto,
             evaluation_span: Span::call_site(),
             loop_form: LoopForm::Auto,
@@ -549,7 +552,7 @@ impl Mechanism {
         }
     }
 
-    /// `#[mechanism(planar | spatial, jacobian, recursive | mass_matrix, augmented | minimal)]`.
+    /// `#[mechanism(planar | spatial, jacobian, geometry, recursive | mass_matrix, augmented | minimal)]`.
     fn options(&mut self, attr: &Attribute, dim_given: &mut bool, errors: &mut Errors) {
         for arg in args(attr).unwrap_or_else(|e| {
             errors.push(e);
@@ -562,6 +565,7 @@ impl Mechanism {
                         *dim_given = true;
                     }
                     Arg::Flag(f) if f == "jacobian" => self.jacobian = true,
+                    Arg::Flag(f) if f == "geometry" => self.geometry = true,
                     Arg::Flag(f) if f == "recursive" || f == "mass_matrix" => {
                         self.evaluation = if f == "recursive" { Evaluation::Recursive } else { Evaluation::MassMatrix };
                         self.evaluation_span = f.span();
@@ -572,7 +576,7 @@ impl Mechanism {
                     }
                     Arg::Flag(f) => errors.at(
                         f.span(),
-                        format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
+                        format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `geometry`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
                     ),
                     Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
                     Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),

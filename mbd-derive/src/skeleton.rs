@@ -106,6 +106,7 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
         }
     });
     let (r_vn, r_vd, r_unit) = (res(vn.clone()), res(vd.clone()), res(quote!(())));
+    let geometry = crate::geometry::skeleton(ast, d, &never);
     quote! {
         #[derive(Debug, Clone, Copy, PartialEq, Default)]
         pub struct #state { #(pub #fields: f64,)* }
@@ -138,6 +139,7 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
         #outputs
         #events
         #friction
+        #geometry
     }
 }
 

@@ -19,6 +19,7 @@ use mbd::prelude::*;
 
 /// A ball thrown up at `v0` from `y = 0`.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(y)]
 #[particle(ball, mass = m, at = [0.0, y])]

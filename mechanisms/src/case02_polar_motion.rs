@@ -32,6 +32,7 @@ const METHOD: &str = "generated outputs of the driven motion";
 
 /// A point B driven in polar coordinates: `r = r_0 + r_dot t`, `θ = theta_dot t`.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[drive(r = r_0 + r_dot * t)]
 #[drive(theta = theta_dot * t)]
 #[particle(b, mass = m, at = [r * cos(theta), r * sin(theta)])]

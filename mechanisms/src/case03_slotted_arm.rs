@@ -47,6 +47,7 @@ const METHOD: &str =
 /// A crank of radius `a` about C (at `oc` from O on the line θ = 0) turning at `beta_dot`
 /// from `beta_0`; its pin at polar coordinates `(r, θ)` about O slides in the arm's slot.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(r, theta)]
 #[drive(beta = beta_0 + beta_dot * t)]
 #[constraint(r * cos(theta) == oc - a * cos(beta))]

@@ -46,6 +46,7 @@ use mbd::prelude::*;
 /// A pendulum of length `l` driven on the law `θ = theta_0 sin(sqrt(g/l) t)` from the
 /// downward vertical.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[drive(theta = theta_0 * sin(sqrt(g / l) * t))]
 #[particle(bob, mass = m, at = [l * sin(theta), -l * cos(theta)])]
 #[output(a = norm(acceleration(bob)))]

@@ -83,6 +83,7 @@ fn stop(run: &HybridSolution<2, [Slip; 1]>) -> mbd::Result<(f64, f64)> {
 /// A crate launched at `v0` down an incline at `slope`; s runs down the slope, n normal to
 /// it (relaxed, so that `reaction(n)` is the normal force).
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(s)]
 #[relaxed(n)]

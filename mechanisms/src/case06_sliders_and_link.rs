@@ -42,6 +42,7 @@ const METHOD: &str = "generated outputs at t = 0 (accelerations and the bar's re
 /// Slider A on the x guide pushed by `p`, slider B on the y guide, joined by a bar of
 /// length `l`, relaxed into `l + e` so that `reaction(e)` is its axial force.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(x_a)]
 #[relaxed(e)]
 #[particle(a, mass = m_a, at = [x_a, 0.0])]

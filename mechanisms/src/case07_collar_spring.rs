@@ -37,6 +37,7 @@ use mbd::prelude::*;
 /// A collar on the straight rod from A to B (directly below the anchor O), pulled by a
 /// spring from O; s is the distance travelled from A.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(s)]
 #[point(anchor, at = [0.0, 0.0])]

@@ -43,6 +43,7 @@ use mbd::prelude::*;
 /// Phase 1: a slider on the smooth guide `y = h_f + (h_a − h_f + p x) e^{−x^2}`, up to
 /// the bumper's free end at `x = x_f`.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(x)]
 #[particle(slider, mass = m, at = [x, h_f + (h_a - h_f + p * x) * exp(-x * x)])]
@@ -65,6 +66,7 @@ pub struct SliderOnGuide {
 /// Phase 2: the slider on the level part at `h_f`, against the bumper, a spring of
 /// stiffness k whose free end is at `x_f` (anchored `bumper_length` further on).
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(x)]
 #[point(anchor, at = [x_f + bumper_length, h_f])]

@@ -34,6 +34,7 @@ use mbd::prelude::*;
 /// A particle at distance r from O in a smooth tube of length `length` turned downward from
 /// the horizontal at `omega_0`.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(r)]
 #[drive(theta = omega_0 * t)]

@@ -35,6 +35,7 @@ use mbd::prelude::*;
 /// A cart on a smooth track carrying a point bob on a light rod of length l; θ from the
 /// upward vertical.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[mechanism(jacobian)]
 #[gravity(0.0, -g)]
 #[coords(x, theta)]

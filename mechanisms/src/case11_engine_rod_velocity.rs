@@ -40,6 +40,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// A crank OB turning clockwise at `omega` from `phi_0`, the rod BA with its mass centre
 /// `a_g` from A, and the piston A at `x_a` on the line through O; ψ is the angle of A→B.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(x_a, psi)]
 #[drive(phi = phi_0 - omega * t)]
 #[constraint(x_a + l * cos(psi) == r * cos(phi))]

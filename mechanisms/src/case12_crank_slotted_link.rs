@@ -41,6 +41,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// sliding in the slot of a link pivoted at P2 = (l, 0); s is the pin's distance from P2,
 /// φ the link's angle.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(s, phi)]
 #[drive(theta = theta_0 + theta_dot * t)]
 #[constraint(l + s * cos(phi) == r * cos(theta))]

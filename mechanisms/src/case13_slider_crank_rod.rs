@@ -35,6 +35,7 @@ const METHOD: &str =
 /// A crank OB turning at `omega_0` from `theta_0`, the rod BA at angle β to the slider's
 /// line, and the slider A at `x_a`.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(x_a, beta)]
 #[drive(theta = theta_0 + omega_0 * t)]
 #[constraint(x_a == r * cos(theta) + l * cos(beta))]

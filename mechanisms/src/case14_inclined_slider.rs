@@ -43,6 +43,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// length l, and the slider A on the guide at `incline` through `(0, −sqrt(l^2 − r^2))`; s is
 /// the slider's travel, ψ the link's angle.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(s, psi)]
 #[drive(phi = -omega_ob * t)]
 #[constraint(r * cos(phi) + l * cos(psi) == s * cos(incline))]

@@ -41,6 +41,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// coupler BA and rocker CA about C = (c_x, 0), with A at `(a_x, a_y)` at t = 0; ψ and χ are
 /// the angles of B→A and C→A.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(psi, chi)]
 #[drive(phi = PI / 2.0 - omega_ob * t)]
 #[constraint(ob * cos(phi) + hypot(a_x, a_y - ob) * cos(psi)

@@ -49,6 +49,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// Link OC turned clockwise at `omega_oc` from the vertical, slider A driven along
 /// `y = y_a` at `v_a` from `x_a0`, and the links CB and BA between them.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(theta_cb, theta_ba)]
 #[drive(theta_oc = PI / 2.0 - omega_oc * t)]
 #[drive(x_a = x_a0 + v_a * t)]

@@ -51,6 +51,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// A crank OA turning at `omega_oa` from `theta_0`, its pin A sliding in the slot of the
 /// rocker CB pivoted at C, `oc` below O; ψ is the rocker's angle, s the distance CA.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(psi, s)]
 #[drive(theta = theta_0 + omega_oa * t)]
 #[constraint(s * cos(psi) == oa * cos(theta))]

@@ -48,6 +48,7 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 /// slides through a collar pivoted at C, `oc` left of O. φ is the rod's angle, s the
 /// distance CB.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(phi, s)]
 #[drive(psi = omega_0 * t)]
 #[constraint(s * cos(phi) - oc == ob * sin(psi))]

@@ -45,6 +45,7 @@ use mbd::prelude::*;
 /// A slider-crank: crank OB (`r`) turning at `omega` from top dead centre, rod BA (`l`),
 /// piston A at `x` on the axis through O; β is the rod's angle to the axis.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(beta, x)]
 #[drive(theta = omega * t)]
 #[constraint(r * cos(theta) + l * cos(beta) == x)]

@@ -42,6 +42,7 @@ use mbd::prelude::*;
 /// A pendulum on a bearing at O, released from rest with OG horizontal; θ is OG's angle
 /// below the horizontal, `(ux, uy)` the relaxed bearing.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(theta)]
 #[relaxed(ux, uy)]

@@ -48,6 +48,7 @@ use mbd::prelude::*;
 /// Bar BD carried by the links AB (driven by the couple) and CD (a two-force link, its
 /// stretch `s` relaxed); θ is AB's angle, φ BD's angle from the downward vertical.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(theta, phi)]
 #[relaxed(s)]

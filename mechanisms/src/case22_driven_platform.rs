@@ -49,6 +49,7 @@ use mbd::prelude::*;
 /// A platform on the driven link EF (angle θ(t)) and the two-force link CD (its stretch `s`
 /// relaxed); φ is the platform's angle.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(phi)]
 #[drive(theta = amplitude * (1.0 - cos(rate * t)))]

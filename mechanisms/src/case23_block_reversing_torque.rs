@@ -38,6 +38,7 @@ use mbd::prelude::*;
 /// A rectangular block `a × b` turning about a fixed axis at `d` from its mass centre under a
 /// torque `torque`; θ is the turn from the start.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[coords(theta)]
 #[rigid(block, mass = m, inertia = m * (a * a + b * b) / 12.0,
         at = [d * cos(theta), d * sin(theta)], angle = theta)]

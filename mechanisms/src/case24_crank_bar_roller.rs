@@ -43,6 +43,7 @@ use mbd::prelude::*;
 /// A bar pinned at A to a crank turning at `omega_0` about O, its end B on the floor (the
 /// roller's lift `h` relaxed); φ is the bar's angle from +x.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(phi)]
 #[drive(theta = PI + omega_0 * t)]

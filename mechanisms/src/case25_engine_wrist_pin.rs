@@ -52,6 +52,7 @@ use mbd::prelude::*;
 /// A vertical single-cylinder engine: crank OB driven at `omega`, rod BA (angle φ), piston
 /// at height y; the wrist pin's separation `(ux, uy)` is relaxed.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(phi, y)]
 #[drive(theta = omega * t)]

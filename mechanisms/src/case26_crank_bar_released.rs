@@ -42,6 +42,7 @@ use mbd::prelude::*;
 
 /// A crank OA (angle θ) and a bar AB (angle φ) whose end B slides on the guide `y = h`.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(theta, phi)]
 #[point(pin_a, at = [r * cos(theta), r * sin(theta)])]

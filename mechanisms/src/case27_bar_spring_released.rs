@@ -42,6 +42,7 @@ use mbd::prelude::*;
 /// A bar pivoted at its end O (θ below the horizontal), with a spring from C, `c` above O,
 /// to the point A of the bar `a` from O.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(theta)]
 #[point(anchor_c, at = [0.0, c])]

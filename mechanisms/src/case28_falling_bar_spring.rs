@@ -48,6 +48,7 @@ use mbd::prelude::*;
 /// A bar pivoted at its lower end O (θ from the upward vertical, clockwise), with a spring
 /// from C, `c` to the left of O, to its mass centre.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(theta)]
 #[point(anchor_c, at = [-c, 0.0])]

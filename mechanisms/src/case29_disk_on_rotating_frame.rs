@@ -39,6 +39,7 @@ use mbd::prelude::*;
 /// A disk of radius `radius` on a frame turning at `big_omega` about z, spinning at `p`
 /// about the frame's y axis, its centre at `(d, 0, h)` in the frame.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[mechanism(spatial)]
 #[drive(psi = big_omega * t)]
 #[drive(phi = p * t)]

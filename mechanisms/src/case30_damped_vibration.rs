@@ -35,6 +35,7 @@ use mbd::prelude::*;
 /// A block on a spring and a damper in parallel, anchored to a wall `wall` behind the
 /// block's equilibrium position; x is the spring's extension.
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(geometry)]
 #[mechanism(jacobian)]
 #[gravity(0.0, -g)]
 #[coords(x)]

@@ -9,7 +9,6 @@ use crate::case10_pendulum_on_cart::{self as case10, PendulumOnCart};
 use crate::case30_damped_vibration::{self as case30, DampedBlock};
 use mbd::analysis::linear::{Mode, ModeKind, constrained_modes, linearize, modes, undamped_modes};
 use mbd::prelude::*;
-use serde::Serialize;
 use std::f64::consts::{PI, TAU};
 
 /// Frequencies within `1e-10` relative of the closed forms.
@@ -199,7 +198,8 @@ pub fn top_precessions(theta0: f64, omega3: f64) -> [(Vector<6>, f64); 2] {
 pub const TOP_POINT: (f64, f64) = (0.5, 20.0);
 
 /// One row of the report (the `--json` schema).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "report", derive(serde::Serialize))]
 pub struct Row {
     pub mechanism: &'static str,
     pub point: &'static str,
@@ -222,7 +222,7 @@ pub struct Row {
     pub rel_error: f64,
     /// The cost of the linearisation at this point (`modes --json` only: timing is left
     /// out of the tests).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "report", serde(skip_serializing_if = "Option::is_none"))]
     pub cost: Option<Cost>,
 }
 
@@ -230,7 +230,8 @@ pub struct Row {
 /// (a shared machine only ever adds time): one right-hand side, the exact `A`
 /// ([`linearize`]), and `A` by forward differences (`D + 1` right-hand sides, the
 /// cheapest numerical Jacobian); `ratio` is exact over forward differences.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "report", derive(serde::Serialize))]
 pub struct Cost {
     pub rhs_us: f64,
     pub exact_a_us: f64,

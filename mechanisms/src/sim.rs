@@ -1,7 +1,8 @@
 //! The integration settings the cases share, in one place.
 
+use crate::validation::{Animation, Frame};
 use mbd::integrate::{Event, Integrator, Radau5, Solution};
-use mbd::{OdeSystem, Options, Vector};
+use mbd::{Drawable, OdeSystem, Options, Vector};
 
 /// Tolerance of the reference runs: tight enough that the integration error is far below
 /// the 1e-6 relative the cases are judged at.
@@ -38,4 +39,48 @@ pub fn sample<const D: usize>(
             sol.at(t).map(|y| f(t, &y))
         })
         .collect()
+}
+
+/// How many frames an animation has (plus one per compared instant).
+pub const FRAMES: usize = 120;
+
+/// The model's outputs by name at a state (empty for a model without outputs).
+pub type Outputs<'a, const D: usize> =
+    &'a dyn Fn(f64, &Vector<D>) -> mbd::Result<Vec<(&'static str, f64)>>;
+
+/// The mechanism drawn at `FRAMES + 1` uniform times over `[0, span]` and at each instant
+/// of `at` inside it (`stills`), with its `outputs`, from the run of [`integrate`] from
+/// `y0`.
+pub fn animate<S: OdeSystem<D> + Drawable<D>, const D: usize>(
+    sys: &S,
+    y0: Vector<D>,
+    span: f64,
+    at: &[f64],
+    outputs: Outputs<'_, D>,
+) -> mbd::Result<Animation> {
+    // A closed loop's `init` need not give consistent velocities (the cases complete them
+    // by a kinematic analysis): project onto the loop's manifolds first.
+    let mut y0 = y0;
+    sys.project(0.0, &mut y0)?;
+    let sol = integrate(sys, y0, span, &[])?;
+    let (t1, _) = sol.last();
+    let draw = |t: f64| -> mbd::Result<Option<Frame>> {
+        match sol.at(t) {
+            Some(y) => Ok(Some(Frame {
+                t,
+                shapes: sys.geometry(t, &y)?,
+                outputs: outputs(t, &y)?,
+            })),
+            None => Ok(None),
+        }
+    };
+    let mut frames = Vec::with_capacity(FRAMES + 1);
+    for i in 0..=FRAMES {
+        frames.extend(draw(t1 * i as f64 / FRAMES as f64)?);
+    }
+    let mut stills = Vec::new();
+    for &t in at.iter().filter(|t| (0.0..=t1).contains(*t)) {
+        stills.extend(draw(t)?);
+    }
+    Ok(Animation { frames, stills })
 }

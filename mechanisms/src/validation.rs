@@ -33,6 +33,25 @@ pub struct Outcome {
     pub plot: Plot,
 }
 
+/// The mechanism at one instant (`#[mechanism(geometry)]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    pub t: f64,
+    pub shapes: Vec<mbd::Shape>,
+    /// The model's outputs (`#[output]`) at `t`, by name.
+    pub outputs: Vec<(&'static str, f64)>,
+}
+
+/// The mechanism over a run: uniform frames to animate, and stills at the compared instants.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Animation {
+    pub frames: Vec<Frame>,
+    pub stills: Vec<Frame>,
+}
+
+/// Draws a case's model over `[0, span]` with stills at the given instants.
+pub type Draw = fn(span: f64, at: &[f64]) -> mbd::Result<Animation>;
+
 /// A case of the validation manual.
 #[derive(Debug, Clone, Copy)]
 pub struct Case {
@@ -44,6 +63,50 @@ pub struct Case {
     pub generated: &'static [Generated],
     /// Runs the case.
     pub run: fn() -> mbd::Result<Outcome>,
+    /// Draws its model (`MODEL`) from its initial state.
+    pub draw: Draw,
+    /// The case's source file, whose module documentation the report quotes.
+    pub source: &'static str,
+}
+
+impl Case {
+    /// The first paragraph of the case's documentation: the problem and its reference.
+    pub fn summary(&self) -> String {
+        doc_paragraphs(self.source)
+            .into_iter()
+            .next()
+            .unwrap_or_default()
+    }
+
+    /// The documentation's paragraph on the manual's discrepancies (where the manual is
+    /// wrong, and why), without its heading.
+    pub fn discrepancies(&self) -> Option<String> {
+        const HEAD: &str = "**Discrepancies in the manual.**";
+        doc_paragraphs(self.source)
+            .into_iter()
+            .find_map(|p| p.strip_prefix(HEAD).map(|r| r.trim().to_string()))
+    }
+}
+
+/// The paragraphs of a file's `//!` documentation, each joined into one line.
+fn doc_paragraphs(source: &str) -> Vec<String> {
+    let mut out = vec![String::new()];
+    for line in source.lines().map_while(|l| l.strip_prefix("//!")) {
+        let line = line.trim();
+        let last = out.last_mut().expect("one paragraph");
+        if line.is_empty() {
+            if !last.is_empty() {
+                out.push(String::new());
+            }
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(line);
+        }
+    }
+    out.retain(|p| !p.is_empty());
+    out
 }
 
 /// A row of the manual's comparison tables, as transcribed in `data/comparison-tables.csv`.

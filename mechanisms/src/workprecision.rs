@@ -32,6 +32,7 @@ use crate::{
     case27_bar_spring_released as c27, case28_falling_bar_spring as c28,
     case30_damped_vibration as c30,
 };
+use differential_equations::prelude::{ExplicitRungeKutta, IVP, ODE};
 use mbd::analysis::{NewtonOptions, kinematics};
 use mbd::integrate::{
     Dop853, Dopri5, Event, EventHit, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution,
@@ -59,7 +60,7 @@ pub enum Method {
     Radau5,
     /// mbd's generalized-α (`ρ∞ = `[`RHO_INF`]), swept over the step size.
     GeneralizedAlpha,
-    /// The peer: `ode_solvers`' Dopri5 on the same generated right-hand side.
+    /// The peer: `differential-equations`' DOPRI5 on the same generated right-hand side.
     PeerDopri5,
 }
 
@@ -85,7 +86,7 @@ impl Method {
             Method::Dopri5NoProjection => "DOPRI5 (no projection)",
             Method::Radau5 => "Radau5",
             Method::GeneralizedAlpha => "generalized-alpha",
-            Method::PeerDopri5 => "ode_solvers Dopri5",
+            Method::PeerDopri5 => "differential-equations DOPRI5",
         }
     }
 
@@ -1085,26 +1086,18 @@ fn slider_by_hand(s: &Setting) -> Result<Measured, Failure> {
 // ---------------------------------------------------------------------------------------
 // The peer.
 
-/// A generated model seen through `ode_solvers`' `System` trait. The state is copied between
-/// the two crates' vector types (they depend on different nalgebra versions); an error of the
-/// model is kept and the derivative set to NaN, which makes the peer reject the step.
+/// A generated model seen through `differential-equations`' `ODE` trait, on plain arrays
+/// (that crate's own state type: no second linear-algebra crate). An error of the model is
+/// kept and the derivative set to NaN, which makes the peer reject the step.
 struct PeerSystem<'a, S> {
     sys: &'a S,
     error: &'a Cell<Option<mbd::Error>>,
 }
 
-impl<S: OdeSystem<D>, const D: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, D>>
-    for PeerSystem<'_, S>
-{
-    fn system(
-        &self,
-        t: f64,
-        y: &ode_solvers::SVector<f64, D>,
-        dy: &mut ode_solvers::SVector<f64, D>,
-    ) {
-        let y = Vector::<D>::from_column_slice(y.as_slice());
-        match self.sys.rhs(t, &y) {
-            Ok(f) => dy.as_mut_slice().copy_from_slice(f.as_slice()),
+impl<S: OdeSystem<D>, const D: usize> ODE<f64, [f64; D]> for PeerSystem<'_, S> {
+    fn diff(&self, t: f64, y: &[f64; D], dy: &mut [f64; D]) {
+        match self.sys.rhs(t, &Vector::<D>::from_column_slice(y)) {
+            Ok(f) => dy.copy_from_slice(f.as_slice()),
             Err(e) => {
                 dy.fill(f64::NAN);
                 self.error.set(Some(e));
@@ -1113,8 +1106,9 @@ impl<S: OdeSystem<D>, const D: usize> ode_solvers::System<f64, ode_solvers::SVec
     }
 }
 
-/// Integrate `sys` from `(t0, y0)` to `t1` with `ode_solvers`' Dopri5 at `rtol = atol = tol`
-/// (its default controller, Hairer's), returning the end state and its work counters.
+/// Integrate `sys` from `(t0, y0)` to `t1` with `differential-equations`' DOPRI5 at
+/// `rtol = atol = tol` (its default controller, Hairer's), recording the end state only,
+/// returning it and its work counters.
 pub fn peer_dopri5<S: OdeSystem<D>, const D: usize>(
     sys: &S,
     t0: f64,
@@ -1124,34 +1118,36 @@ pub fn peer_dopri5<S: OdeSystem<D>, const D: usize>(
 ) -> Result<(Vector<D>, Stats), Failure> {
     let error = Cell::new(None);
     let system = PeerSystem { sys, error: &error };
-    let y0 = ode_solvers::SVector::<f64, D>::from_column_slice(y0.as_slice());
-    let mut stepper = ode_solvers::Dopri5::new(system, t0, t1, 0.0, y0, tol, tol);
-    stepper.set_output(ode_solvers::OutputType::Sparse);
-    let result = stepper.integrate();
-    let (ts, ys) = (stepper.x_out(), stepper.y_out());
-    let end = match (ts.last(), ys.last()) {
-        (Some(&t), Some(y)) if (t - t1).abs() <= 1e-12 * t1.abs().max(1.0) => {
-            Vector::<D>::from_column_slice(y.as_slice())
-        }
-        _ => Vector::<D>::from_element(f64::NAN),
-    };
+    let mut start = [0.0; D];
+    start.copy_from_slice(y0.as_slice());
+    let method = ExplicitRungeKutta::dopri5()
+        .rtol(tol)
+        .atol(tol)
+        .max_steps(PEER_MAX_STEPS);
+    let result = IVP::ode(&system, t0, t1, start)
+        .method(method)
+        .t_eval([t1])
+        .solve();
     if let Some(e) = error.take() {
         return Err(e.into());
     }
-    let stats = match result {
-        Ok(stats) => stats,
-        Err(e) => return Err(Failure::Failed(format!("ode_solvers: {e}"))),
+    let sol = result.map_err(|e| Failure::Failed(format!("differential-equations: {e:?}")))?;
+    let end = match (sol.t.last(), sol.y.last()) {
+        (Some(&t), Some(y)) if (t - t1).abs() <= 1e-12 * t1.abs().max(1.0) => {
+            Vector::<D>::from_column_slice(y)
+        }
+        _ => Vector::<D>::from_element(f64::NAN),
     };
     if !end.iter().all(|v| v.is_finite()) {
         return Err(Failure::Failed(
-            "ode_solvers: the run did not reach t1 with a finite state".into(),
+            "differential-equations: the run did not reach t1 with a finite state".into(),
         ));
     }
-    let (accepted, rejected) = (stats.accepted_steps as usize, stats.rejected_steps as usize);
+    let (accepted, rejected) = (sol.steps.accepted, sol.steps.rejected);
     Ok((
         end,
         Stats {
-            n_rhs: stats.num_eval as usize,
+            n_rhs: sol.evals.function,
             n_steps: accepted + rejected,
             n_accepted: accepted,
             n_rejected: rejected,
@@ -1159,6 +1155,9 @@ pub fn peer_dopri5<S: OdeSystem<D>, const D: usize>(
         },
     ))
 }
+
+/// The peer's step budget: ample for every sweep (a run that needs more fails).
+const PEER_MAX_STEPS: usize = 100_000;
 
 // ---------------------------------------------------------------------------------------
 // Timing and sweeps.

@@ -47,6 +47,13 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     let outputs = outputs(eq, &mut sh);
     let events = events(eq, &mut sh);
     let frictions = frictions(eq, &mut sh, &check_elements);
+    let geometry = ast.geometry.then(|| {
+        sh.parts.names.push("geometry");
+        let (code, statements) = crate::geometry::emit(sh.ident, eq, sh.d, &sh.split, &sh.check);
+        sh.parts.statements += statements;
+        code
+    });
+    let outputs = Some(quote!(#outputs #geometry));
     sh.parts.statements += accel.statements;
     let linear = crate::linear::emit(eq, sh.ident, &sh.split, &sh.solve_qdd_lambda, &sh.direction)
         .map(|(code, len)| {

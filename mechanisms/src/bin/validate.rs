@@ -3,9 +3,9 @@
 //! `cargo run --release -p mechanisms --bin validate [-- --json] [--case N] [--out DIR]`
 
 use clap::Parser;
+use mechanisms::cases;
+use mechanisms::report::{CaseRun, ReportRow, sig};
 use mechanisms::validation::{Case, ManualRow, Outcome, error_pct, manual_rows};
-use mechanisms::{cases, svg};
-use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -20,25 +20,10 @@ struct Args {
     /// Run one case only (1..30).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=30))]
     case: Option<u32>,
-    /// Write a Markdown report and one SVG plot per case into this directory.
+    /// Write the report into this directory: `report.html` (self-contained: drawings,
+    /// animations, plots, tables), `report.md` and one SVG plot per case.
     #[arg(long)]
     out: Option<PathBuf>,
-}
-
-/// One row of the report (the `--json` schema).
-#[derive(Serialize, Debug)]
-struct ReportRow {
-    case: String,
-    quantity: String,
-    unit: String,
-    theory: Option<f64>,
-    recurdyn: Option<f64>,
-    value: f64,
-    error_pct: f64,
-    recurdyn_error_pct: Option<f64>,
-    reference: f64,
-    method: String,
-    runtime_s: f64,
 }
 
 fn main() -> ExitCode {
@@ -75,8 +60,16 @@ fn main() -> ExitCode {
         let runtime = start.elapsed().as_secs_f64();
         match result {
             Ok(outcome) => {
-                rows.extend(report_rows(case, &outcome, &manual, runtime));
-                outcomes.push((*case, outcome, runtime));
+                let case_rows = report_rows(case, &outcome, &manual, runtime);
+                rows.extend(case_rows.iter().cloned());
+                let animation = args.out.as_ref().map(|_| draw(case, &outcome));
+                outcomes.push(CaseRun {
+                    case: *case,
+                    outcome,
+                    rows: case_rows,
+                    runtime_s: runtime,
+                    animation: animation.unwrap_or(Err("not drawn".into())),
+                });
             }
             Err(e) => {
                 eprintln!("case {} failed: {e}", case.id);
@@ -147,6 +140,33 @@ fn report_rows(
         .collect()
 }
 
+/// Draws the case over its plot's time span (2 s where the plot is not over time), with a
+/// still at the marked instant.
+fn draw(case: &Case, outcome: &Outcome) -> Result<mechanisms::validation::Animation, String> {
+    let p = &outcome.plot;
+    let scale = match p.x_label {
+        "t [s]" => Some(1.0),
+        "t [ms]" => Some(1e-3),
+        _ => None,
+    };
+    let last = p.points.last().map(|q| q.0);
+    let (span, at) = match (scale, last) {
+        (Some(k), Some(x)) if x > 0.0 => (x * k, p.mark.map(|m| m.0 * k)),
+        _ => (DEFAULT_SPAN, None),
+    };
+    // A run the plain integrator cannot finish (friction's stop) is drawn to the compared
+    // instant, which the case itself reached.
+    (case.draw)(span, at.as_slice())
+        .or_else(|e| match at {
+            Some(t) if t > 0.0 => (case.draw)(t, &[t]),
+            _ => Err(e),
+        })
+        .map_err(|e| e.to_string())
+}
+
+/// How long a case whose plot is not over time is animated, in seconds.
+const DEFAULT_SPAN: f64 = 2.0;
+
 fn fmt_opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_string(), |v| format!("{v}"))
 }
@@ -155,69 +175,56 @@ fn table(rows: &[ReportRow]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<4} {:<20} {:<8} {:>12} {:>12} {:>10} {:>18} {:>11} {:>18} {:>10}  method",
-        "case",
-        "quantity",
-        "unit",
-        "theory",
-        "RecurDyn",
-        "RD err %",
-        "mbd",
-        "mbd err %",
-        "reference",
-        "time [us]"
+        "{:<4} {:<20} {:<8} {:>10} {:>10} {:>9} {:>14} {:>9} {:>10}  method",
+        "case", "quantity", "unit", "theory", "RecurDyn", "RD err %", "mbd", "err %", "time [us]"
     );
     for r in rows {
         let _ = writeln!(
             s,
-            "{:<4} {:<20} {:<8} {:>12} {:>12} {:>10} {:>18.12} {:>11.2e} {:>18.12} {:>10.1}  {}",
+            "{:<4} {:<20} {:<8} {:>10} {:>10} {:>9} {:>14} {:>9.1e} {:>10}  {}",
             r.case,
             r.quantity,
             r.unit,
             fmt_opt(r.theory),
             fmt_opt(r.recurdyn),
             r.recurdyn_error_pct
-                .map_or_else(|| "-".to_string(), |e| format!("{e:.4}")),
-            r.value,
+                .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
+            sig(r.value, 10),
             r.error_pct,
-            r.reference,
-            r.runtime_s * 1e6,
+            sig(r.runtime_s * 1e6, 3),
             r.method
         );
     }
     s
 }
 
-fn write_report(
-    dir: &PathBuf,
-    rows: &[ReportRow],
-    outcomes: &[(Case, Outcome, f64)],
-) -> std::io::Result<()> {
+fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let mut md = String::from("# mbd validation report\n\n");
-    md.push_str("Errors are relative to the reference (the exact value; see each case's docs for corrections to the manual).\n\n");
+    md.push_str("Errors are relative to the reference (the exact value; see each case's docs for corrections to the manual). `report.html` beside this file has the drawings, animations and plots.\n\n");
     md.push_str("| case | quantity | unit | theory | RecurDyn | RecurDyn err % | mbd | mbd err % | reference | method | run time [us] |\n");
     md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for r in rows {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {:.12} | {:.2e} | {:.12} | {} | {:.1} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {:.1e} | {} | {} | {} |",
             r.case,
             r.quantity,
             r.unit,
             fmt_opt(r.theory),
             fmt_opt(r.recurdyn),
             r.recurdyn_error_pct
-                .map_or_else(|| "-".to_string(), |e| format!("{e:.4}")),
-            r.value,
+                .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
+            sig(r.value, 10),
             r.error_pct,
-            r.reference,
+            sig(r.reference, 10),
             r.method,
-            r.runtime_s * 1e6
+            sig(r.runtime_s * 1e6, 3)
         );
     }
     md.push_str("\n## Generated code per case\n\n| case | statements | parts |\n|---|---|---|\n");
-    for (case, outcome, _) in outcomes {
+    for run in runs {
+        let case = &run.case;
         let statements: usize = case.generated.iter().map(|g| g.statements).sum();
         let mut parts: Vec<&str> = case
             .generated
@@ -233,14 +240,13 @@ fn write_report(
             statements,
             parts.join(", ")
         );
-        let title = format!("Case {}: {}", case.id, case.title);
-        let plot = &outcome.plot;
-        let svg = svg::line_plot(&title, plot.x_label, plot.y_label, &plot.points, plot.mark);
+        let svg = mechanisms::report::case_plot(run).map_err(std::io::Error::other)?;
         std::fs::write(dir.join(format!("case{}.svg", case.id)), svg)?;
     }
     md.push_str("\n## Plots\n\n");
-    for (case, _, _) in outcomes {
-        let _ = writeln!(md, "![case {0}](case{0}.svg)\n", case.id);
+    for run in runs {
+        let _ = writeln!(md, "![case {0}](case{0}.svg)\n", run.case.id);
     }
-    std::fs::write(dir.join("report.md"), md)
+    std::fs::write(dir.join("report.md"), md)?;
+    std::fs::write(dir.join("report.html"), mechanisms::report::html(runs))
 }

@@ -1,16 +1,16 @@
 //! Work-precision report: error against run time for every model that integrates in time
 //! and every integrator; the generated/hand-written ratio of three models; mbd against a
-//! peer crate (`ode_solvers`) on the same generated right-hand side.
+//! peer crate (`differential-equations`) on the same generated right-hand side.
 //!
 //! `cargo run --release -p mechanisms --bin work-precision [-- --json] [--out DIR]
 //! [--repeats N] [--only NAME] [--time-to-accuracy]`
 
 use clap::Parser;
 use mechanisms::accuracy;
-use mechanisms::svg;
+use mechanisms::plot::{self, Series};
 use mechanisms::workprecision::{
-    self, Failure, Method, Problem, Run, Timing, excluded_cases, pilot_span, sweep, time_to_reach,
-    zero_overhead,
+    self, ERROR_FLOOR, Failure, MAX_RUN_S, Method, Problem, RHO_INF, Run, Timing, excluded_cases,
+    pilot_span, sweep, time_to_reach, zero_overhead,
 };
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -22,10 +22,10 @@ use std::time::Instant;
 #[derive(Parser, Debug)]
 #[command(about = "Error against run time for every model and integrator of mbd")]
 struct Args {
-    /// Print one JSON array of rows instead of the summary.
+    /// Print one JSON object (settings, summary, rows) instead of the summary.
     #[arg(long)]
     json: bool,
-    /// Write rows.csv, summary.md and one SVG work-precision plot per mechanism here.
+    /// Write rows.csv, report.json, summary.md and one SVG work-precision plot per mechanism here.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Timed repeats per run (the run time is their median; 0 times the first run only).
@@ -182,8 +182,29 @@ fn fmt_ratio(r: Option<f64>) -> String {
     r.map_or_else(|| "-".to_string(), |r| format!("{r:.3}"))
 }
 
-/// The fastest method of a mechanism to reach `target`, and its time.
+/// Every run of every method of a mechanism within this of the exact result (a decade
+/// below the smallest target, 1e-10): the errors are round-off (the motion is a polynomial
+/// the methods integrate exactly; what is left is rounding in the event location), so no
+/// method is faster to an accuracy than another.
+const ROUND_OFF: f64 = 1e-11;
+
+/// Whether a mechanism's runs all end at round-off (see [`ROUND_OFF`]).
+fn round_off_only(curves: &[&Curve]) -> bool {
+    let mut errors = curves
+        .iter()
+        .filter(|c| c.method != Method::PeerDopri5)
+        .flat_map(|c| c.points())
+        .map(|p| p.1)
+        .peekable();
+    errors.peek().is_some() && errors.all(|e| e <= ROUND_OFF)
+}
+
+/// The fastest method of a mechanism to reach `target`, and its time; none where every
+/// run is at round-off.
 fn fastest(curves: &[&Curve], target: f64) -> Option<(Method, f64)> {
+    if round_off_only(curves) {
+        return None;
+    }
     curves
         .iter()
         .filter(|c| c.method != Method::PeerDopri5)
@@ -224,8 +245,9 @@ type Fastest = Option<(Method, f64)>;
 type PeerRow = (String, Method, Option<f64>, Option<f64>, Option<f64>);
 
 struct Figures {
-    /// Per mechanism, in order: (name, title, fastest to 1e-6, fastest to 1e-10).
-    per_mechanism: Vec<(String, String, Fastest, Fastest)>,
+    /// Per mechanism, in order: (name, title, round-off only, fastest to 1e-6, fastest to
+    /// 1e-10).
+    per_mechanism: Vec<(String, String, bool, Fastest, Fastest)>,
     /// Generated against hand-written, per model and method.
     zero_overhead: Vec<ZeroOverhead>,
     /// (model, mbd method, t_mbd, t_peer, ratio) at 1e-8.
@@ -258,6 +280,7 @@ fn figures(curves: &[Curve], problems: &[Problem], pairs: &[(Problem, Problem)])
             (
                 p.name.to_string(),
                 p.title.to_string(),
+                round_off_only(&cs),
                 fastest(&cs, 1e-6),
                 fastest(&cs, 1e-10),
             )
@@ -330,8 +353,16 @@ fn summary_text(f: &Figures) -> String {
             |(m, t)| format!("{t:.3e} {m}"),
         )
     };
-    for (name, _, a, b) in &f.per_mechanism {
-        let _ = writeln!(s, "{:<32} {:>24} {:>24}", name, cell(a), cell(b));
+    for (name, _, round_off, a, b) in &f.per_mechanism {
+        if *round_off {
+            let _ = writeln!(
+                s,
+                "{name:<32} {:>49}",
+                format!("round-off only: every run within {ROUND_OFF:.0e}")
+            );
+        } else {
+            let _ = writeln!(s, "{:<32} {:>24} {:>24}", name, cell(a), cell(b));
+        }
     }
     let _ = writeln!(
         s,
@@ -352,7 +383,7 @@ fn summary_text(f: &Figures) -> String {
     }
     let _ = writeln!(
         s,
-        "\npeer: time to reach {RATIO_TARGET:e}, mbd / ode_solvers Dopri5 (same generated rhs)"
+        "\npeer: time to reach {RATIO_TARGET:e}, mbd / differential-equations DOPRI5 (same generated rhs)"
     );
     for (name, m, tm, tp, r) in &f.peer {
         let _ = writeln!(
@@ -372,6 +403,54 @@ fn summary_text(f: &Figures) -> String {
         }
     }
     s
+}
+
+/// The report as JSON: the numeric settings it was made with, the summary, every row.
+fn json_report(rows: &[Row], f: &Figures, timing: Timing) -> serde_json::Value {
+    let fastest =
+        |x: &Fastest| x.map(|(m, t)| serde_json::json!({ "method": m.name(), "time_s": t }));
+    let methods: Vec<serde_json::Value> = ALL_METHODS
+        .iter()
+        .map(|m| {
+            let sweep = if m.fixed_step() {
+                "step h = span / 2^k"
+            } else {
+                "rtol = atol = 1e-3 .. 1e-12"
+            };
+            serde_json::json!({ "method": m.name(), "sweep": sweep })
+        })
+        .collect();
+    serde_json::json!({
+        "settings": {
+            "repeats": timing.repeats,
+            "min_batch_s": timing.min_batch_s,
+            "error_floor": ERROR_FLOOR,
+            "round_off": ROUND_OFF,
+            "max_run_s": MAX_RUN_S,
+            "ratio_target": RATIO_TARGET,
+            "targets": [1e-6, 1e-10],
+            "generalized_alpha_rho_inf": RHO_INF,
+            "methods": methods,
+        },
+        "summary": {
+            "per_mechanism": f.per_mechanism.iter().map(|(name, title, round_off, a, b)| serde_json::json!({
+                "mechanism": name, "measured": title, "round_off_only": round_off,
+                "fastest_to_1e-6": fastest(a), "fastest_to_1e-10": fastest(b),
+            })).collect::<Vec<_>>(),
+            "zero_overhead": f.zero_overhead.iter().map(|z| serde_json::json!({
+                "model": z.model, "method": z.method.name(), "generated_s": z.generated,
+                "hand_written_s": z.hand, "ratio": z.ratio, "ratio_at_1e-6": z.ratio_1e6,
+                "median_ratio_per_setting": z.median_ratio,
+            })).collect::<Vec<_>>(),
+            "peer": f.peer.iter().map(|(name, m, tm, tp, r)| serde_json::json!({
+                "model": name, "mbd_method": m.name(), "mbd_s": tm, "peer_s": tp, "ratio": r,
+            })).collect::<Vec<_>>(),
+            "skipped": f.skipped.iter().map(|(name, m, why)| serde_json::json!({
+                "mechanism": name, "method": m.name(), "why": why,
+            })).collect::<Vec<_>>(),
+        },
+        "rows": rows,
+    })
 }
 
 fn slug(name: &str) -> String {
@@ -440,8 +519,15 @@ fn write_report(
             |(m, t)| format!("{m} | {t:.3e}"),
         )
     };
-    for (name, title, a, b) in &f.per_mechanism {
-        let _ = writeln!(md, "| {name} | {title} | {} | {} |", cell(a), cell(b));
+    for (name, title, round_off, a, b) in &f.per_mechanism {
+        if *round_off {
+            let _ = writeln!(
+                md,
+                "| {name} | {title} | round-off only: every run within {ROUND_OFF:.0e}, no fastest | - | - | - |"
+            );
+        } else {
+            let _ = writeln!(md, "| {name} | {title} | {} | {} |", cell(a), cell(b));
+        }
     }
     let _ = writeln!(
         md,
@@ -465,7 +551,7 @@ fn write_report(
     }
     let _ = writeln!(
         md,
-        "\n## Against a peer: mbd / `ode_solvers` Dopri5, time to {RATIO_TARGET:e}\n\n\
+        "\n## Against a peer: mbd / `differential-equations` DOPRI5, time to {RATIO_TARGET:e}\n\n\
          Both integrate the same generated right-hand side; the peer has no projection onto \
          the constraint manifolds, so on the slider-crank `DOPRI5 (no projection)` is the same \
          algorithm.\n\n\
@@ -494,10 +580,11 @@ fn write_report(
     for p in problems {
         // Every method in a fixed order, so that a method has the same colour in every plot;
         // errors are floored at 1e-16 (an exact result) and runs off by more than 10x left out.
-        let series: Vec<(String, Vec<(f64, f64)>)> = ALL_METHODS
+        let series: Vec<Series> = ALL_METHODS
             .iter()
-            .map(|&m| {
-                let pts = curves
+            .map(|&m| Series {
+                name: m.name().to_string(),
+                points: curves
                     .iter()
                     .find(|c| c.mechanism == p.name && c.method == m)
                     .map(|c| c.points())
@@ -505,18 +592,21 @@ fn write_report(
                     .into_iter()
                     .filter(|&(_, e)| e <= 10.0)
                     .map(|(t, e)| (t, e.max(1e-16)))
-                    .collect();
-                (m.name().to_string(), pts)
+                    .collect(),
+                line: true,
+                markers: true,
             })
             .collect();
         let file = format!("{}.svg", slug(p.name));
-        let plot = svg::log_log_plot(
-            &format!("{}: work-precision", p.name),
-            "run time [s]",
-            "max relative error",
-            &series,
-        );
-        std::fs::write(dir.join(&file), plot)?;
+        let round_off = f.per_mechanism.iter().any(|m| m.0 == p.name && m.2);
+        let title = if round_off {
+            format!("{}: work-precision (round-off only)", p.name)
+        } else {
+            format!("{}: work-precision", p.name)
+        };
+        let svg = plot::log_log_plot(&title, "run time [s]", "max relative error", &series)
+            .map_err(std::io::Error::other)?;
+        std::fs::write(dir.join(&file), svg)?;
         let _ = writeln!(md, "![{}]({file})\n", p.name);
     }
     std::fs::write(dir.join("summary.md"), md)
@@ -584,8 +674,9 @@ fn main() -> ExitCode {
     let all_rows: Vec<Row> = curves.iter().flat_map(rows).collect();
     let figs = figures(&curves, &problems, &pairs);
     let summary = summary_text(&figs);
+    let report = json_report(&all_rows, &figs, timing);
     if args.json {
-        match serde_json::to_string_pretty(&all_rows) {
+        match serde_json::to_string_pretty(&report) {
             Ok(s) => println!("{s}"),
             Err(e) => {
                 eprintln!("cannot serialise the rows: {e}");
@@ -597,7 +688,11 @@ fn main() -> ExitCode {
         print!("{summary}");
     }
     if let Some(dir) = &args.out
-        && let Err(e) = write_report(dir, &all_rows, &curves, &problems, &figs, timing)
+        && let Err(e) =
+            write_report(dir, &all_rows, &curves, &problems, &figs, timing).and_then(|()| {
+                let text = serde_json::to_string_pretty(&report).map_err(std::io::Error::other)?;
+                std::fs::write(dir.join("report.json"), text)
+            })
     {
         eprintln!("cannot write the report to {}: {e}", dir.display());
         return ExitCode::FAILURE;

@@ -1,0 +1,474 @@
+//! The validation report as one self-contained HTML page: per case its title and problem,
+//! the mechanism drawn and animated from its generated geometry, the compared quantity's
+//! curve with the theory, RecurDyn and mbd values marked, the manual's table, and where the
+//! manual is wrong. Inline SVG, CSS and a few lines of JavaScript; no network.
+
+use crate::plot::{self, Mark, Series};
+use crate::validation::{Animation, Case, Outcome};
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// One row of the report (the `--json` schema of `validate`).
+#[derive(Serialize, Debug, Clone)]
+pub struct ReportRow {
+    pub case: String,
+    pub quantity: String,
+    pub unit: String,
+    pub theory: Option<f64>,
+    pub recurdyn: Option<f64>,
+    pub value: f64,
+    pub error_pct: f64,
+    pub recurdyn_error_pct: Option<f64>,
+    pub reference: f64,
+    pub method: String,
+    pub runtime_s: f64,
+}
+
+/// One case as run: what the page shows of it.
+#[derive(Debug)]
+pub struct CaseRun {
+    pub case: Case,
+    pub outcome: Outcome,
+    pub rows: Vec<ReportRow>,
+    pub runtime_s: f64,
+    /// The drawing, or why there is none.
+    pub animation: Result<Animation, String>,
+}
+
+/// `v` to `n` significant figures, without trailing zeros after the point.
+pub fn sig(v: f64, n: usize) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if !(-4..6).contains(&mag) {
+        return format!("{v:.*e}", n.saturating_sub(1));
+    }
+    let decimals = (n as i32 - 1 - mag).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// An error in percent: two significant figures (it says how many digits agree).
+fn pct(e: f64) -> String {
+    if e == 0.0 {
+        "0".into()
+    } else if e < 1e-3 {
+        format!("{e:.1e}")
+    } else {
+        sig(e, 2)
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Markdown's `code` and **bold** as HTML, after escaping.
+fn inline(s: &str) -> String {
+    let mut out = String::new();
+    for (i, part) in esc(s).split('`').enumerate() {
+        if i % 2 == 1 {
+            let _ = write!(out, "<code>{part}</code>");
+        } else {
+            for (j, p) in part.split("**").enumerate() {
+                if j % 2 == 1 {
+                    let _ = write!(out, "<b>{p}</b>");
+                } else {
+                    out.push_str(p);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The case's plot: its curve, and for the row whose mbd value it marks, the theory,
+/// RecurDyn and mbd values at the compared instant.
+pub fn case_plot(run: &CaseRun) -> Result<String, String> {
+    let p = &run.outcome.plot;
+    let curve = Series {
+        name: "mbd".into(),
+        points: p.points.clone(),
+        line: true,
+        markers: false,
+    };
+    let mut marks: Vec<Mark> = Vec::new();
+    if let Some((x, y)) = p.mark {
+        match run.rows.iter().find(|r| r.value == y) {
+            Some(r) => {
+                marks.push((format!("mbd {}", r.quantity), x, y));
+                marks.extend(r.theory.map(|v| ("theory".to_string(), x, v)));
+                marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), x, v)));
+            }
+            None => marks.push(("compared instant".into(), x, y)),
+        }
+    }
+    let title = format!("Case {}: {}", run.case.id, p.y_label);
+    plot::line_plot(&title, p.x_label, p.y_label, &[curve], &marks)
+}
+
+/// Whether `exact` rounds to `printed` at `printed`'s own digits (its shortest decimal form):
+/// a theory value that does not is a corrected one.
+fn rounds_to(exact: f64, printed: f64) -> bool {
+    let text = format!("{printed}");
+    let decimals = text.split_once('.').map_or(0, |(_, d)| d.len());
+    let half_unit = 0.5 * 10f64.powi(-(decimals as i32));
+    (exact - printed).abs() <= half_unit * (1.0 + 1e-9)
+}
+
+/// Plots of the rows the case's own plot does not mark, each from the model's output of the
+/// same name over the drawing's run: the theory, RecurDyn and mbd values are marked where
+/// the curve takes mbd's value (interpolated between frames; at an extremum, its frame).
+/// A row without such an output, or whose value the curve does not reach (to 1e-3
+/// relative: another run or unit), gets none.
+pub fn row_plots(run: &CaseRun) -> Vec<(String, Result<String, String>)> {
+    let Ok(anim) = &run.animation else {
+        return Vec::new();
+    };
+    let marked = run.outcome.plot.mark.map(|m| m.1);
+    let mut out = Vec::new();
+    for r in run.rows.iter().filter(|r| Some(r.value) != marked) {
+        let curve: Vec<(f64, f64)> = anim
+            .frames
+            .iter()
+            .filter_map(|f| {
+                let v = f
+                    .outputs
+                    .iter()
+                    .find(|o| o.0.eq_ignore_ascii_case(&r.quantity))?;
+                Some((f.t, v.1))
+            })
+            .collect();
+        let Some(t) = instant(&curve, r.value) else {
+            continue;
+        };
+        let mut marks: Vec<Mark> = vec![(format!("mbd {}", r.quantity), t, r.value)];
+        marks.extend(r.theory.map(|v| ("theory".to_string(), t, v)));
+        marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), t, v)));
+        let series = Series {
+            name: "mbd".into(),
+            points: curve,
+            line: true,
+            markers: false,
+        };
+        let title = format!("Case {}: {} [{}]", run.case.id, r.quantity, r.unit);
+        let label = format!("{} [{}]", r.quantity, r.unit);
+        out.push((
+            r.quantity.clone(),
+            plot::line_plot(&title, "t [s]", &label, &[series], &marks),
+        ));
+    }
+    out
+}
+
+/// Where `curve` takes `value`: the first crossing (linear between samples), else the
+/// closest sample if within 1e-3 relative (an extremum).
+fn instant(curve: &[(f64, f64)], value: f64) -> Option<f64> {
+    let tol = 1e-3 * value.abs().max(1e-9);
+    for w in curve.windows(2) {
+        let ((t0, v0), (t1, v1)) = (w[0], w[1]);
+        if (v0 - value) * (v1 - value) <= 0.0 && v0 != v1 {
+            return Some(t0 + (t1 - t0) * (value - v0) / (v1 - v0));
+        }
+    }
+    curve
+        .iter()
+        .min_by(|a, b| (a.1 - value).abs().total_cmp(&(b.1 - value).abs()))
+        .filter(|c| (c.1 - value).abs() <= tol)
+        .map(|c| c.0)
+}
+
+fn table(rows: &[ReportRow]) -> String {
+    let mut s = String::from(
+        "<table><tr><th>quantity</th><th>unit</th><th>theory</th><th>RecurDyn</th>\
+         <th>error %</th><th>mbd</th><th>error %</th><th>method</th><th>run time [µs]</th></tr>\n",
+    );
+    let opt = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |v| format!("{v}"));
+    for r in rows {
+        let corrected = r.theory.is_some_and(|t| !rounds_to(r.reference, t));
+        let reference = if corrected {
+            format!(
+                r#"<br><span class="corr">exact {}</span>"#,
+                sig(r.reference, 7)
+            )
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            s,
+            "<tr><td>{}</td><td>{}</td><td>{}{reference}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"m\">{}</td><td>{}</td></tr>",
+            esc(&r.quantity),
+            esc(&r.unit),
+            opt(r.theory),
+            opt(r.recurdyn),
+            r.recurdyn_error_pct.map_or_else(|| "–".to_string(), pct),
+            sig(r.value, 7),
+            pct(r.error_pct),
+            esc(&r.method),
+            sig(r.runtime_s * 1e6, 3),
+        );
+    }
+    s.push_str("</table>\n");
+    s
+}
+
+/// The animation's data as JSON: kinds and names once, then per frame `t` and the points.
+fn animation_json(a: &Animation) -> String {
+    #[derive(Serialize)]
+    struct Frame {
+        t: f64,
+        p: Vec<Vec<[f64; 3]>>,
+    }
+    #[derive(Serialize)]
+    struct Data {
+        kinds: Vec<&'static str>,
+        names: Vec<&'static str>,
+        frames: Vec<Frame>,
+        stills: Vec<Frame>,
+    }
+    let first = a.frames.first().map(|f| f.shapes.as_slice()).unwrap_or(&[]);
+    let frames = |fs: &[crate::validation::Frame]| {
+        fs.iter()
+            .map(|f| Frame {
+                t: f.t,
+                p: f.shapes.iter().map(|s| s.points.clone()).collect(),
+            })
+            .collect()
+    };
+    let data = Data {
+        kinds: first.iter().map(|s| s.kind.name()).collect(),
+        names: first.iter().map(|s| s.name).collect(),
+        frames: frames(&a.frames),
+        stills: frames(&a.stills),
+    };
+    serde_json::to_string(&data).unwrap_or_else(|_| "null".into())
+}
+
+fn section(run: &CaseRun) -> String {
+    let c = &run.case;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "<section id=\"case{0}\"><h2>Case {0}: {1}</h2>\n<p class=\"ref\">{2}</p>",
+        c.id,
+        esc(c.title),
+        inline(&c.summary())
+    );
+    s.push_str("<div class=\"figs\">");
+    match &run.animation {
+        Ok(a) if !a.frames.is_empty() => {
+            let _ = write!(
+                s,
+                "<figure class=\"mech\"><svg viewBox=\"0 0 320 320\" width=\"320\" height=\"320\"></svg>\
+                 <figcaption><button>pause</button> <span class=\"t\"></span></figcaption>\
+                 <script type=\"application/json\">{}</script></figure>",
+                animation_json(a).replace("</", "<\\/")
+            );
+        }
+        Ok(_) => s.push_str("<p>(no frames)</p>"),
+        Err(e) => {
+            let _ = write!(s, "<p>Not drawn: {}</p>", esc(e));
+        }
+    }
+    let plots = std::iter::once(("the manual's plot".to_string(), case_plot(run)));
+    for (what, svg) in plots.chain(row_plots(run)) {
+        match svg {
+            Ok(svg) => {
+                let _ = write!(s, "<figure class=\"plot\">{svg}</figure>");
+            }
+            Err(e) => {
+                let _ = write!(s, "<p>No plot of {}: {}</p>", esc(&what), esc(&e));
+            }
+        }
+    }
+    s.push_str("</div>\n");
+    s.push_str(&table(&run.rows));
+    if let Some(d) = c.discrepancies() {
+        let class = if d.starts_with("None") { "ok" } else { "wrong" };
+        let _ = writeln!(
+            s,
+            "<p class=\"{class}\"><b>The manual:</b> {}</p>",
+            inline(&d)
+        );
+    }
+    s.push_str("</section>\n");
+    s
+}
+
+/// The whole page.
+pub fn html(runs: &[CaseRun]) -> String {
+    let mut s = String::from(HEAD);
+    s.push_str("<h1>mbd validation report</h1>\n<p>Each case of the validation manual run with mbd: \
+        the theory and RecurDyn columns are the manual's; errors are relative to the exact value \
+        (the manual's theory where it is right, else the corrected value its case documents, shown \
+        under it). The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
+        rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares; \
+        faint copies show the compared instants.</p>\n<nav>");
+    for r in runs {
+        let worst = r.rows.iter().map(|x| x.error_pct).fold(0.0, f64::max);
+        let _ = write!(
+            s,
+            "<a href=\"#case{0}\" title=\"{1}\">{0}<small>{2}</small></a>",
+            r.case.id,
+            esc(r.case.title),
+            pct(worst)
+        );
+    }
+    s.push_str("</nav>\n<p class=\"small\">Under each case number: its largest mbd error, in percent.</p>\n");
+    for r in runs {
+        s.push_str(&section(r));
+    }
+    s.push_str(SCRIPT);
+    s.push_str("</body></html>\n");
+    s
+}
+
+const HEAD: &str = r##"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>mbd validation report</title>
+<style>
+body { font-family: sans-serif; max-width: 1040px; margin: 1em auto; color: #222; }
+section { border-top: 1px solid #ccc; margin-top: 1.5em; }
+.ref { color: #444; font-size: 0.92em; }
+.figs { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
+figure { margin: 0; }
+.mech svg { border: 1px solid #ddd; background: #fcfcfc; }
+figcaption { font-size: 0.85em; }
+table { border-collapse: collapse; font-size: 0.9em; margin: 0.6em 0; }
+td, th { border: 1px solid #ccc; padding: 2px 6px; text-align: right; }
+td:first-child, th:first-child, td.m { text-align: left; }
+td.m { font-size: 0.85em; color: #555; }
+.corr { color: #b00; font-size: 0.85em; }
+.wrong { background: #fff4e5; padding: 6px; border-left: 4px solid #e69f00; }
+.ok { color: #555; font-size: 0.92em; }
+nav a { display: inline-block; width: 4.2em; margin: 2px; padding: 2px; border: 1px solid #ccc; text-align: center; text-decoration: none; }
+nav small { display: block; font-size: 0.7em; color: #555; }
+.small { font-size: 0.85em; color: #555; }
+</style></head><body>
+"##;
+
+/// Draws and animates every `.mech` figure from its JSON: a shape per model element,
+/// moved frame by frame (about five seconds a run), with the stills drawn faintly.
+const SCRIPT: &str = r##"<script>
+(function () {
+  // `report.html?case=28` shows case 28 alone (for links and screenshots).
+  const only = new URLSearchParams(location.search).get("case");
+  if (only) document.querySelectorAll("body > *:not(script)").forEach(e => {
+    e.hidden = e.id !== "case" + only;
+  });
+  const NS = "http://www.w3.org/2000/svg";
+  function el(svg, tag, attrs) {
+    const e = document.createElementNS(NS, tag);
+    for (const k in attrs) e.setAttribute(k, attrs[k]);
+    svg.appendChild(e);
+    return e;
+  }
+  function zigzag(a, b, n, w) {
+    const dx = b[0] - a[0], dy = b[1] - a[1], len = Math.hypot(dx, dy) || 1;
+    const nx = -dy / len * w, ny = dx / len * w;
+    const pts = [a];
+    for (let i = 1; i < 2 * n; i++) {
+      const f = i / (2 * n), s = i % 2 ? 1 : -1;
+      pts.push([a[0] + dx * f + s * nx, a[1] + dy * f + s * ny]);
+    }
+    pts.push(b);
+    return pts.map(p => p[0].toFixed(1) + "," + p[1].toFixed(1)).join(" ");
+  }
+  document.querySelectorAll("figure.mech").forEach(fig => {
+    const data = JSON.parse(fig.querySelector("script").textContent);
+    const svg = fig.querySelector("svg"), label = fig.querySelector(".t");
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (const f of data.frames.concat(data.stills)) for (const s of f.p) for (const p of s) {
+      x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+    }
+    const span = Math.max(x1 - x0, y1 - y0, 1e-9), k = 280 / span;
+    const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+    const map = p => [160 + (p[0] - cx) * k, 160 - (p[1] - cy) * k];
+    const colours = { rigid: "#0072b2", link: "#0072b2", particle: "#d55e00", point: "#555", spring: "#009e73", damper: "#cc79a7" };
+    function build(opacity) {
+      const g = el(svg, "g", { opacity: opacity });
+      return data.kinds.map(kind => {
+        const c = colours[kind] || "#000";
+        if (kind === "spring") return [el(g, "polyline", { fill: "none", stroke: c, "stroke-width": 1.5 })];
+        if (kind === "damper") return [el(g, "line", { stroke: c, "stroke-width": 5, "stroke-dasharray": "2 2" })];
+        if (kind === "point") return [el(g, "rect", { width: 8, height: 8, fill: c })];
+        if (kind === "particle") return [el(g, "circle", { r: 6, fill: c })];
+        if (kind === "link") return [el(g, "line", { stroke: "#999", "stroke-width": 1 }),
+          el(g, "line", { stroke: c, "stroke-width": 5, "stroke-linecap": "round" }),
+          el(g, "circle", { r: 3.5, fill: "#fff", stroke: "#000" })];
+        return [el(g, "line", { stroke: c, "stroke-width": 6, "stroke-linecap": "round" }),
+          el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })];
+      });
+    }
+    function place(shapes, frame) {
+      shapes.forEach((parts, i) => {
+        const p = frame.p[i].map(map), kind = data.kinds[i];
+        if (kind === "spring") {
+          const len = Math.hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
+          parts[0].setAttribute("points", zigzag(p[0], p[1], Math.max(3, Math.round(len / 10)), 5));
+        }
+        else if (kind === "damper") { parts[0].setAttribute("x1", p[0][0]); parts[0].setAttribute("y1", p[0][1]); parts[0].setAttribute("x2", p[1][0]); parts[0].setAttribute("y2", p[1][1]); }
+        else if (kind === "point") { parts[0].setAttribute("x", p[0][0] - 4); parts[0].setAttribute("y", p[0][1] - 4); }
+        else if (kind === "particle") { parts[0].setAttribute("cx", p[0][0]); parts[0].setAttribute("cy", p[0][1]); }
+        else if (kind === "link") {
+          const set = (e, a, b) => { e.setAttribute("x1", a[0]); e.setAttribute("y1", a[1]); e.setAttribute("x2", b[0]); e.setAttribute("y2", b[1]); };
+          set(parts[0], p[0], p[1]); set(parts[1], p[1], p[3]);
+          parts[2].setAttribute("cx", p[1][0]); parts[2].setAttribute("cy", p[1][1]);
+        } else {
+          const a = p.length > 2 ? p[1] : p[0], b = p.length > 2 ? p[2] : p[0];
+          parts[0].setAttribute("x1", a[0]); parts[0].setAttribute("y1", a[1]);
+          parts[0].setAttribute("x2", b[0]); parts[0].setAttribute("y2", b[1]);
+          parts[1].setAttribute("cx", p[0][0]); parts[1].setAttribute("cy", p[0][1]);
+        }
+      });
+    }
+    data.stills.forEach(f => place(build(0.3), f));
+    const live = build(1);
+    const n = data.frames.length;
+    let i = 0, playing = true, last = 0;
+    function show() {
+      place(live, data.frames[i]);
+      label.textContent = "t = " + data.frames[i].t.toPrecision(4) + " s";
+    }
+    show();
+    fig.querySelector("button").onclick = e => { playing = !playing; e.target.textContent = playing ? "pause" : "play"; };
+    function tick(now) {
+      if (playing && now - last > 5000 / n) { i = (i + 1) % n; show(); last = now; }
+      requestAnimationFrame(tick);
+    }
+    requestAnimationFrame(tick);
+  });
+})();
+</script>
+"##;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_figures() {
+        assert_eq!(sig(0.910158253959, 7), "0.9101583");
+        assert_eq!(sig(74.04721448, 7), "74.04721");
+        assert_eq!(sig(1714.0, 4), "1714");
+        assert_eq!(sig(-0.0489, 3), "-0.0489");
+        assert_eq!(sig(1.5e-7, 2), "1.5e-7");
+        assert_eq!(pct(1.23e-8), "1.2e-8");
+        assert_eq!(pct(1.0449), "1");
+        assert_eq!(pct(0.012), "0.012");
+        assert!(rounds_to(0.2142857, 0.214));
+        assert!(!rounds_to(0.9101583, 0.909));
+        assert!(rounds_to(1714.4, 1714.0));
+        assert!(!rounds_to(74.047, 73.79));
+    }
+}

@@ -1,0 +1,106 @@
+//! The HTML validation report: `validate --out DIR` writes a self-contained page whose
+//! content comes from the run (drawing frames from the generated geometry, the table's
+//! values, the plot's marks) and from the case's documentation (the manual's errors).
+
+use mechanisms::cases;
+use mechanisms::validation::{Case, error_pct};
+use std::process::Command;
+
+fn case(id: &str) -> Case {
+    cases()
+        .into_iter()
+        .find(|c| c.id == id)
+        .expect("the case exists")
+}
+
+#[test]
+fn validate_writes_a_self_contained_html_page() {
+    let dir = std::env::temp_dir().join(format!("mbd-report-{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_validate"))
+        .args(["--case", "28", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(dir.join("report.html")).expect("report.html");
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    // Self-contained: nothing is fetched.
+    for remote in ["http://", "https://", "src=", "<link"] {
+        let allowed = remote == "http://" && html.matches(remote).count() == 2;
+        assert!(
+            !html.contains(remote) || allowed,
+            "{remote} in the page (only the SVG namespaces may name a URL)"
+        );
+    }
+    assert!(html.contains("<section id=\"case28\">"));
+    assert!(html.contains("Case 28: Falling bar with a spring"));
+    // The drawing: the four shapes of the model, animated frames and a still.
+    assert!(
+        html.contains(r#""kinds":["rigid","point","spring"]"#),
+        "{html}"
+    );
+    assert!(html.contains(r#""names":["bar","anchor_c","spring"]"#));
+    // The table: the manual's values, mbd's at seven figures, run time in microseconds.
+    assert!(html.contains("<td>0.909"), "the manual's theory");
+    assert!(html.contains("<td>0.901</td>"), "RecurDyn");
+    assert!(html.contains("<td>0.9101583</td>"), "mbd's value");
+    assert!(html.contains("run time [µs]"));
+    // Where the manual is wrong, from the case's documentation.
+    assert!(html.contains("class=\"wrong\""));
+    assert!(html.contains("is not the minimum even of its own formula"));
+    // The plot marks theory, RecurDyn and mbd.
+    for mark in [
+        "theory: 0.909",
+        "RecurDyn: 0.901",
+        "mbd omega_min: 0.910158",
+    ] {
+        assert!(html.contains(mark), "{mark} missing");
+    }
+}
+
+#[test]
+fn the_drawing_follows_the_case_model() {
+    // Case 28: the bar's frame is at its mass centre, 1.2 m from the pivot O; drawn as the
+    // slender bar of its mass and inertia (2.4 m), its lower end is O at every instant.
+    let anim = (case("28").draw)(0.8, &[0.5]).expect("drawn");
+    assert_eq!(anim.frames.len(), mechanisms::sim::FRAMES + 1);
+    assert_eq!(anim.stills.len(), 1);
+    for f in anim.frames.iter().chain(&anim.stills) {
+        let bar = &f.shapes[0].points;
+        let pivot = bar[2];
+        assert!(
+            pivot[0].abs() < 1e-12 && pivot[1].abs() < 1e-12,
+            "{pivot:?}"
+        );
+        let spring = &f.shapes[2].points;
+        assert_eq!(spring[0], [-1.2, 0.0, 0.0]);
+        assert_eq!(spring[1], bar[0]);
+    }
+    // Case 19: the crank's far end is the rod's pin B, the rod's other end the piston.
+    let anim = (case("19").draw)(0.0, &[]).expect("drawn");
+    for f in &anim.frames {
+        let (crank, rod, piston) = (
+            &f.shapes[0].points,
+            &f.shapes[1].points,
+            &f.shapes[2].points,
+        );
+        let gap = |a: [f64; 3], b: [f64; 3]| (a[0] - b[0]).hypot(a[1] - b[1]);
+        assert!(gap(crank[1], rod[1]).min(gap(crank[1], rod[2])) < 1e-9);
+        assert!(gap(piston[0], rod[1]).min(gap(piston[0], rod[2])) < 1e-9);
+    }
+}
+
+#[test]
+fn documentation_gives_the_summary_and_the_discrepancies() {
+    let c = case("21");
+    assert!(c.summary().contains("P6/25"));
+    let d = c.discrepancies().expect("documented");
+    assert!(d.contains("234.375"));
+    assert!(error_pct(235.375, 234.375) > 0.4);
+    assert!(case("13").discrepancies().unwrap().starts_with("None"));
+}
