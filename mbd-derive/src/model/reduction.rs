@@ -141,7 +141,11 @@ fn reduction_map(scope: &mut Scope, coords: &[Coord]) -> HashMap<Sym, Expr> {
     let ts = g.as_sym(scope.t).expect("symbol");
     let zero = g.zero();
     let mut map: HashMap<Sym, Expr> = HashMap::new();
-    for c in coords {
+    // Dependent coordinates last: their closed forms may name relaxed and driven ones.
+    let dependent = |c: &&Coord| matches!(c.kind, CoordKind::Dependent(_));
+    let dependent_last =
+        (coords.iter().filter(|c| !dependent(c))).chain(coords.iter().filter(dependent));
+    for c in dependent_last {
         let (z, zd, zdd, zddd) = match &c.kind {
             CoordKind::Free => continue,
             CoordKind::Driven(law) => {
@@ -151,7 +155,10 @@ fn reduction_map(scope: &mut Scope, coords: &[Coord]) -> HashMap<Sym, Expr> {
                 (*law, d1, d2, d3)
             }
             CoordKind::Relaxed => (zero, zero, zero, zero),
-            CoordKind::Dependent([h, hd, hdd]) => (*h, *hd, *hdd, zero),
+            CoordKind::Dependent(form) => {
+                let [h, hd, hdd] = form.map(|e| g.substitute(e, &map));
+                (h, hd, hdd, zero)
+            }
         };
         for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd), (c.zddd, zddd)] {
             map.insert(g.as_sym(s).expect("symbol"), v);
