@@ -96,7 +96,8 @@
 //!   `-Phi_q^T lambda` is the constraint force; `reaction(u)` of a relaxed or driven
 //!   coordinate is `(M qdd - f + Phi_q^T lambda)_u`, the generalised force that must act
 //!   along `u`'s positive direction to keep it on its law (a joint's force on the body, a
-//!   drive's effort).
+//!   drive's effort). A closed loop reduced to minimal coordinates gives the same force as
+//!   `u`'s own row of its equations, with no multipliers (they are unique there).
 //! - **`#[default(v)]`** on a parameter does not make `Default`: it gives the value the
 //!   compile-time checks use. Constants are folded with it (`mass = -m` with
 //!   `#[default(1.0)] m` is refused like `mass = -1.0`), and with every parameter defaulted
