@@ -315,8 +315,9 @@
 //! point `[r, 0, 0]`, which is at `r (cos psi, sin psi, 0)`: `c psi'' = tau + r fy cos psi`.
 //! `angular_velocity` is a ground-frame vector, its components the outputs `w_x`, `w_y`, `w_z`.
 //!
-//! A spatial `close` is a spherical joint: three equations, the difference of the two
-//! points. Two bars on spherical joints 1 m apart, their tips tied: hanging straight, the
+//! A spatial `close` is a spherical joint by default: three equations, the difference of the
+//! two points (`joint = revolute | universal | prismatic` with body-fixed axes adds the axis
+//! rows: see the crate docs, *Closing joints in space*). Two bars on spherical joints 1 m apart, their tips tied: hanging straight, the
 //! tips are 1 m apart, so `|Phi| = 1`. `augmented` keeps all six joint angles and the three
 //! equations; by default (`minimal`) this loop is solved in closed form and the state keeps
 //! three angles.

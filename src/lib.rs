@@ -48,7 +48,7 @@
 //! | `#[body(name, parent = p, joint = revolute(q), at = [x, y], angle = a0, com = [cx, cy], mass = m, inertia = i)]` | a body of a planar joint tree: its frame is its parent's (`ground` by default) moved by the joint at `at` (parent frame); `joint` is `revolute(q)`, `prismatic(s, [ax, ay])` (axis in the parent frame) or `fixed`; the joint brings its coordinate (free, or driven if a `drive` names it); `com` is in the body frame |
 //! | `#[body(name, parent = p, joint = spherical(a, b, c), at = [x, y, z], com = [cx, cy, cz], mass = m, inertia = diag(ia, ib, ic))]` | a body of a spatial joint tree (`#[mechanism(spatial)]`): rotation `R = R_parent R_joint`, origin `o_parent + R_parent at`; `joint` is `revolute(q, x \| y \| z)` (about the parent's axis at the joint), `prismatic(s, [ax, ay, az])`, `universal(a, b)` (`rot_x(a) rot_y(b)`), `spherical(a, b, c)` (`rot_z(a) rot_y(b) rot_x(c)`, singular at `b = ±π/2`) or `fixed`; without `inertia` the body is a point mass; no `angle` |
 //! | `#[body(.., reaction)]` | frees the joint origin by two relaxed coordinates `name_rx`, `name_ry` (three in space, with `name_rz`), so that `reaction(name_rx)`, ... are the joint's force on the body (ground frame) |
-//! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) |
+//! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) by default, or `joint = revolute \| universal \| prismatic` with body-fixed `axis_a`, `axis_b` (and `normal_a`, `normal_b`): five, four, five equations (see [Closing joints in space](#closing-joints-in-space)) |
 //! | `#[chain(link, n = 16, joint = revolute, length = l, mass = m, inertia = i)]` | `n` identical links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default), relative angles `link_q1 ..` (zero: straight down), mass centres at mid-length |
 //! | `#[point(name, at = [x, y])]` | a named point, fixed or moving, in ground coordinates |
 //! | `#[point(name, on = body, at = [dx, dy])]` | a body-fixed point of any body (free or joint-tree, planar or spatial): `at` is in the body's frame, from its origin (see the offsets rule below); usable wherever a point is after the bodies (spring, damper and force ends, potentials, constraints, outputs), not in a body's or a plain point's `at` |
@@ -96,7 +96,8 @@
 //!   `-Phi_q^T lambda` is the constraint force; `reaction(u)` of a relaxed or driven
 //!   coordinate is `(M qdd - f + Phi_q^T lambda)_u`, the generalised force that must act
 //!   along `u`'s positive direction to keep it on its law (a joint's force on the body, a
-//!   drive's effort).
+//!   drive's effort). A closed loop reduced to minimal coordinates gives the same force as
+//!   `u`'s own row of its equations, with no multipliers (they are unique there).
 //! - **`#[default(v)]`** on a parameter does not make `Default`: it gives the value the
 //!   compile-time checks use. Constants are folded with it (`mass = -m` with
 //!   `#[default(1.0)] m` is refused like `mass = -1.0`), and with every parameter defaulted
@@ -207,6 +208,67 @@
 //! limits, each refused with an error at the tokens that exceed it: at most 2 000 000 tokens
 //! in one derive input, and at most 2000 levels of nesting, counting brackets, runs of prefix
 //! operators (`- - x`) and closures or generic arguments.
+//!
+//! # Closing joints in space
+//!
+//! In a spatial tree, `#[close(name, joint = .., a = A, at_a = [..], b = B | ground, at_b = [..], ..)]`
+//! closes a loop by one of four joints. `at_a` is a point of `A`'s frame, `at_b` of `B`'s
+//! (each measured from its frame's origin, the body's joint; default the origin), and every
+//! direction is given in its own body's frame: `axis_a`, `normal_a` in `A`'s, `axis_b`,
+//! `normal_b` in `B`'s (the ground's frame for `ground`). Directions are constant vectors
+//! (numbers and named constants), of any non-zero length: they are normalised, and a
+//! prismatic joint's normal is made normal to its axis. With `p_a`, `p_b` the two points
+//! and `u_a = R_a axis_a` (and so on) in the ground frame:
+//!
+//! | `joint =` | keys | equations | what it keeps |
+//! |---|---|---|---|
+//! | `spherical` (default) | | 3 | `p_a = p_b` |
+//! | `revolute` | `axis_a`, `axis_b` | 5 | `p_a = p_b`; `u_a` parallel to `u_b` (two rows `u_a . n = 0` for two directions `n` of `B` normal to `axis_b`) |
+//! | `universal` | `axis_a`, `axis_b` (the cross's two pins) | 4 | `p_a = p_b`; `u_a . u_b = 0` |
+//! | `prismatic` | `axis_a`, `axis_b`, `normal_a`, `normal_b` | 5 | `p_a` on the line through `p_b` along `u_b` (two rows); `u_a` parallel to `u_b` and `n_a` to `n_b` (three rows: the rotation locked) |
+//!
+//! Signs: the revolute joint keeps the axes parallel *or* antiparallel and the prismatic
+//! joint the two frames aligned or turned by a half turn about one of its directions: the rows cannot tell a configuration
+//! from its flip, so the joint stays on the one it is assembled in (the solver follows it
+//! continuously). Its own rotation (revolute), its two angles (universal) or its travel
+//! (prismatic) are not coordinates: they follow from the tree's. A planar `close` is a
+//! revolute joint about the plane's normal and takes no `joint` but `revolute` and no
+//! directions. A mechanism that moves in a plane but is written in space (a planar
+//! four-bar on revolute joints about `z`, closed by a revolute `close`) has rows that are
+//! identically zero (the points' `z`, the axes' tilt): the derive refuses them (the
+//! constraint Jacobian would be singular everywhere); write it planar. Redundant rows that are not identically zero (Bricard's
+//! linkage: five equations of rank four) are found at run time and the multipliers are the
+//! minimum-norm ones.
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! /// A slider-crank in the `yz` plane built in space: a crank about `x`, a rod on a
+//! /// spherical joint, and a slider on the `z` axis joined to the rod's end by a universal
+//! /// joint (the rod's `x` pin across the slider's `y` pin).
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial)]
+//! #[gravity(0.0, 0.0, -9.81)]
+//! #[body(crank, joint = revolute(th, x), com = [0.0, r / 2.0, 0.0], mass = 2.0,
+//!        inertia = diag(0.02, 0.001, 0.02))]
+//! #[body(rod, parent = crank, joint = spherical(a, b, c), at = [0.0, r, 0.0],
+//!        com = [0.0, 0.0, l / 2.0], mass = 3.0, inertia = diag(0.25, 0.25, 0.002))]
+//! #[body(slider, joint = prismatic(s, [0.0, 0.0, 1.0]), mass = 1.5)]
+//! #[close(cross, joint = universal, a = rod, at_a = [0.0, 0.0, l], axis_a = [1.0, 0.0, 0.0],
+//!         b = slider, axis_b = [0.0, 1.0, 0.0])]
+//! pub struct SliderCrank { pub r: f64, pub l: f64 }
+//!
+//! let m = SliderCrank { r: 0.3, l: 1.0 };
+//! // Assembled with the crank along y: the rod turns by asin(r / l) about x, from z towards -y,
+//! // to reach the slider on the z axis.
+//! let c = (m.r / m.l).asin();
+//! let q = mbd::Vector::<5>::from([0.0, 0.0, 0.0, c, (m.l * m.l - m.r * m.r).sqrt()]);
+//! assert!(Constrained::<5, 4>::phi(&m, 0.0, &q).amax() < 1e-15);
+//! // From rest the crank falls: it starts along +y, so gravity turns it towards -z.
+//! let qdd = m.acceleration(0.0, &q, &mbd::Vector::<5>::zeros())?;
+//! assert!(qdd[0] < 0.0);
+//! # Ok::<(), mbd::Error>(())
+//! ```
 //!
 //! # Friction
 //!

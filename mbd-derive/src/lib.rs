@@ -8,6 +8,7 @@
 //! The language itself is documented on the facade crate `mbd`.
 
 mod check;
+mod close;
 mod closure;
 mod codegen;
 mod expand;

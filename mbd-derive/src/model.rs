@@ -256,6 +256,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         ast.jacobian,
         minimal.as_ref(),
     );
+    let closure_domain = closure_domain.map(|d| minimal::reduced(&mut scope.g, d, &red.map));
     let free_idx = &red.free_idx;
     let zsyms = kin.z_syms(&scope.g);
     let qsyms: Vec<Sym> = free_idx.iter().map(|&i| zsyms[i]).collect();

@@ -173,14 +173,32 @@ pub struct TreeBody {
     pub inertia: Option<Expr>,
 }
 
-/// A revolute joint that closes a loop of the tree: point `at_a` of body `a` (its frame)
-/// stays on point `at_b` of body `b` (`None`: the ground). Two constraint equations.
+/// A joint that closes a loop of the tree: point `at_a` of body `a` (its frame) stays on
+/// point `at_b` of body `b` (`None`: the ground), or on its line along `axis_b` (prismatic).
+/// Planar: a revolute joint, two equations. Spatial: `joint` picks the kind (close.rs).
 pub struct Closure {
     pub a: Option<Ident>,
     pub at_a: Option<Expr>,
     pub b: Option<Ident>,
     pub at_b: Option<Expr>,
+    /// `joint = ..` and its span (`None`: spherical in space, revolute in a plane).
+    pub joint: Option<(CloseJoint, Span)>,
+    /// Body-fixed directions, each in its body's frame: the joint axis and, for a prismatic
+    /// joint, a direction normal to it.
+    pub axis_a: Option<Expr>,
+    pub axis_b: Option<Expr>,
+    pub normal_a: Option<Expr>,
+    pub normal_b: Option<Expr>,
     pub tokens: proc_macro2::TokenStream,
+}
+
+/// The kind of a loop-closing joint (`#[close(.., joint = revolute)]`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum CloseJoint {
+    Spherical,
+    Revolute,
+    Universal,
+    Prismatic,
 }
 
 /// How the accelerations of a joint tree are evaluated.
@@ -672,16 +690,24 @@ impl Mechanism {
 
     /// `#[close(..)]`: a loop-closing joint.
     fn closure(&mut self, attr: &Attribute, errors: &mut Errors) {
-        let keys = &["a", "at_a", "b", "at_b"];
+        let keys = &[
+            "a", "at_a", "b", "at_b", "joint", "axis_a", "axis_b", "normal_a", "normal_b",
+        ];
         if let Some(mut item) = Item::read(attr, errors, keys, &[]) {
             let a = item.require("a", errors, "closure");
             let b = item.require("b", errors, "closure");
+            let joint = item.take("joint").and_then(|j| close_joint(j, errors));
             if let (Some(a), Some(b)) = (a, b) {
                 self.closures.push(Closure {
                     a: parent(a, errors),
                     at_a: item.take("at_a"),
                     b: parent(b, errors),
                     at_b: item.take("at_b"),
+                    joint,
+                    axis_a: item.take("axis_a"),
+                    axis_b: item.take("axis_b"),
+                    normal_a: item.take("normal_a"),
+                    normal_b: item.take("normal_b"),
                     tokens: quote::ToTokens::to_token_stream(attr),
                 });
             }
@@ -882,6 +908,28 @@ fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
             None
         }
     }
+}
+
+/// A loop-closing joint's kind: `spherical`, `revolute`, `universal` or `prismatic`.
+fn close_joint(e: Expr, errors: &mut Errors) -> Option<(CloseJoint, Span)> {
+    let span = e.span();
+    let kind = match classify(e) {
+        Arg::Flag(id) => match id.to_string().as_str() {
+            "spherical" => Some(CloseJoint::Spherical),
+            "revolute" => Some(CloseJoint::Revolute),
+            "universal" => Some(CloseJoint::Universal),
+            "prismatic" => Some(CloseJoint::Prismatic),
+            _ => None,
+        },
+        _ => None,
+    };
+    if kind.is_none() {
+        errors.at(
+            span,
+            "a closing joint is `spherical`, `revolute`, `universal` or `prismatic` (its axes go in `axis_a`, `axis_b`, and for `prismatic` `normal_a`, `normal_b`)",
+        );
+    }
+    kind.map(|k| (k, span))
 }
 
 /// A parent body's name, or `ground`.

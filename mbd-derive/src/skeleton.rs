@@ -21,7 +21,10 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
     );
     let n = free.len();
     let d = 2 * n;
-    let m = ast.constraints.len() + ast.closures.len() * ast.dim.len();
+    let m = ast.constraints.len()
+        + (ast.closures.iter())
+            .map(|cl| crate::close::equations(cl, ast.dim))
+            .sum::<usize>();
     let never = quote!(::core::unreachable!(
         "`#[derive(Mechanism)]` failed: see its error"
     ));

@@ -10,13 +10,13 @@
 //! mobile over-constrained linkage.)
 //!
 //! **Model.** The five rods are a spatial joint tree from the origin, one relative angle per
-//! joint, all zero at the initial position. The sixth (closing) revolute joint is a
-//! spherical `close` (three equations: rod 5's tip stays at `(0,0,1)`) and two
-//! axis-alignment constraints (rod 5's `x` axis stays the ground's `x`: its `y` and `z`
-//! components vanish), written with rod 5's rotation repeated by hand. Five coordinates and
-//! five equations: Grübler's count is zero, yet the mechanism moves with one degree of
-//! freedom because one equation is dependent on the others (found at run time by
-//! `mbd::analysis::rank_and_redundant`; the augmented solve returns minimum-norm multipliers).
+//! joint, all zero at the initial position. The sixth (closing) joint is a revolute `close`
+//! between rod 5's tip and the ground's `(0,0,1)`, about rod 5's `x` axis and the ground's
+//! `x` axis: five equations (the tip stays at `(0,0,1)`, and rod 5's `x` axis stays normal to
+//! the ground's `y` and `z`). Five coordinates and five equations: Grübler's count is zero,
+//! yet the mechanism moves with one degree of freedom because one equation is dependent on
+//! the others (found at run time by `mbd::analysis::rank_and_redundant`; the augmented solve
+//! returns minimum-norm multipliers).
 
 use mbd::prelude::*;
 
@@ -35,10 +35,8 @@ use mbd::prelude::*;
        com = [-0.5, 0.0, 0.0], mass = m, inertia = diag(ia, it, it))]
 #[body(rod5, parent = rod4, joint = revolute(q5, z), at = [-1.0, 0.0, 0.0],
        com = [0.0, 0.5, 0.0], mass = m, inertia = diag(it, ia, it))]
-#[close(tip, a = rod5, at_a = [0.0, 1.0, 0.0], b = ground, at_b = [0.0, 0.0, 1.0])]
-#[point(axis5, at = rot_y(q1) * rot_z(q2) * rot_x(q3) * rot_y(q4) * rot_z(q5) * [1.0, 0.0, 0.0])]
-#[constraint(axis5[1] == 0.0)]
-#[constraint(axis5[2] == 0.0)]
+#[close(hinge, joint = revolute, a = rod5, at_a = [0.0, 1.0, 0.0], axis_a = [1.0, 0.0, 0.0],
+        b = ground, at_b = [0.0, 0.0, 1.0], axis_b = [1.0, 0.0, 0.0])]
 pub struct Bricard {
     /// Rod mass (1 kg in the benchmark).
     pub m: f64,

@@ -9,8 +9,8 @@ use mechanisms::bricard::Bricard;
 
 /// Grübler (Kutzbach) in space: 6 bodies with the ground, 6 revolute joints of 5 equations
 /// each: `6 (6 - 1) - 5 * 6 = 0` degrees of freedom. In the model the tree keeps 5 joint
-/// angles and the closing revolute joint is 5 equations (3 of the spherical `close`, 2 of
-/// axis alignment): `5 - 5 = 0` again. Bricard's linkage has one degree of freedom (its
+/// angles and the closing revolute `close` is 5 equations (3 for the point, 2 for the axis):
+/// `5 - 5 = 0` again. Bricard's linkage has one degree of freedom (its
 /// configuration space is a closed curve), so at a regular point of it `Phi_q` (5 x 5) has
 /// rank `5 - 1 = 4`: exactly one equation is dependent on the others.
 #[test]

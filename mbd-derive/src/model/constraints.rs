@@ -5,8 +5,9 @@
 use super::kinematics::{Frame, Kinematics};
 use super::scope::Scope;
 use super::{Coord, Role};
+use crate::close;
 use crate::closure;
-use crate::lower::Context;
+use crate::lower::{Context, Lowerer};
 use crate::parse::{Dim, Mechanism};
 use crate::sym::{Expr, Sym};
 use crate::tree;
@@ -27,7 +28,7 @@ pub(super) struct InFree {
     pub lambdas: Vec<Expr>,
 }
 
-/// `#[constraint(..)]`s, then two (planar) or three (spatial) equations per closing joint.
+/// `#[constraint(..)]`s, then the equations of each closing joint (close.rs).
 pub(super) fn gather<'a>(
     ast: &'a Mechanism,
     scope: &mut Scope,
@@ -47,28 +48,51 @@ pub(super) fn gather<'a>(
             out.tokens.push(&c.tokens);
         }
     }
-    // Loop-closing joints: two coincident points; two equations (planar: a revolute joint),
-    // three (spatial: a spherical joint).
+    // Loop-closing joints (close.rs): two coincident points in a plane (a revolute joint);
+    // in space a spherical, revolute, universal or prismatic joint.
     for cl in &ast.closures {
         let pa = closure_point(scope, kin, &cl.a, &cl.at_a);
         let pb = closure_point(scope, kin, &cl.b, &cl.at_b);
-        if let (Some(pa), Some(pb)) = (pa, pb) {
-            for (a, b) in pa.into_iter().zip(pb) {
-                out.phi.push(scope.g.sub(a, b));
-                out.tokens.push(&cl.tokens);
-            }
+        let (Some(pa), Some(pb)) = (pa, pb) else {
+            continue;
+        };
+        let Scope {
+            g,
+            names,
+            struct_name,
+            errors,
+            dim,
+            ..
+        } = scope;
+        let rows = match dim {
+            Dim::Planar => close::planar_rows(g, errors, cl, (&pa, &pb)),
+            Dim::Spatial => close::rows(g, errors, cl, (&pa, &pb), &mut |g, errors, e| {
+                Lowerer {
+                    g,
+                    names,
+                    struct_name,
+                    model: None,
+                    errors,
+                }
+                .vector(e, Context::Constant, 3)
+            }),
+        };
+        for row in rows.into_iter().flatten() {
+            out.phi.push(row);
+            out.tokens.push(&cl.tokens);
         }
     }
     out
 }
 
-/// A point of a tree body (`None`: the ground) at `at` in its frame.
+/// A point of a tree body (`None`: the ground) at `at` in its frame, with the frame's
+/// rotation in space.
 fn closure_point(
     scope: &mut Scope,
     kin: &Kinematics,
     body: &Option<Ident>,
     at: &Option<syn::Expr>,
-) -> Option<Vec<Expr>> {
+) -> Option<close::Side> {
     let dim = scope.dim;
     let local = match at {
         Some(e) => scope
@@ -83,8 +107,8 @@ fn closure_point(
         );
     };
     let g = &mut scope.g;
-    match (body, dim) {
-        (None, _) => Some(local),
+    let point = match (body, dim) {
+        (None, _) => local,
         (Some(b), Dim::Planar) => {
             let Some(&i) = kin.planar.node_of.get(&b.to_string()) else {
                 unknown(scope, b);
@@ -93,7 +117,7 @@ fn closure_point(
             let node = &kin.planar.nodes[i];
             let arm = tree::rotate(g, node.angle, [local[0], local[1]]);
             let origin = node.origin;
-            Some(vec![g.add(origin[0], arm[0]), g.add(origin[1], arm[1])])
+            vec![g.add(origin[0], arm[0]), g.add(origin[1], arm[1])]
         }
         (Some(b), Dim::Spatial) => {
             let Some(&i) = kin.spatial.frame_of.get(&b.to_string()) else {
@@ -101,16 +125,19 @@ fn closure_point(
                 return None;
             };
             let Frame { origin, rot, .. } = kin.spatial.frames[i];
-            Some(
-                (0..3)
-                    .map(|k| {
-                        let arm = g.dot(&rot[k], &local);
-                        g.add(origin[k], arm)
-                    })
-                    .collect(),
-            )
+            let point = (0..3)
+                .map(|k| {
+                    let arm = g.dot(&rot[k], &local);
+                    g.add(origin[k], arm)
+                })
+                .collect();
+            return Some(close::Side {
+                rot: Some(rot),
+                point,
+            });
         }
-    }
+    };
+    Some(close::Side { rot: None, point })
 }
 
 /// `Phi_q`, `Phi_t` and `gamma = -(d/dt (Phi_q q' + Phi_t))|_{q''=0}` of the reduced `phi`

@@ -17,8 +17,8 @@ use std::collections::HashMap;
 use syn::Ident;
 
 /// Returns the run-time domain conditions, `None` when the model keeps the augmented form
-/// (asked for, reactions or friction that need the multipliers, no independent coordinate
-/// left, or no closed form).
+/// (asked for, friction whose normal force may need the multipliers, no independent
+/// coordinate left, or no closed form).
 pub(super) fn minimal_coordinates(
     ast: &Mechanism,
     scope: &mut Scope,
@@ -42,12 +42,11 @@ pub(super) fn minimal_coordinates(
             default: env.get(&g.as_sym(c.z).expect("symbol")).copied(),
         })
         .collect();
-    let asks_reactions = ast.outputs.iter().any(|o| names_reaction(&o.expr))
-        || ast.events.iter().any(|e| names_reaction(&e.expr));
+    // Reactions (`relaxed`, `reaction(..)`) need no multipliers here: the rows of the
+    // relaxed and driven coordinates in minimal coordinates are their reactions
+    // (docs/ARCHITECTURE.md, Reactions in minimal coordinates).
     let why_not = if !ast.frictions.is_empty() {
         Some("friction keeps the augmented form (its normal force may need the multipliers)")
-    } else if !ast.relaxed.is_empty() || asks_reactions {
-        Some("reactions (`relaxed`, `reaction(..)`) need the multipliers of the augmented form")
     } else if free.len() <= loops.phi.len() {
         Some("no independent coordinate would remain (the constraints fix every free coordinate)")
     } else {
@@ -172,16 +171,19 @@ fn renumber(g: &Graph, roles: &mut HashMap<Sym, Role>, coords: &[Coord]) {
     }
 }
 
-/// Whether an output or event expression names `reaction`.
-fn names_reaction(e: &syn::Expr) -> bool {
-    fn walk(ts: proc_macro2::TokenStream) -> bool {
-        ts.into_iter().any(|tt| match tt {
-            proc_macro2::TokenTree::Ident(i) => i == "reaction",
-            proc_macro2::TokenTree::Group(gr) => walk(gr.stream()),
-            _ => false,
+/// The domain conditions in the free coordinates (a closed form may name relaxed and driven
+/// coordinates).
+pub(super) fn reduced(
+    g: &mut Graph,
+    domain: Vec<closure::Domain>,
+    map: &HashMap<Sym, Expr>,
+) -> Vec<closure::Domain> {
+    (domain.into_iter())
+        .map(|d| closure::Domain {
+            arg: g.substitute(d.arg, map),
+            coord: d.coord,
         })
-    }
-    walk(quote::ToTokens::to_token_stream(e))
+        .collect()
 }
 
 /// Values of the default configuration: parameter `#[default]`s, `init` positions (with
@@ -219,6 +221,7 @@ fn default_values(
     for c in coords {
         let value = match &c.kind {
             CoordKind::Driven(law) => Some(*law),
+            CoordKind::Relaxed => Some(g.zero()),
             _ => ast
                 .inits
                 .iter()

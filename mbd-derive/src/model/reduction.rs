@@ -155,7 +155,11 @@ fn reduction_map(scope: &mut Scope, coords: &[Coord]) -> HashMap<Sym, Expr> {
     let ts = g.as_sym(scope.t).expect("symbol");
     let zero = g.zero();
     let mut map: HashMap<Sym, Expr> = HashMap::new();
-    for c in coords {
+    // Dependent coordinates last: their closed forms may name relaxed and driven ones.
+    let dependent = |c: &&Coord| matches!(c.kind, CoordKind::Dependent(_));
+    let dependent_last =
+        (coords.iter().filter(|c| !dependent(c))).chain(coords.iter().filter(dependent));
+    for c in dependent_last {
         let (z, zd, zdd, zddd) = match &c.kind {
             CoordKind::Free => continue,
             CoordKind::Driven(law) => {
@@ -165,8 +169,12 @@ fn reduction_map(scope: &mut Scope, coords: &[Coord]) -> HashMap<Sym, Expr> {
                 (*law, d1, d2, d3)
             }
             CoordKind::Relaxed => (zero, zero, zero, zero),
-            // The position stays a symbol until `velocity::Minimal::close`.
-            CoordKind::Dependent([_, hd, hdd]) => (c.z, *hd, *hdd, zero),
+            // The position stays a symbol until `velocity::Minimal::close`; its rates are
+            // reduced like every other expression.
+            CoordKind::Dependent([_, hd, hdd]) => {
+                let [hd, hdd] = [*hd, *hdd].map(|e| g.substitute(e, &map));
+                (c.z, hd, hdd, zero)
+            }
         };
         for (s, v) in [(c.z, z), (c.zd, zd), (c.zdd, zdd), (c.zddd, zddd)] {
             map.insert(g.as_sym(s).expect("symbol"), v);

@@ -1,0 +1,14 @@
+use mbd::Mechanism;
+
+/// A closing joint's axis is a constant vector: the derive picks its normals at compile time.
+#[derive(Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -9.81)]
+#[body(arm, joint = spherical(a, b, c), com = [0.0, 0.0, -0.5], mass = 1.0, inertia = diag(0.1, 0.1, 0.01))]
+#[body(fore, parent = arm, joint = revolute(d, x), at = [0.0, 0.0, -1.0], com = [0.0, 0.0, -0.5], mass = 1.0,
+       inertia = diag(0.1, 0.1, 0.01))]
+#[close(tip, joint = universal, a = fore, at_a = [0.0, 0.0, -1.0], axis_a = [1.0, k, 0.0],
+        b = ground, at_b = [0.0, 1.0, -1.0], axis_b = [0.0, 1.0, 0.0])]
+pub struct Arm { pub k: f64 }
+
+fn main() {}
