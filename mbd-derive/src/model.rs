@@ -248,6 +248,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let mut inertial = inertial::inertial(ast, &mut scope, &mut kin, &forces, closed, form);
 
     // Reduction to the free coordinates; the constraints there.
+    // The full rows before the projection on minimal coordinates: reactions read them.
+    let unprojected = (inertial.m_full.clone(), inertial.f_full.clone());
     let mut red = reduction::reduce(
         &mut scope,
         &kin.coords,
@@ -256,7 +258,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
         ast.jacobian,
         minimal.as_ref(),
     );
-    let closure_domain = closure_domain.map(|d| minimal::reduced(&mut scope.g, d, &red.map));
+    let minimal = minimal.map(|m| m.reduced(&mut scope.g, &red.map));
     let free_idx = &red.free_idx;
     let zsyms = kin.z_syms(&scope.g);
     let qsyms: Vec<Sym> = free_idx.iter().map(|&i| zsyms[i]).collect();
@@ -274,7 +276,8 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     });
     let at = (&kin.coords[..], &free_idx[..]);
     let mut frictions = coulomb::lower(ast, &mut scope, &mut answers, at, &mut checks);
-    let full = (&inertial, &loops.phi[..], &con.lambdas[..]);
+    let (m_full, f_full) = &unprojected;
+    let full = (&m_full[..], &f_full[..], &loops.phi[..], &con.lambdas[..]);
     let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, full, &red.map);
     let observed = (&mut outputs[..], &mut events[..]);
     outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);

@@ -31,6 +31,25 @@ pub struct Minimal {
 }
 
 impl Minimal {
+    /// The closed forms and domain arguments with `map` applied: a closed form may name
+    /// relaxed and driven coordinates, which the reduction replaces.
+    pub fn reduced(&self, g: &mut Graph, map: &HashMap<Sym, Expr>) -> Minimal {
+        let domain = (self.domain.iter())
+            .map(|d| Domain {
+                arg: g.substitute(d.arg, map),
+                coord: d.coord.clone(),
+            })
+            .collect();
+        let forms = (self.forms.iter())
+            .map(|&(x, form)| {
+                let value = g.substitute(form.value, map);
+                let trig = form.trig.map(|t| t.map(|e| g.substitute(e, map)));
+                (x, Form { value, trig })
+            })
+            .collect();
+        Minimal { domain, forms }
+    }
+
     /// `rows` with every dependent coordinate replaced by its closed form.
     pub fn close(&self, g: &mut Graph, rows: &[Expr]) -> Vec<Expr> {
         let mut out = rows.to_vec();

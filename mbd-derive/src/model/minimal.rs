@@ -171,21 +171,6 @@ fn renumber(g: &Graph, roles: &mut HashMap<Sym, Role>, coords: &[Coord]) {
     }
 }
 
-/// The domain conditions in the free coordinates (a closed form may name relaxed and driven
-/// coordinates).
-pub(super) fn reduced(
-    g: &mut Graph,
-    domain: Vec<closure::Domain>,
-    map: &HashMap<Sym, Expr>,
-) -> Vec<closure::Domain> {
-    (domain.into_iter())
-        .map(|d| closure::Domain {
-            arg: g.substitute(d.arg, map),
-            coord: d.coord,
-        })
-        .collect()
-}
-
 /// Values of the default configuration: parameter `#[default]`s, `init` positions (with
 /// those defaults) and driven coordinates at `t = 0`; a parameter without a default leaves
 /// only the constant `init` positions.

@@ -1,10 +1,9 @@
 //! Outputs and events: lowered with body queries answered in full coordinates, then
 //! reduced, with the reactions they ask for, `r_u = (M zdd - f + Phi_z^T lambda)_u`, put in.
 
-use super::inertial::Inertial;
 use super::kinematics::Kin;
 use super::scope::Scope;
-use super::{Coord, EventEq, OutputEq};
+use super::{Coord, CoordKind, EventEq, OutputEq};
 use crate::lower::{Context, Value};
 use crate::parse::Mechanism;
 use crate::sym::{Expr, Graph, Sym};
@@ -89,19 +88,32 @@ pub(super) fn reactions<'a>(
     g: &mut Graph,
     coords: &[Coord],
     asked: &[(usize, Expr)],
-    (inertial, phi_full, lambdas): (&Inertial, &[Expr], &[Expr]),
+    (m_full, f_full, phi_full, lambdas): (&[Vec<Expr>], &[Expr], &[Expr], &[Expr]),
     reduce: &'a HashMap<Sym, Expr>,
 ) -> Finisher<'a> {
     let mut map: HashMap<Sym, Expr> = HashMap::new();
     for (u, placeholder) in asked {
         let zdd: Vec<Expr> = coords.iter().map(|c| c.zdd).collect();
-        let ma = g.dot(&inertial.m_full[*u], &zdd);
-        let mut r = g.sub(ma, inertial.f_full[*u]);
+        let ma = g.dot(&m_full[*u], &zdd);
+        let mut r = g.sub(ma, f_full[*u]);
         let zu = g.as_sym(coords[*u].z).expect("symbol");
         for (k, p) in phi_full.iter().enumerate() {
             let d = g.diff(*p, zu);
             let dl = g.mul(d, lambdas[k]);
             r = g.add(r, dl);
+        }
+        // In minimal coordinates the closure's forces on `u` are those of the dependent
+        // rows carried along the tangent: `Phi_u^T lambda = T_du^T (M zdd - f)_d` with
+        // `T_du = d zd_d / d zd_u` (docs/ARCHITECTURE.md, Reactions in minimal coordinates).
+        let zdu = g.as_sym(coords[*u].zd).expect("symbol");
+        for (d, c) in coords.iter().enumerate() {
+            if let CoordKind::Dependent([_, v, _]) = c.kind {
+                let t_du = g.diff(v, zdu);
+                let ma = g.dot(&m_full[d], &zdd);
+                let row = g.sub(ma, f_full[d]);
+                let carried = g.mul(t_du, row);
+                r = g.add(r, carried);
+            }
         }
         map.insert(g.as_sym(*placeholder).expect("symbol"), r);
     }

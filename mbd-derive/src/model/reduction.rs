@@ -121,7 +121,7 @@ pub(super) fn reduce(
     }
     let mut reduced = g.substitute_all(&full_rows, &map);
     if let Some(min) = minimal {
-        reduced = min.close(g, &reduced);
+        reduced = min.reduced(g, &map).close(g, &reduced);
     }
     let inverse = inverse_full
         .is_some()
