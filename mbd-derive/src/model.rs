@@ -276,9 +276,13 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     });
     let at = (&kin.coords[..], &free_idx[..]);
     let mut frictions = coulomb::lower(ast, &mut scope, &mut answers, at, &mut checks);
-    let (m_full, f_full) = &unprojected;
-    let full = (&m_full[..], &f_full[..], &loops.phi[..], &con.lambdas[..]);
-    let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, full, &red.map);
+    let full = outputs::FullRows {
+        m: &unprojected.0,
+        f: &unprojected.1,
+        phi: &loops.phi,
+        lambdas: &con.lambdas,
+    };
+    let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, &full, &red.map);
     let observed = (&mut outputs[..], &mut events[..]);
     outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);
     crate::geometry::map(&mut geometry, |x| finisher.finish(&mut scope.g, x));

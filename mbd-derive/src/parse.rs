@@ -251,6 +251,9 @@ pub struct Mechanism {
     pub jacobian: bool,
     /// Generate `Drawable` (`#[mechanism(geometry)]`, see `geometry.rs`).
     pub geometry: bool,
+    /// Generate a joint tree's `inverse_dynamics` by Newton-Euler
+    /// (`#[mechanism(inverse_dynamics)]`); otherwise the trait's `M qdd - f` serves.
+    pub inverse_dynamics: bool,
     pub evaluation: Evaluation,
     pub evaluation_span: Span,
     pub loop_form: LoopForm,
@@ -491,6 +494,7 @@ impl Mechanism {
             inits: Vec::new(),
             jacobian: false,
             geometry: false,
+            inverse_dynamics: false,
             evaluation: Evaluation::Auto,
             evaluation_span: Span::call_site(),
             loop_form: LoopForm::Auto,
@@ -570,7 +574,7 @@ impl Mechanism {
         }
     }
 
-    /// `#[mechanism(planar | spatial, jacobian, geometry, recursive | mass_matrix, augmented | minimal)]`.
+    /// `#[mechanism(planar | spatial, jacobian, geometry, inverse_dynamics, recursive | mass_matrix, augmented | minimal)]`.
     fn options(&mut self, attr: &Attribute, dim_given: &mut bool, errors: &mut Errors) {
         for arg in args(attr).unwrap_or_else(|e| {
             errors.push(e);
@@ -584,6 +588,7 @@ impl Mechanism {
                     }
                     Arg::Flag(f) if f == "jacobian" => self.jacobian = true,
                     Arg::Flag(f) if f == "geometry" => self.geometry = true,
+                    Arg::Flag(f) if f == "inverse_dynamics" => self.inverse_dynamics = true,
                     Arg::Flag(f) if f == "recursive" || f == "mass_matrix" => {
                         self.evaluation = if f == "recursive" { Evaluation::Recursive } else { Evaluation::MassMatrix };
                         self.evaluation_span = f.span();
@@ -594,7 +599,7 @@ impl Mechanism {
                     }
                     Arg::Flag(f) => errors.at(
                         f.span(),
-                        format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `geometry`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
+                        format!("unknown mechanism option `{f}`, expected one of `planar`, `spatial`, `jacobian`, `geometry`, `inverse_dynamics`, `recursive`, `mass_matrix`, `augmented`, `minimal`"),
                     ),
                     Arg::Keyed(k, _) => errors.at(k.span(), format!("unknown mechanism option `{k}`")),
                     Arg::Other(e) => errors.at(e.span(), "expected a mechanism option"),

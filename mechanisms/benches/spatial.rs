@@ -41,7 +41,7 @@ pub struct Universal10 {
 /// A 7-dof arm: revolute joints about z, y, x, y, z, x, y with offsets along all three axes,
 /// mass centres off the joint axes, two general inertia tensors.
 #[derive(Debug, Clone, Mechanism)]
-#[mechanism(spatial)]
+#[mechanism(spatial, inverse_dynamics)]
 #[gravity(0.0, 0.0, -g)]
 #[body(b1, joint = revolute(q1, z), at = [0.0, 0.0, 0.3], com = [0.01, 0.02, 0.1], mass = 4.0,
        inertia = [[0.05, 0.001, 0.0], [0.001, 0.04, 0.002], [0.0, 0.002, 0.03]])]

@@ -29,6 +29,7 @@ fn equals_mass_matrix_form<const N: usize>(
 /// A planar chain of 14 uniform links (a run of identical links: the accelerations come
 /// from rolled loops, the mass matrix column by column) with a torque at its first joint.
 #[derive(Debug, Mechanism)]
+#[mechanism(inverse_dynamics)]
 #[gravity(0.0, -g)]
 #[chain(link, n = 14, joint = revolute, length = l, mass = m, inertia = m * l * l / 12.0)]
 pub struct Chain14 {
@@ -54,7 +55,7 @@ fn planar_chain_newton_euler_equals_the_mass_matrix_form() {
 /// all three axes, general inertia tensors, a viscous generalised force on `q3`, a driven
 /// wrist joint).
 #[derive(Debug, Mechanism)]
-#[mechanism(spatial)]
+#[mechanism(spatial, inverse_dynamics)]
 #[gravity(0.0, 0.0, -g)]
 #[drive(q7 = 0.4 * sin(3.0 * t))]
 #[body(b1, joint = revolute(q1, z), at = [0.0, 0.0, 0.3], com = [0.01, 0.02, 0.1], mass = 4.0,
@@ -128,6 +129,7 @@ fn seven_dof_arm_inverse_of_forward_gives_the_applied_force() {
 /// Two links on revolute joints (angles from the downward vertical, `q2` relative), with an
 /// applied torque at each joint.
 #[derive(Debug, Mechanism)]
+#[mechanism(inverse_dynamics)]
 #[gravity(0.0, -g)]
 #[body(upper, joint = revolute(q1), com = [0.0, -c1], mass = m1, inertia = i1)]
 #[body(lower, parent = upper, joint = revolute(q2), at = [0.0, -l1], com = [0.0, -c2],
@@ -211,4 +213,59 @@ fn two_link_newton_euler_equals_the_closed_form() {
         (needed - applied).norm() <= 1e-12 * applied.norm(),
         "{needed:?}"
     );
+}
+
+/// The same two-link arm without `#[mechanism(inverse_dynamics)]`: the Newton-Euler method
+/// is left out (a scene that does not ask for it does not pay for it) and the trait's
+/// `M qdd - f` answers, equal to the generated one.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(upper, joint = revolute(q1), com = [0.0, -c1], mass = m1, inertia = i1)]
+#[body(lower, parent = upper, joint = revolute(q2), at = [0.0, -l1], com = [0.0, -c2],
+       mass = m2, inertia = i2)]
+pub struct TwoLinkPlain {
+    pub g: f64,
+    pub l1: f64,
+    pub c1: f64,
+    pub c2: f64,
+    pub m1: f64,
+    pub m2: f64,
+    pub i1: f64,
+    pub i2: f64,
+}
+
+#[test]
+fn inverse_dynamics_is_generated_only_when_asked() {
+    assert!(!TwoLinkPlain::GENERATED.parts.contains(&"inverse_dynamics"));
+    let (g, l1, c1, c2, m1, m2, i1, i2) = (9.81, 1.1, 0.5, 0.45, 2.0, 1.5, 0.2, 0.12);
+    let plain = TwoLinkPlain {
+        g,
+        l1,
+        c1,
+        c2,
+        m1,
+        m2,
+        i1,
+        i2,
+    };
+    let asked = TwoLink {
+        g,
+        l1,
+        c1,
+        c2,
+        m1,
+        m2,
+        i1,
+        i2,
+        tau1: 0.0,
+        tau2: 0.0,
+    };
+    let (q, qd, qdd) = (
+        Vector::<2>::new(0.3, -0.7),
+        Vector::<2>::new(1.2, 0.4),
+        Vector::<2>::new(-2.0, 3.0),
+    );
+    let by_default = plain.inverse_dynamics(0.0, &q, &qd, &qdd);
+    let by_rnea = asked.inverse_dynamics(0.0, &q, &qd, &qdd);
+    assert!((by_default - by_rnea).norm() <= 1e-12 * (1.0 + by_rnea.norm()));
 }

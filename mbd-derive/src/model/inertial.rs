@@ -73,7 +73,7 @@ pub(super) fn inertial(
     let by_recursion = (recursive && spatial::covers(&steps, nz))
         .then(|| spatial::mass_and_forces(g, &steps, &inputs));
     let m_by_recursion = by_recursion.is_some();
-    let inverse_full = m_by_recursion.then(|| {
+    let inverse_full = (m_by_recursion && ast.inverse_dynamics).then(|| {
         let accel: Vec<Expr> = kinematics.coords.iter().map(|c| c.zdd).collect();
         spatial::inverse_dynamics(g, &steps, &inputs, &accel)
     });

@@ -83,23 +83,32 @@ impl Finisher<'_> {
     }
 }
 
+/// The equations in full coordinates that reactions are read from: `M`, `f` (before any
+/// projection on minimal coordinates), the constraints and their multipliers.
+pub(super) struct FullRows<'a> {
+    pub m: &'a [Vec<Expr>],
+    pub f: &'a [Expr],
+    pub phi: &'a [Expr],
+    pub lambdas: &'a [Expr],
+}
+
 /// The reactions asked for (`(coordinate, placeholder)`), as rows of the full equations.
 pub(super) fn reactions<'a>(
     g: &mut Graph,
     coords: &[Coord],
     asked: &[(usize, Expr)],
-    (m_full, f_full, phi_full, lambdas): (&[Vec<Expr>], &[Expr], &[Expr], &[Expr]),
+    full: &FullRows<'_>,
     reduce: &'a HashMap<Sym, Expr>,
 ) -> Finisher<'a> {
     let mut map: HashMap<Sym, Expr> = HashMap::new();
     for (u, placeholder) in asked {
         let zdd: Vec<Expr> = coords.iter().map(|c| c.zdd).collect();
-        let ma = g.dot(&m_full[*u], &zdd);
-        let mut r = g.sub(ma, f_full[*u]);
+        let ma = g.dot(&full.m[*u], &zdd);
+        let mut r = g.sub(ma, full.f[*u]);
         let zu = g.as_sym(coords[*u].z).expect("symbol");
-        for (k, p) in phi_full.iter().enumerate() {
+        for (k, p) in full.phi.iter().enumerate() {
             let d = g.diff(*p, zu);
-            let dl = g.mul(d, lambdas[k]);
+            let dl = g.mul(d, full.lambdas[k]);
             r = g.add(r, dl);
         }
         // In minimal coordinates the closure's forces on `u` are those of the dependent
@@ -109,8 +118,8 @@ pub(super) fn reactions<'a>(
         for (d, c) in coords.iter().enumerate() {
             if let CoordKind::Dependent([_, v, _]) = c.kind {
                 let t_du = g.diff(v, zdu);
-                let ma = g.dot(&m_full[d], &zdd);
-                let row = g.sub(ma, f_full[d]);
+                let ma = g.dot(&full.m[d], &zdd);
+                let row = g.sub(ma, full.f[d]);
                 let carried = g.mul(t_du, row);
                 r = g.add(r, carried);
             }
