@@ -51,6 +51,8 @@
 //! | spring or damper end naming a body | its mass centre (a `point(.., on = b)` for another point) | | |
 //! | `event` | a zero of the expression | `rising`: from negative to positive | both directions, not terminal |
 //! | `mechanism` | | | planar unless `gravity` has 3 components; articulated-body recursion for a tree of 2 or more bodies; `minimal` where the closure has a closed form |
+//! | `input(u, ..)` | struct fields used as inputs in loads or drive laws | as written | the field's value in the right-hand side; `B`, `D` need `mechanism(jacobian)` |
+//! | `mechanism(inverse_dynamics)` | a joint tree's `inverse_dynamics(t, q, qd, qdd)` by Newton-Euler | the generalised forces that must act besides the model's loads | not generated: `M qdd - f` answers |
 //!
 //! # Expressions: operators, functions, constants
 //!
