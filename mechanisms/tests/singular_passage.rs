@@ -56,14 +56,16 @@ fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, t1: f64, what: &str) -> f
     err
 }
 
-/// DOPRI5 at 1e-9 and 1e-10 stops at the flat positions on its own (the index-1
-/// accelerations are not determined there); bridged, it runs through on the
-/// parallelogram branch and its error falls with the tolerance.
+/// DOPRI5 at 1e-9 and 1e-10: where its index-1 accelerations stop at a flat position (the
+/// banded LU's pivots and the augmented Lagrangian's residual both out of bounds: at 1e-10
+/// the stage nearest the instant of t = 2.69 comes close enough), the bridge carries the
+/// run on the parallelogram branch; at 1e-9 the steps land far enough from the instants for
+/// the index-1 accelerations to hold. Either way the error falls with the tolerance.
 #[test]
 fn dopri5_is_bridged_on_the_parallelogram_branch() {
     let a = FourBarAssembly::benchmark();
     let y0 = a.benchmark_state(1.0);
-    let mut errors = vec![];
+    let (mut errors, mut bridged) = (vec![], 0);
     for tol in [1e-9, 1e-10] {
         let run = passage::solve(
             &Dopri5::new(options(tol)),
@@ -75,9 +77,13 @@ fn dopri5_is_bridged_on_the_parallelogram_branch() {
             &Settings::new(tol),
         )
         .unwrap();
-        assert!(!run.passages.is_empty(), "{tol:e}: no passage bridged");
+        bridged += run.passages.len();
         errors.push(check(&a, &run, T1, &format!("DOPRI5 {tol:e}")));
     }
+    assert!(
+        bridged > 0,
+        "no passage bridged: the bridge is not exercised"
+    );
     assert!(
         errors[0] < 1e-5 && errors[1] < 0.5 * errors[0],
         "{errors:?}"
