@@ -409,7 +409,8 @@ fn slider_crank_sweeps() -> Vec<Sweep> {
     out
 }
 
-/// The machine's load averages (1, 5, 15 min) from `/proc/loadavg`, or `?` off Linux.
+/// The machine's load averages (1, 5, 15 min) as Linux publishes them, or `?` elsewhere:
+/// the one place the reports read them.
 pub fn load_average() -> String {
     std::fs::read_to_string("/proc/loadavg")
         .ok()

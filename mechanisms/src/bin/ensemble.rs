@@ -137,11 +137,10 @@ fn main() {
     let (ts, tp) = (median(serial_s.clone()), median(parallel_s.clone()));
     let speedup = ts / tp;
     // Other processes on the machine take cores from the parallel run: say how busy it was.
-    let load = std::fs::read_to_string("/proc/loadavg").ok().and_then(|s| {
-        s.split_whitespace()
-            .next()
-            .and_then(|v| v.parse::<f64>().ok())
-    });
+    let load = mechanisms::accuracy::load_average()
+        .split_whitespace()
+        .next()
+        .and_then(|v| v.parse::<f64>().ok());
     if args.json {
         println!(
             "{}",

@@ -4,8 +4,8 @@
 //! Per method and tolerance (or step): switches, accepted and rejected steps, steps per
 //! switch (mean and the most any one mode took), right-hand-side evaluations, the largest
 //! relative error of the switch times against the closed form, and the time of the friction
-//! run over the frictionless one. Times are the thread's CPU time (user + system from
-//! `/proc/thread-self/stat`, in clock ticks): per run, over a batch of runs doubled until it
+//! run over the frictionless one. Times are the thread's CPU time (the `cpu-time` crate's
+//! `ThreadTime`): per run, over a batch of runs doubled until it
 //! takes 0.25 s, median of 5 batches. The machine is shared, and wall time would count the
 //! waits for a core. The load average is printed before and after.
 //!
@@ -20,26 +20,9 @@ use std::hint::black_box;
 
 const PERIODS: usize = 100;
 
-/// Clock ticks per second of `/proc/*/stat` (`USER_HZ`, 100 on Linux).
-const TICKS: f64 = 100.0;
-
-/// This thread's CPU time in seconds (`utime + stime`, fields 14 and 15 of its stat), or NaN.
+/// This thread's CPU time in seconds, or NaN where the platform has no thread clock.
 fn cpu_time() -> f64 {
-    let stat = std::fs::read_to_string("/proc/thread-self/stat").unwrap_or_default();
-    // The fields after the command name (which is in parentheses and may hold spaces).
-    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
-    let field = |i: usize| rest.split_whitespace().nth(i)?.parse::<f64>().ok();
-    match (field(11), field(12)) {
-        (Some(u), Some(s)) => (u + s) / TICKS,
-        _ => f64::NAN,
-    }
-}
-
-/// The load average over the last minute, 5 and 15 minutes.
-fn load() -> String {
-    std::fs::read_to_string("/proc/loadavg").map_or("?".into(), |s| {
-        s.split_whitespace().take(3).collect::<Vec<_>>().join(" ")
-    })
+    cpu_time::ThreadTime::try_now().map_or(f64::NAN, |t| t.as_duration().as_secs_f64())
 }
 
 /// CPU time of one run of `f`, in seconds (median of 5 batches, each doubled until it
@@ -124,7 +107,7 @@ fn main() -> mbd::Result<()> {
     );
     println!(
         "load average before: {} (2 cores, shared); times are CPU time",
-        load()
+        mechanisms::accuracy::load_average()
     );
     println!(
         "{:<7} {:>7} {:>8} {:>7} {:>5} {:>9} {:>5} {:>7} {:>9} {:>8} | {:>7} {:>5} {:>7} {:>8} | {:>6} {:>6}",
@@ -163,6 +146,9 @@ fn main() -> mbd::Result<()> {
             &GeneralizedAlpha::new(0.9, h),
         )?;
     }
-    println!("load average after: {}", load());
+    println!(
+        "load average after: {}",
+        mechanisms::accuracy::load_average()
+    );
     Ok(())
 }

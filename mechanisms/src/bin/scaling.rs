@@ -15,7 +15,7 @@
 //!   `syn::parse_file` and formatted with `prettyplease`, counted in lines (not counting the
 //!   names and types, one per line, of the grouped declarations long bodies start with);
 //! - `peak_mb`: the build's peak memory, the largest resident set of cargo and the compilers
-//!   it waited for (`/usr/bin/time`'s maximum RSS; absent without `/usr/bin/time`);
+//!   it waited for (GNU time's maximum RSS; absent without GNU time on the `PATH`);
 //! - `rhs_ns` and `handwritten_rhs_ns`: the generated `OdeSystem::rhs` and the hand-written
 //!   articulated-body algorithm ([`mechanisms::chain_by_hand`], in space
 //!   [`mechanisms::spatial_chain_by_hand`]: the same algorithm) for the same chain at the
@@ -268,10 +268,10 @@ impl Ctx {
         let dump_dir = self.dump_dir(n);
         let _ = fs::remove_dir_all(&dump_dir);
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
-        // `/usr/bin/time` reports the largest resident set of cargo and of the compilers it
+        // GNU time reports the largest resident set of cargo and of the compilers it
         // waited for.
-        let mut cmd = if Path::new(TIME).exists() {
-            let mut c = Command::new(TIME);
+        let mut cmd = if gnu_time() {
+            let mut c = Command::new("time");
             c.args(["-f", "%M", "-o"])
                 .arg(dir.join("peak_kb"))
                 .arg(cargo);
@@ -306,9 +306,10 @@ impl Ctx {
             form: Some(form),
             ..Row::default()
         };
-        row.load_1min = fs::read_to_string("/proc/loadavg")
-            .ok()
-            .and_then(|s| s.split_whitespace().next()?.parse().ok());
+        row.load_1min = mechanisms::accuracy::load_average()
+            .split_whitespace()
+            .next()
+            .and_then(|s| s.parse().ok());
         eprintln!(
             "[N={n}] building ({form:?} form), load average {}",
             row.load_1min.map_or("?".into(), |l| format!("{l:.2}"))
@@ -401,8 +402,17 @@ fn code_lines(formatted: &str) -> usize {
         .count()
 }
 
-/// Where `/usr/bin/time` is (GNU time: `-f %M` prints the maximum resident set in KB).
-const TIME: &str = "/usr/bin/time";
+/// Whether GNU time is on the `PATH` as `time` (`-f %M` prints the maximum resident set
+/// in KB); without it the peak-memory column stays empty.
+fn gnu_time() -> bool {
+    static FOUND: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *FOUND.get_or_init(|| {
+        Command::new("time")
+            .args(["-f", "%M", "true"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
+}
 
 fn struct_name(family: Family, n: usize) -> String {
     match family {
