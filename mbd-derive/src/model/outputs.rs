@@ -101,10 +101,23 @@ pub(super) fn reactions<'a>(
     reduce: &'a HashMap<Sym, Expr>,
 ) -> Finisher<'a> {
     let mut map: HashMap<Sym, Expr> = HashMap::new();
+    let zdd: Vec<Expr> = coords.iter().map(|c| c.zdd).collect();
+    let row = |g: &mut Graph, i: usize| {
+        let ma = g.dot(&full.m[i], &zdd);
+        g.sub(ma, full.f[i])
+    };
+    // The dependent coordinates' rates `zd_d` and rows `(M zdd - f)_d` (minimal form only),
+    // formed once for all the reactions asked.
+    let dependent: Vec<(Expr, Expr)> = (coords.iter().enumerate())
+        .filter(|_| !asked.is_empty())
+        .filter_map(|(d, c)| match c.kind {
+            CoordKind::Dependent([_, v, _]) => Some((v, d)),
+            _ => None,
+        })
+        .map(|(v, d)| (v, row(g, d)))
+        .collect();
     for (u, placeholder) in asked {
-        let zdd: Vec<Expr> = coords.iter().map(|c| c.zdd).collect();
-        let ma = g.dot(&full.m[*u], &zdd);
-        let mut r = g.sub(ma, full.f[*u]);
+        let mut r = row(g, *u);
         let zu = g.as_sym(coords[*u].z).expect("symbol");
         for (k, p) in full.phi.iter().enumerate() {
             let d = g.diff(*p, zu);
@@ -115,14 +128,10 @@ pub(super) fn reactions<'a>(
         // rows carried along the tangent: `Phi_u^T lambda = T_du^T (M zdd - f)_d` with
         // `T_du = d zd_d / d zd_u` (docs/ARCHITECTURE.md, Reactions in minimal coordinates).
         let zdu = g.as_sym(coords[*u].zd).expect("symbol");
-        for (d, c) in coords.iter().enumerate() {
-            if let CoordKind::Dependent([_, v, _]) = c.kind {
-                let t_du = g.diff(v, zdu);
-                let ma = g.dot(&full.m[d], &zdd);
-                let row = g.sub(ma, full.f[d]);
-                let carried = g.mul(t_du, row);
-                r = g.add(r, carried);
-            }
+        for &(v, row_d) in &dependent {
+            let t_du = g.diff(v, zdu);
+            let carried = g.mul(t_du, row_d);
+            r = g.add(r, carried);
         }
         map.insert(g.as_sym(*placeholder).expect("symbol"), r);
     }
