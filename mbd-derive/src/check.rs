@@ -705,7 +705,7 @@ pub fn fold(e: &Expr, env: &HashMap<String, f64>) -> Option<f64> {
     }
 }
 
-fn apply(name: &str, a: &[f64]) -> Option<f64> {
+pub fn apply(name: &str, a: &[f64]) -> Option<f64> {
     Some(match (name, a) {
         ("sin", [x]) => x.sin(),
         ("cos", [x]) => x.cos(),

@@ -20,6 +20,7 @@
 //! constraint is redundant by construction (a cross product `u_a x u_b = 0` would be three
 //! rows of rank two).
 
+use crate::lowered::Term;
 use crate::parse::{CloseJoint, Closure, Dim, Errors};
 use crate::sym::{Expr, Graph};
 
@@ -31,7 +32,7 @@ pub struct Side {
 }
 
 /// How many equations a `close` adds (before its rows are built: for the skeleton).
-pub fn equations(cl: &Closure, dim: Dim) -> usize {
+pub fn equations<E>(cl: &Closure<E>, dim: Dim) -> usize {
     match (dim, cl.joint.map(|j| j.0)) {
         (Dim::Planar, _) => 2,
         (Dim::Spatial, None | Some(CloseJoint::Spherical)) => 3,
@@ -40,12 +41,12 @@ pub fn equations(cl: &Closure, dim: Dim) -> usize {
     }
 }
 
-/// Lowers a `syn` expression to a constant vector of three components (`None` after an
+/// Lowers a term to a constant vector of three components (`None` after an
 /// error).
-pub type Lower3<'a> = dyn FnMut(&mut Graph, &mut Errors, &syn::Expr) -> Option<Vec<Expr>> + 'a;
+pub type Lower3<'a> = dyn FnMut(&mut Graph, &mut Errors, &Term) -> Option<Vec<Expr>> + 'a;
 
 /// The arguments a joint kind takes beyond the points, and which it requires.
-fn check_keys(cl: &Closure, dim: Dim, errors: &mut Errors) -> Option<CloseJoint> {
+fn check_keys(cl: &Closure<Term>, dim: Dim, errors: &mut Errors) -> Option<CloseJoint> {
     let given = [
         ("axis_a", &cl.axis_a),
         ("axis_b", &cl.axis_b),
@@ -129,7 +130,7 @@ fn direction(
     g: &mut Graph,
     errors: &mut Errors,
     lower: &mut Lower3<'_>,
-    e: &syn::Expr,
+    e: &Term,
 ) -> Option<[f64; 3]> {
     let v = lower(g, errors, e)?;
     let Some(v) = v
@@ -184,7 +185,7 @@ fn normals(u: [f64; 3]) -> ([f64; 3], [f64; 3]) {
 fn normal_to(
     axis: [f64; 3],
     normal: [f64; 3],
-    e: &syn::Expr,
+    e: &Term,
     errors: &mut Errors,
 ) -> Option<[f64; 3]> {
     let c = dot(axis, normal);
@@ -217,7 +218,7 @@ fn world(g: &mut Graph, side: &Side, v: [f64; 3]) -> Vec<Expr> {
 pub fn rows(
     g: &mut Graph,
     errors: &mut Errors,
-    cl: &Closure,
+    cl: &Closure<Term>,
     (a, b): (&Side, &Side),
     lower: &mut Lower3<'_>,
 ) -> Option<Vec<Expr>> {
@@ -231,7 +232,7 @@ pub fn rows(
     if kind == CloseJoint::Spherical {
         return nonzero(g, errors, cl, d);
     }
-    let mut dir = |e: &Option<syn::Expr>| {
+    let mut dir = |e: &Option<Term>| {
         let e = e.as_ref().expect("checked by check_keys");
         direction(g, errors, lower, e)
     };
@@ -279,7 +280,7 @@ pub fn rows(
 
 /// The rows, or an error when some are identically zero (they would make the constraint
 /// Jacobian singular everywhere).
-fn nonzero(g: &Graph, errors: &mut Errors, cl: &Closure, rows: Vec<Expr>) -> Option<Vec<Expr>> {
+fn nonzero(g: &Graph, errors: &mut Errors, cl: &Closure<Term>, rows: Vec<Expr>) -> Option<Vec<Expr>> {
     let zero = rows.iter().filter(|r| g.is_zero(**r)).count();
     if zero > 0 {
         errors.over(&cl.tokens, format!("{zero} of this joint's {} equations are identically zero: the loop never leaves what they constrain (a mechanism moving in a plane, written in space); write it planar, or close it by a joint of fewer equations", rows.len()));
@@ -293,7 +294,7 @@ fn nonzero(g: &Graph, errors: &mut Errors, cl: &Closure, rows: Vec<Expr>) -> Opt
 pub fn planar_rows(
     g: &mut Graph,
     errors: &mut Errors,
-    cl: &Closure,
+    cl: &Closure<Term>,
     (a, b): (&Side, &Side),
 ) -> Option<Vec<Expr>> {
     check_keys(cl, Dim::Planar, errors)?;

@@ -1,7 +1,7 @@
-//! The pipeline: parse -> check -> mechanics -> codegen. Errors become `compile_error!`s,
+//! The pipeline: parse -> check -> lower (`syn`-free) -> mechanics -> codegen. Errors become `compile_error!`s,
 //! beside the skeleton of the items the model would have had.
 
-use crate::{check, codegen, model, parse, repeat, skeleton};
+use crate::{check, codegen, lowered, model, parse, repeat, skeleton};
 use proc_macro2::TokenStream;
 use std::time::Instant;
 use syn::DeriveInput;
@@ -55,7 +55,11 @@ fn try_expand(input: &DeriveInput) -> Result<TokenStream, Failed> {
     if let Some(e) = repeated {
         return Err((e, Some(Box::new(ast))));
     }
-    let checked = check::check(&input, &ast).and_then(|()| model::derive(&ast));
+    let checked = check::check(&input, &ast).and_then(|()| {
+        let mut errors = parse::Errors::default();
+        let lowered = lowered::lower(&ast, &mut errors);
+        model::derive(lowered, errors)
+    });
     match checked {
         Ok(eqs) => Ok(codegen::emit(&ast, &eqs)),
         Err(e) => Err((e, Some(Box::new(ast)))),

@@ -134,10 +134,9 @@ pub fn check_coefficients(
     g: &crate::sym::Graph,
     mu_k: crate::sym::Expr,
     mu_s: crate::sym::Expr,
-    f: &crate::parse::Friction,
+    f: &crate::parse::Friction<crate::lowered::Term>,
     errors: &mut crate::parse::Errors,
 ) {
-    use syn::spanned::Spanned;
     if let Some(k) = g.as_const(mu_k).filter(|k| *k < 0.0) {
         errors.at(
             f.mu.span(),

@@ -120,9 +120,9 @@ pub fn shapes(ast: &Mechanism) -> Vec<Shape<syn::Expr>> {
 
 /// Lower every point with `vector` (the model's output lowering); a shape with a point that
 /// does not lower is left out (its error is already reported).
-pub fn lower(
-    shapes: Vec<Shape<syn::Expr>>,
-    mut vector: impl FnMut(&syn::Expr) -> Option<Vec<Expr>>,
+pub fn lower<P>(
+    shapes: Vec<Shape<P>>,
+    mut vector: impl FnMut(&P) -> Option<Vec<Expr>>,
 ) -> Vec<Shape<Vec<Expr>>> {
     shapes
         .into_iter()

@@ -17,6 +17,7 @@ mod geometry;
 mod guard;
 mod linear;
 mod lower;
+mod lowered;
 mod model;
 mod parse;
 mod repeat;

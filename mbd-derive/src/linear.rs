@@ -50,7 +50,7 @@ pub struct Parts<'a> {
 
 /// The inputs as parameter indices: each must name a parameter, once, and needs the
 /// generated Jacobian (spanned errors otherwise).
-fn inputs(ast: &Mechanism, errors: &mut Errors) -> Vec<usize> {
+fn inputs<E>(ast: &Mechanism<E>, errors: &mut Errors) -> Vec<usize> {
     let mut out = Vec::new();
     for u in &ast.inputs {
         match ast.params.iter().position(|p| p.name == *u) {
@@ -76,9 +76,9 @@ fn inputs(ast: &Mechanism, errors: &mut Errors) -> Vec<usize> {
 }
 
 /// The parameter derivatives, when the model asks for exact Jacobians.
-pub fn derive(
+pub fn derive<E>(
     g: &mut Graph,
-    ast: &Mechanism,
+    ast: &Mechanism<E>,
     errors: &mut Errors,
     parts: Parts,
 ) -> Option<LinearEq> {

@@ -8,7 +8,7 @@
 use crate::parse::Errors;
 use crate::sym::{Expr, Func, Graph};
 use std::collections::HashMap;
-use syn::spanned::Spanned;
+use crate::lowered::{Kind, Op, Term};
 
 /// A lowered value: a scalar, a vector (positions, velocities) or a 3x3 matrix (rotations).
 #[derive(Clone, Debug)]
@@ -153,7 +153,7 @@ fn query_hint(fname: &str) -> &'static str {
 }
 
 /// Body queries answered by [`Model::body`].
-const BODY_QUERIES: &[&str] = &[
+pub const BODY_QUERIES: &[&str] = &[
     "position",
     "velocity",
     "acceleration",
@@ -192,12 +192,12 @@ type Res = Result<Value, ()>;
 
 impl Lowerer<'_> {
     /// Lower `e`, reporting errors (and returning `None`) on anything outside `ctx`.
-    pub fn lower(&mut self, e: &syn::Expr, ctx: Context) -> Option<Value> {
+    pub fn lower(&mut self, e: &Term, ctx: Context) -> Option<Value> {
         self.expr(e, ctx).ok()
     }
 
     /// Lower a scalar.
-    pub fn scalar(&mut self, e: &syn::Expr, ctx: Context) -> Option<Expr> {
+    pub fn scalar(&mut self, e: &Term, ctx: Context) -> Option<Expr> {
         match self.expr(e, ctx).ok()? {
             Value::Scalar(s) => Some(s),
             Value::Vector(v) => {
@@ -217,7 +217,7 @@ impl Lowerer<'_> {
     }
 
     /// Lower a vector of `len` components (`len = 0`: any length).
-    pub fn vector(&mut self, e: &syn::Expr, ctx: Context, len: usize) -> Option<Vec<Expr>> {
+    pub fn vector(&mut self, e: &Term, ctx: Context, len: usize) -> Option<Vec<Expr>> {
         match self.expr(e, ctx).ok()? {
             Value::Vector(v) if len == 0 || v.len() == len => Some(v),
             Value::Vector(v) => {
@@ -249,53 +249,30 @@ impl Lowerer<'_> {
 
     /// One level of the recursion over `e`, on a stack that grows as it deepens (a sum of
     /// thousands of terms nests once per term).
-    fn expr(&mut self, e: &syn::Expr, ctx: Context) -> Res {
+    fn expr(&mut self, e: &Term, ctx: Context) -> Res {
         crate::guard::recurse(|| self.expr_here(e, ctx))
     }
 
-    fn expr_here(&mut self, e: &syn::Expr, ctx: Context) -> Res {
-        use syn::Expr as E;
-        match e {
-            E::Lit(l) => match &l.lit {
-                syn::Lit::Float(f) => {
-                    let v = f.base10_parse::<f64>().map_err(|err| {
-                        self.errors.push(err);
-                    })?;
-                    if !v.is_finite() {
-                        return self.fail(
-                            f.span(),
-                            "this number is too large for an `f64` (it would be infinite)",
-                        );
-                    }
-                    Ok(Value::Scalar(self.g.constant(v)))
-                }
-                syn::Lit::Int(i) => Ok(Value::Scalar(self.g.constant(
-                    i.base10_parse::<f64>().map_err(|err| {
-                        self.errors.push(err);
-                    })?,
-                ))),
-                _ => self.fail(l.span(), "expected a number"),
-            },
-            E::Paren(p) => self.expr(&p.expr, ctx),
-            E::Group(p) => self.expr(&p.expr, ctx),
-            E::Path(p) => self.path(p, ctx),
-            E::Unary(u) => match u.op {
-                syn::UnOp::Neg(_) => {
-                    let v = self.expr(&u.expr, ctx)?;
-                    Ok(self.map(v, |g, x| g.neg(x)))
-                }
-                _ => self.fail(u.span(), "only unary `-` is supported"),
-            },
-            E::Binary(b) => {
-                let l = self.expr(&b.left, ctx)?;
-                let r = self.expr(&b.right, ctx)?;
-                let v = self.binary(b, l, r)?;
-                self.finite_constant(b, v)
+    fn expr_here(&mut self, e: &Term, ctx: Context) -> Res {
+        match &e.kind {
+            Kind::Number(v) => Ok(Value::Scalar(self.g.constant(*v))),
+            Kind::Constant(v, _) => Ok(Value::Scalar(self.g.constant(*v))),
+            Kind::Wrap(inner) => self.expr(inner, ctx),
+            Kind::Name(id) => self.path(id, ctx),
+            Kind::Neg(inner) => {
+                let v = self.expr(inner, ctx)?;
+                Ok(self.map(v, |g, x| g.neg(x)))
             }
-            E::Array(a) => {
+            Kind::Binary(op, l, r) => {
+                let l = self.expr(l, ctx)?;
+                let r = self.expr(r, ctx)?;
+                let v = self.binary(e, *op, l, r)?;
+                self.finite_constant(e, v)
+            }
+            Kind::Array(elems) => {
                 let mut items = Vec::new();
                 let mut rows = Vec::new();
-                for el in &a.elems {
+                for el in elems {
                     match self.expr(el, ctx)? {
                         Value::Scalar(s) => items.push(s),
                         Value::Vector(v) if v.len() == 3 => rows.push(v),
@@ -310,87 +287,21 @@ impl Lowerer<'_> {
                         [rows[2][0], rows[2][1], rows[2][2]],
                     ])),
                     _ => self.fail(
-                        a.span(),
+                        e.span(),
                         "expected `[x, y]`, `[x, y, z]` or a 3x3 matrix `[[..], [..], [..]]`",
                     ),
                 }
             }
-            E::Index(i) => {
-                let v = self.expr(&i.expr, ctx)?;
-                let k = match &*i.index {
-                    E::Lit(syn::ExprLit {
-                        lit: syn::Lit::Int(k),
-                        ..
-                    }) => k.base10_parse::<usize>().map_err(|_| ())?,
-                    other => return self.fail(other.span(), "index with a constant integer"),
-                };
-                match v {
-                    Value::Vector(v) if k < v.len() => Ok(Value::Scalar(v[k])),
-                    _ => self.fail(i.span(), "index out of range, or not a vector"),
-                }
-            }
-            E::Call(c) => {
-                let E::Path(p) = &*c.func else {
-                    return self.fail(c.func.span(), "expected a function name");
-                };
-                let Some(name) = p.path.get_ident() else {
-                    return self.fail(p.span(), "expected a function name");
-                };
-                let args: Vec<&syn::Expr> = c.args.iter().collect();
-                self.call(name, &args, ctx, c.span())
-            }
-            E::MethodCall(m) => {
-                let mut args: Vec<&syn::Expr> = vec![&m.receiver];
-                args.extend(m.args.iter());
-                self.call(&m.method, &args, ctx, m.span())
-            }
-            E::Cast(c) => self.expr(&c.expr, ctx),
-            other => self.fail(
-                other.span(),
-                "unsupported expression: use numbers, names, `+ - * /`, calls, `[..]`",
-            ),
+            Kind::Index(inner, k) => match self.expr(inner, ctx)? {
+                Value::Vector(v) if *k < v.len() => Ok(Value::Scalar(v[*k])),
+                _ => self.fail(e.span(), "index out of range, or not a vector"),
+            },
+            Kind::Call(name, args) => self.call(name, args, ctx, e.span()),
+            Kind::Invalid => Err(()),
         }
     }
 
-    fn path(&mut self, p: &syn::ExprPath, ctx: Context) -> Res {
-        let Some(id) = p.path.get_ident() else {
-            // `std::f64::consts::PI` and friends.
-            return match path_constant(&p.path) {
-                Some(v) => Ok(Value::Scalar(self.g.constant(v))),
-                None => {
-                    let last = p
-                        .path
-                        .segments
-                        .last()
-                        .map(|s| s.ident.to_string())
-                        .unwrap_or_default();
-                    let why = if [
-                        "NAN",
-                        "INFINITY",
-                        "NEG_INFINITY",
-                        "MAX",
-                        "MIN",
-                        "EPSILON",
-                        "MIN_POSITIVE",
-                    ]
-                    .contains(&last.as_str())
-                    {
-                        format!("`{last}` is not a value a model can mean: use a finite number")
-                    } else {
-                        format!(
-                            "expected a parameter, coordinate or constant name; the constants are `{}` (also as `std::f64::consts::..`)",
-                            CONSTANTS
-                                .iter()
-                                .map(|c| c.0)
-                                .collect::<Vec<_>>()
-                                .join("`, `")
-                        )
-                    };
-                    self.errors.over(p, why);
-                    Err(())
-                }
-            };
-        };
+    fn path(&mut self, id: &syn::Ident, ctx: Context) -> Res {
         let name = id.to_string();
         if name == "t" {
             let t = self.g.symbol("t");
@@ -437,7 +348,7 @@ impl Lowerer<'_> {
 
     /// A constant that folded to NaN or infinity (`0.0 / 0.0`, `1.0 / (2.0 - 2.0)`) is a
     /// mistake: refused here rather than emitted into the code.
-    fn finite_constant(&mut self, e: &syn::ExprBinary, v: Value) -> Res {
+    fn finite_constant(&mut self, e: &Term, v: Value) -> Res {
         let bad = match &v {
             Value::Scalar(s) => self.g.as_const(*s).filter(|x| !x.is_finite()),
             _ => None,
@@ -462,36 +373,31 @@ impl Lowerer<'_> {
         }
     }
 
-    fn binary(&mut self, b: &syn::ExprBinary, l: Value, r: Value) -> Res {
-        use syn::BinOp as B;
+    fn binary(&mut self, b: &Term, op: Op, l: Value, r: Value) -> Res {
+        use Op as B;
         let g = &mut *self.g;
-        match (b.op, l, r) {
-            (B::Add(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.add(x, y))),
-            (B::Sub(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.sub(x, y))),
-            (B::Mul(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.mul(x, y))),
-            (B::Div(_), Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.div(x, y))),
-            (B::Add(_), Value::Vector(x), Value::Vector(y)) if x.len() == y.len() => Ok(
+        match (op, l, r) {
+            (B::Add, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.add(x, y))),
+            (B::Sub, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.sub(x, y))),
+            (B::Mul, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.mul(x, y))),
+            (B::Div, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(g.div(x, y))),
+            (B::Add, Value::Vector(x), Value::Vector(y)) if x.len() == y.len() => Ok(
                 Value::Vector(x.iter().zip(&y).map(|(a, b)| g.add(*a, *b)).collect()),
             ),
-            (B::Sub(_), Value::Vector(x), Value::Vector(y)) if x.len() == y.len() => Ok(
+            (B::Sub, Value::Vector(x), Value::Vector(y)) if x.len() == y.len() => Ok(
                 Value::Vector(x.iter().zip(&y).map(|(a, b)| g.sub(*a, *b)).collect()),
             ),
-            (B::Mul(_), Value::Scalar(s), Value::Vector(v))
-            | (B::Mul(_), Value::Vector(v), Value::Scalar(s)) => {
+            (B::Mul, Value::Scalar(s), Value::Vector(v))
+            | (B::Mul, Value::Vector(v), Value::Scalar(s)) => {
                 Ok(Value::Vector(v.iter().map(|x| g.mul(s, *x)).collect()))
             }
-            (B::Div(_), Value::Vector(v), Value::Scalar(s)) => {
+            (B::Div, Value::Vector(v), Value::Scalar(s)) => {
                 Ok(Value::Vector(v.iter().map(|x| g.div(*x, s)).collect()))
             }
-            (B::Mul(_), Value::Matrix(a), Value::Matrix(c)) => Ok(Value::Matrix(matmul(g, &a, &c))),
-            (B::Mul(_), Value::Matrix(a), Value::Vector(v)) if v.len() == 3 => {
+            (B::Mul, Value::Matrix(a), Value::Matrix(c)) => Ok(Value::Matrix(matmul(g, &a, &c))),
+            (B::Mul, Value::Matrix(a), Value::Vector(v)) if v.len() == 3 => {
                 Ok(Value::Vector((0..3).map(|i| g.dot(&a[i], &v)).collect()))
             }
-            (B::BitXor(_), _, _) => self.fail(
-                b.op.span(),
-                "`^` is not a power in Rust: use `x.powi(2)` or `powf(x, y)`",
-            ),
-            (B::Eq(_), _, _) => self.fail(b.op.span(), "`==` belongs only in `constraint(...)`"),
             _ => self.fail(
                 b.span(),
                 "operands do not match (scalar, vector or matrix of the wrong size)",
@@ -499,25 +405,16 @@ impl Lowerer<'_> {
         }
     }
 
+    /// A call of a known function with the right arguments' count (checked by lowering):
+    /// whether it may stand in `ctx`, then its value.
     fn call(
         &mut self,
         name: &syn::Ident,
-        args: &[&syn::Expr],
+        args: &[Term],
         ctx: Context,
         span: proc_macro2::Span,
     ) -> Res {
         let fname = name.to_string();
-        let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == fname) else {
-            return self.fail(name.span(), format!("unknown function `{fname}`"));
-        };
-        let arity_ok =
-            args.len() == arity || (BODY_QUERIES.contains(&fname.as_str()) && args.len() == 2);
-        if !arity_ok {
-            return self.fail(
-                span,
-                format!("`{fname}` takes {arity} argument(s), found {}", args.len()),
-            );
-        }
         if !query_allowed(&fname, ctx) {
             return self.fail(
                 name.span(),
@@ -541,7 +438,7 @@ impl Lowerer<'_> {
                     "`der(..)` is not allowed in kinematics or constants",
                 );
             }
-            let v = self.expr(args[0], ctx)?;
+            let v = self.expr(&args[0], ctx)?;
             let Some(model) = self.model.as_deref_mut() else {
                 return self.fail(name.span(), "`der(..)` is not available here");
             };
@@ -561,26 +458,21 @@ impl Lowerer<'_> {
     }
 
     /// `position(b)`, `velocity(b, [..])`, ..: answered by the model.
-    fn body_query(&mut self, name: &syn::Ident, args: &[&syn::Expr], ctx: Context) -> Res {
+    fn body_query(&mut self, name: &syn::Ident, args: &[Term], ctx: Context) -> Res {
         let fname = name.to_string();
-        let body = match args[0] {
-            syn::Expr::Path(p) => match p
-                .path
-                .get_ident()
-                .and_then(|i| self.names.get(&i.to_string()))
-            {
-                Some(Binding::Body(b)) => *b,
-                _ => {
-                    return self.fail(
-                        args[0].span(),
-                        format!(
-                            "`{fname}` takes a body name; `{}` is not a body",
-                            quote::ToTokens::to_token_stream(args[0])
-                        ),
-                    );
-                }
-            },
-            other => return self.fail(other.span(), format!("`{fname}` takes a body name")),
+        let body = match &args[0].kind {
+            Kind::Name(id) if let Some(Binding::Body(b)) = self.names.get(&id.to_string()) => *b,
+            Kind::Name(_) | Kind::Constant(..) => {
+                let text = match &args[0].kind {
+                    Kind::Constant(_, text) => text.clone(),
+                    Kind::Name(id) => id.to_string(),
+                    _ => unreachable!("matched above"),
+                };
+                let msg = format!("`{fname}` takes a body name; `{text}` is not a body");
+                return self.fail(args[0].span(), msg);
+            }
+            Kind::Invalid => return Err(()),
+            _ => return self.fail(args[0].span(), format!("`{fname}` takes a body name")),
         };
         let offset = match args.get(1) {
             Some(e) => match self.expr(e, ctx)? {
@@ -599,22 +491,15 @@ impl Lowerer<'_> {
     }
 
     /// `reaction(u)`: the reaction along a relaxed or driven coordinate.
-    fn reaction(&mut self, name: &syn::Ident, args: &[&syn::Expr]) -> Res {
-        let coord = match args[0] {
-            syn::Expr::Path(p) => match p
-                .path
-                .get_ident()
-                .and_then(|i| self.names.get(&i.to_string()))
-            {
-                Some(Binding::Coord(c)) => *c,
-                _ => {
-                    return self.fail(
-                        args[0].span(),
-                        "`reaction` takes a relaxed or driven coordinate",
-                    );
-                }
-            },
-            other => return self.fail(other.span(), "`reaction` takes a coordinate name"),
+    fn reaction(&mut self, name: &syn::Ident, args: &[Term]) -> Res {
+        let coord = match &args[0].kind {
+            Kind::Name(id) if let Some(Binding::Coord(c)) = self.names.get(&id.to_string()) => *c,
+            Kind::Name(_) | Kind::Constant(..) => {
+                let msg = "`reaction` takes a relaxed or driven coordinate";
+                return self.fail(args[0].span(), msg);
+            }
+            Kind::Invalid => return Err(()),
+            _ => return self.fail(args[0].span(), "`reaction` takes a coordinate name"),
         };
         let Some(model) = self.model.as_deref_mut() else {
             return self.fail(name.span(), "`reaction` is not available here");
@@ -632,7 +517,7 @@ impl Lowerer<'_> {
     fn function(
         &mut self,
         fname: &str,
-        args: &[&syn::Expr],
+        args: &[Term],
         vals: &[Value],
         span: proc_macro2::Span,
     ) -> Res {

@@ -31,7 +31,8 @@ mod trees;
 
 use crate::closure;
 use crate::lower::Binding;
-use crate::parse::{self, Mechanism};
+use crate::lowered::{Lowered, Term};
+use crate::parse::{self, Errors};
 use crate::sym::{Expr, Graph, Sym};
 use crate::tree;
 use kinematics::Kinematics;
@@ -208,13 +209,21 @@ enum InertialForm {
     Lagrange,
 }
 
-pub fn derive(ast: &Mechanism) -> syn::Result<Equations> {
-    derive_with(ast, InertialForm::Shorter)
+/// The lowered model the mechanics reads: the parsed structure with every expression a
+/// `syn`-free [`Term`].
+pub(crate) type Ast = parse::Mechanism<Term>;
+
+/// The equations of `lowered`; `errors`: those of its lowering, reported with the
+/// mechanics' own.
+pub fn derive(lowered: Lowered, errors: Errors) -> syn::Result<Equations> {
+    derive_with(lowered, errors, InertialForm::Shorter)
 }
 
-fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
+fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Result<Equations> {
+    let Lowered { ast, shapes } = lowered;
+    let ast = &ast;
     // Names and kinematics in full coordinates; what follows needs them complete.
-    let mut scope = Scope::new(ast);
+    let mut scope = Scope::new(ast, errors);
     scope.parameters(ast);
     let coords = scope.coordinates(ast);
     scope.points(ast);
@@ -270,7 +279,7 @@ fn derive_with(ast: &Mechanism, form: InertialForm) -> syn::Result<Equations> {
     let mut answers = kin.kin(scope.t, scope.dim, &mut reactions);
     let (mut outputs, mut events) = outputs::lower(ast, &mut scope, &mut answers);
     let dims = scope.dim.len();
-    let mut geometry = crate::geometry::lower(crate::geometry::shapes(ast), |e| {
+    let mut geometry = crate::geometry::lower(shapes, |e| {
         let context = crate::lower::Context::Output;
         scope.lowerer(Some(&mut answers)).vector(e, context, dims)
     });
@@ -421,8 +430,14 @@ mod tests {
     /// the same equations, so they must agree to rounding.
     fn forms_agree(input: syn::DeriveInput) {
         let ast = parse::Mechanism::from_syn(&input).expect("parses");
-        let kane = derive_with(&ast, InertialForm::Kane).expect("derives");
-        let lagrange = derive_with(&ast, InertialForm::Lagrange).expect("derives");
+        let lowered = |ast| {
+            let mut errors = Errors::default();
+            (crate::lowered::lower(ast, &mut errors), errors)
+        };
+        let (l, e) = lowered(&ast);
+        let kane = derive_with(l, e, InertialForm::Kane).expect("derives");
+        let (l, e) = lowered(&ast);
+        let lagrange = derive_with(l, e, InertialForm::Lagrange).expect("derives");
         assert_eq!(kane.forces.len(), lagrange.forces.len());
         for (&k, &l) in kane.forces.iter().zip(&lagrange.forces) {
             let fk = kane.g.eval(k, &|s| value_of(&kane.g, s));

@@ -27,9 +27,9 @@ impl Dim {
     }
 }
 
-pub struct Param {
+pub struct Param<E = Expr> {
     pub name: Ident,
-    pub default: Option<Expr>,
+    pub default: Option<E>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -39,64 +39,64 @@ pub enum BodyKind {
     Rigid3,
 }
 
-pub struct Body {
+pub struct Body<E = Expr> {
     pub name: Ident,
     pub kind: BodyKind,
-    pub mass: Option<Expr>,
-    pub inertia: Option<Expr>,
-    pub at: Option<Expr>,
+    pub mass: Option<E>,
+    pub inertia: Option<E>,
+    pub at: Option<E>,
     /// Planar rigid body: its angle. Spatial: its rotation (world from body).
-    pub orientation: Option<Expr>,
+    pub orientation: Option<E>,
 }
 
 /// A named point: fixed (`at` holds constants) or moving (an expression of the coordinates).
-pub struct Point {
+pub struct Point<E = Expr> {
     pub name: Ident,
-    pub at: Expr,
+    pub at: E,
     /// `on = body`: `at` is in that body's frame, from its origin (a body-fixed point).
     pub on: Option<Ident>,
 }
 
 /// Two ends of a spring or a damper: a point name, a body name (its mass centre), or a position.
-pub enum End {
+pub enum End<E = Expr> {
     Named(Ident),
-    At(Expr),
+    At(E),
 }
 
-pub struct Spring {
+pub struct Spring<E = Expr> {
     pub name: Ident,
-    pub from: End,
-    pub to: End,
-    pub k: Expr,
-    pub length: Option<Expr>,
+    pub from: End<E>,
+    pub to: End<E>,
+    pub k: E,
+    pub length: Option<E>,
 }
 
-pub struct Damper {
+pub struct Damper<E = Expr> {
     pub name: Ident,
-    pub from: End,
-    pub to: End,
-    pub c: Expr,
+    pub from: End<E>,
+    pub to: End<E>,
+    pub c: E,
 }
 
 /// A force applied at a point, or a torque on a body, or a generalised force on a coordinate.
-pub enum Load {
-    Force { at: Expr, value: Expr },
-    Torque { body: Ident, value: Expr },
-    Generalized { coord: Ident, value: Expr },
+pub enum Load<E = Expr> {
+    Force { at: E, value: E },
+    Torque { body: Ident, value: E },
+    Generalized { coord: Ident, value: E },
 }
 
-pub struct Friction {
+pub struct Friction<E = Expr> {
     pub along: Ident,
-    pub mu: Expr,
+    pub mu: E,
     /// Static coefficient for the stick test (default: `mu`).
-    pub mu_static: Option<Expr>,
-    pub normal: Expr,
+    pub mu_static: Option<E>,
+    pub normal: E,
     pub span: Span,
 }
 
-pub struct Named {
+pub struct Named<E = Expr> {
     pub name: Ident,
-    pub expr: Expr,
+    pub expr: E,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -106,33 +106,33 @@ pub enum Direction {
     Either,
 }
 
-pub struct Event {
+pub struct Event<E = Expr> {
     pub name: Ident,
-    pub expr: Expr,
+    pub expr: E,
     pub direction: Direction,
     pub terminal: bool,
 }
 
 /// An initial value: `theta = 0.5` (position) or `der(theta) = 1.0` (velocity).
-pub struct Init {
+pub struct Init<E = Expr> {
     pub coord: Ident,
     pub velocity: bool,
-    pub value: Expr,
+    pub value: E,
 }
 
-pub struct Constraint {
+pub struct Constraint<E = Expr> {
     pub tokens: proc_macro2::TokenStream,
-    pub lhs: Expr,
-    pub rhs: Expr,
+    pub lhs: E,
+    pub rhs: E,
 }
 
 /// What moves a tree body relative to its parent; each joint brings its own coordinates.
-pub enum Joint {
+pub enum Joint<E = Expr> {
     /// Rotation about the joint origin by `coord`: planar (`axis: None`, the body's angle is
     /// the parent's plus `coord`), or spatial about the parent's `x`, `y` or `z` axis.
     Revolute { coord: Ident, axis: Option<Ident> },
     /// Translation along `axis` (in the parent's frame) by `coord`.
-    Prismatic { coord: Ident, axis: Expr },
+    Prismatic { coord: Ident, axis: E },
     /// Spatial: `rot_x(a) rot_y(b)` (a Cardan joint, crossed axes `x` then `y`).
     Universal(Ident, Ident),
     /// Spatial: `rot_z(a) rot_y(b) rot_x(c)` (yaw, pitch, roll; singular at `b = ±π/2`).
@@ -141,7 +141,7 @@ pub enum Joint {
     Fixed,
 }
 
-impl Joint {
+impl<E> Joint<E> {
     /// The joint's coordinates, in order.
     pub fn coords(&self) -> Vec<&Ident> {
         match self {
@@ -156,39 +156,39 @@ impl Joint {
 /// A body of the joint tree: its frame is its parent's frame moved by its joint. `at` (the
 /// joint origin, in the parent's frame), `angle` (a fixed offset, planar) and `com` (the mass
 /// centre, in the body's frame) default to zero.
-pub struct TreeBody {
+pub struct TreeBody<E = Expr> {
     pub name: Ident,
     /// `None`: the ground.
     pub parent: Option<Ident>,
-    pub joint: Joint,
+    pub joint: Joint<E>,
     pub joint_span: Span,
-    pub at: Option<Expr>,
-    pub angle: Option<Expr>,
-    pub com: Option<Expr>,
+    pub at: Option<E>,
+    pub angle: Option<E>,
+    pub com: Option<E>,
     /// Relaxed coordinates `name_rx`, `name_ry` (and `name_rz` in space) that free the joint
     /// origin along the ground's axes, so that `reaction(name_rx)`, ... are the joint's force
     /// on the body.
     pub reaction: Option<Vec<Ident>>,
-    pub mass: Option<Expr>,
-    pub inertia: Option<Expr>,
+    pub mass: Option<E>,
+    pub inertia: Option<E>,
 }
 
 /// A joint that closes a loop of the tree: point `at_a` of body `a` (its frame) stays on
 /// point `at_b` of body `b` (`None`: the ground), or on its line along `axis_b` (prismatic).
 /// Planar: a revolute joint, two equations. Spatial: `joint` picks the kind (close.rs).
-pub struct Closure {
+pub struct Closure<E = Expr> {
     pub a: Option<Ident>,
-    pub at_a: Option<Expr>,
+    pub at_a: Option<E>,
     pub b: Option<Ident>,
-    pub at_b: Option<Expr>,
+    pub at_b: Option<E>,
     /// `joint = ..` and its span (`None`: spherical in space, revolute in a plane).
     pub joint: Option<(CloseJoint, Span)>,
     /// Body-fixed directions, each in its body's frame: the joint axis and, for a prismatic
     /// joint, a direction normal to it.
-    pub axis_a: Option<Expr>,
-    pub axis_b: Option<Expr>,
-    pub normal_a: Option<Expr>,
-    pub normal_b: Option<Expr>,
+    pub axis_a: Option<E>,
+    pub axis_b: Option<E>,
+    pub normal_a: Option<E>,
+    pub normal_b: Option<E>,
     pub tokens: proc_macro2::TokenStream,
 }
 
@@ -223,30 +223,30 @@ pub enum LoopForm {
     Minimal,
 }
 
-pub struct Mechanism {
+pub struct Mechanism<E = Expr> {
     pub ident: Ident,
-    pub params: Vec<Param>,
+    pub params: Vec<Param<E>>,
     pub dim: Dim,
     pub dim_span: Span,
-    pub gravity: Option<Expr>,
+    pub gravity: Option<E>,
     pub coords: Vec<Ident>,
-    pub drives: Vec<Named>,
+    pub drives: Vec<Named<E>>,
     pub relaxed: Vec<Ident>,
-    pub constraints: Vec<Constraint>,
-    pub bodies: Vec<Body>,
-    pub tree: Vec<TreeBody>,
-    pub closures: Vec<Closure>,
-    pub points: Vec<Point>,
-    pub springs: Vec<Spring>,
-    pub dampers: Vec<Damper>,
-    pub loads: Vec<Load>,
-    pub potentials: Vec<Expr>,
-    pub frictions: Vec<Friction>,
-    pub outputs: Vec<Named>,
+    pub constraints: Vec<Constraint<E>>,
+    pub bodies: Vec<Body<E>>,
+    pub tree: Vec<TreeBody<E>>,
+    pub closures: Vec<Closure<E>>,
+    pub points: Vec<Point<E>>,
+    pub springs: Vec<Spring<E>>,
+    pub dampers: Vec<Damper<E>>,
+    pub loads: Vec<Load<E>>,
+    pub potentials: Vec<E>,
+    pub frictions: Vec<Friction<E>>,
+    pub outputs: Vec<Named<E>>,
     /// Parameters that are inputs (`#[input(u, ..)]`, see linear.rs).
     pub inputs: Vec<Ident>,
-    pub events: Vec<Event>,
-    pub inits: Vec<Init>,
+    pub events: Vec<Event<E>>,
+    pub inits: Vec<Init<E>>,
     /// Generate exact Jacobians `d qdd / dq`, `d qdd / dqd` for implicit methods.
     pub jacobian: bool,
     /// Generate `Drawable` (`#[mechanism(geometry)]`, see `geometry.rs`).

@@ -1,18 +1,19 @@
 //! Free-standing bodies (`particle`, `rigid`, `rigid3`): mass, inertia, position and
 //! orientation as the user wrote them, in full coordinates.
 
+use super::Ast;
+use crate::lowered::Term;
 use super::kinematics::BodyKin;
 use super::scope::Scope;
 use crate::lower::{Binding, Context, Lowerer, Value};
-use crate::parse::{self, BodyKind, Dim, Mechanism};
+use crate::parse::{self, BodyKind, Dim};
 use crate::sym::Expr;
 use std::collections::{HashMap, HashSet};
-use syn::spanned::Spanned;
 
 /// A body's inertia (planar: the scalar in `[0][0]`), planar angle and spatial rotation.
 type Rotational = (Option<[[Expr; 3]; 3]>, Option<Expr>, Option<[[Expr; 3]; 3]>);
 
-pub(super) fn free_bodies(ast: &Mechanism, scope: &mut Scope) -> Vec<BodyKin> {
+pub(super) fn free_bodies(ast: &Ast, scope: &mut Scope) -> Vec<BodyKin> {
     // Parameters' defaults by name, for checks at the default values.
     let param_names: HashSet<String> = ast.params.iter().map(|p| p.name.to_string()).collect();
     let defaults: HashMap<String, f64> = ast
@@ -21,7 +22,7 @@ pub(super) fn free_bodies(ast: &Mechanism, scope: &mut Scope) -> Vec<BodyKin> {
         .filter_map(|p| {
             Some((
                 p.name.to_string(),
-                crate::check::fold(p.default.as_ref()?, &HashMap::new())?,
+                p.default.as_ref()?.fold(&HashMap::new())?,
             ))
         })
         .collect();
@@ -68,7 +69,7 @@ pub(super) fn free_bodies(ast: &Mechanism, scope: &mut Scope) -> Vec<BodyKin> {
     bodies
 }
 
-fn planar_rigid(lw: &mut Lowerer<'_>, b: &parse::Body, dim: Dim) -> Rotational {
+fn planar_rigid(lw: &mut Lowerer<'_>, b: &parse::Body<Term>, dim: Dim) -> Rotational {
     let (mut inertia, mut angle) = (None, None);
     if dim == Dim::Spatial {
         lw.errors.at(
@@ -107,7 +108,7 @@ fn planar_rigid(lw: &mut Lowerer<'_>, b: &parse::Body, dim: Dim) -> Rotational {
 
 fn spatial_rigid(
     lw: &mut Lowerer<'_>,
-    b: &parse::Body,
+    b: &parse::Body<Term>,
     defaults: &HashMap<String, f64>,
     param_names: &HashSet<String>,
 ) -> Rotational {

@@ -1,10 +1,11 @@
 //! What the equations must satisfy before code is generated: parameter checks for run
 //! time, no non-finite constant, and the default configuration on the constraints.
 
+use super::Ast;
 use super::kinematics::BodyKin;
 use super::{Equations, Names, ParamCheck, Role};
 use crate::lower::{Binding, Context, Lowerer};
-use crate::parse::{Errors, Mechanism};
+use crate::parse::{Errors};
 use crate::sym::{Expr, Sym};
 use std::collections::HashMap;
 use syn::Ident;
@@ -59,7 +60,7 @@ pub(super) fn body_checks(names: &Names, bodies: &[BodyKin]) -> Vec<ParamCheck> 
 /// When every parameter has a default and the initial positions are given, the default
 /// configuration must satisfy the constraints: checked here, at compile time.
 pub(super) fn check_default_configuration(
-    ast: &Mechanism,
+    ast: &Ast,
     eqs: &mut Equations,
     spans: &[&proc_macro2::TokenStream],
     errors: &mut Errors,
@@ -129,7 +130,7 @@ fn g_is_time(roles: &HashMap<Sym, Role>, s: Sym) -> bool {
 
 /// Folding constants can produce inf or NaN (`1.0 / 0.0`, `ln(-1.0)`, a derivative of
 /// `sqrt` at a point where its argument vanishes): refused at compile time, not at run time.
-pub(super) fn non_finite(ast: &Mechanism, eqs: &Equations, errors: &mut Errors) {
+pub(super) fn non_finite(ast: &Ast, eqs: &Equations, errors: &mut Errors) {
     let mut roots: Vec<Expr> = eqs
         .mass
         .iter()

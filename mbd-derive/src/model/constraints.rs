@@ -2,13 +2,15 @@
 //! (`gather`), then, reduced, their Jacobians and `gamma` in the free coordinates
 //! (`in_free_coordinates`) and what makes a set of them unusable (`check`).
 
+use super::Ast;
+use crate::lowered::Term;
 use super::kinematics::{Frame, Kinematics};
 use super::scope::Scope;
 use super::{Coord, Role};
 use crate::close;
 use crate::closure;
 use crate::lower::{Context, Lowerer};
-use crate::parse::{Dim, Mechanism};
+use crate::parse::{Dim};
 use crate::sym::{Expr, Sym};
 use crate::tree;
 use proc_macro2::TokenStream;
@@ -30,7 +32,7 @@ pub(super) struct InFree {
 
 /// `#[constraint(..)]`s, then the equations of each closing joint (close.rs).
 pub(super) fn gather<'a>(
-    ast: &'a Mechanism,
+    ast: &'a Ast,
     scope: &mut Scope,
     kin: &Kinematics,
 ) -> Constraints<'a> {
@@ -91,7 +93,7 @@ fn closure_point(
     scope: &mut Scope,
     kin: &Kinematics,
     body: &Option<Ident>,
-    at: &Option<syn::Expr>,
+    at: &Option<Term>,
 ) -> Option<close::Side> {
     let dim = scope.dim;
     let local = match at {

@@ -2,17 +2,17 @@
 //! `friction` lowered to a coefficient pair and a normal force along a free coordinate, then
 //! Coulomb's sliding force `-mu |N| sign(qd_s)` added to the reduced forces.
 
+use super::Ast;
 use super::checks::check;
 use super::kinematics::Kin;
 use super::outputs::Finisher;
 use super::scope::Scope;
 use super::{Coord, FrictionEq, ParamCheck, Role};
 use crate::lower::Context;
-use crate::parse::Mechanism;
 use crate::sym::{Expr, Func};
 
 pub(super) fn lower(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     kin: &mut Kin<'_>,
     (coords, free_idx): (&[Coord], &[usize]),

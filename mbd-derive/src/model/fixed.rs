@@ -4,14 +4,14 @@
 //! on the body, not through the chain of rotations. Declared once the kinematics are
 //! complete, as ordinary named points.
 
+use super::Ast;
 use super::kinematics::Kinematics;
 use super::scope::Scope;
 use crate::lower::{Binding, Context, Model};
-use crate::parse::Mechanism;
 use crate::sym::Expr;
 
 /// Declare every `#[point(.., on = body, ..)]` at its place in ground coordinates.
-pub(super) fn declare(ast: &Mechanism, scope: &mut Scope, kinematics: &Kinematics) {
+pub(super) fn declare(ast: &Ast, scope: &mut Scope, kinematics: &Kinematics) {
     let len = scope.dim.len();
     for p in &ast.points {
         let Some(on) = &p.on else { continue };

@@ -3,12 +3,13 @@
 //! projections, with Lagrange's form of the same forces taken where it is shorter; and a
 //! tree's accelerations by the articulated-body recursion (tree.rs, spatial.rs).
 
+use super::Ast;
 use super::kinematics::{BodyKin, Kin, Kinematics, drop_qdd};
 use super::loads::Forces;
 use super::scope::Scope;
 use super::{Coord, CoordKind, InertialForm, LAGRANGE_MAX_COORDINATES, RECURSIVE_FROM_BODIES};
 use crate::lower;
-use crate::parse::{self, Dim, Mechanism};
+use crate::parse::{self, Dim};
 use crate::sym::{Expr, Graph, Sym, schedule};
 use crate::{spatial, tree};
 
@@ -37,7 +38,7 @@ pub(super) struct Closed {
 }
 
 pub(super) fn inertial(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     kinematics: &mut Kinematics,
     forces: &Forces,
@@ -112,7 +113,7 @@ pub(super) fn inertial(
 
 /// Whether the articulated-body recursion evaluates the accelerations: for a pure joint
 /// tree when it pays or is asked for (asked for elsewhere: a spanned error).
-fn evaluation(ast: &Mechanism, scope: &mut Scope, kin: &Kinematics, closed: Closed) -> bool {
+fn evaluation(ast: &Ast, scope: &mut Scope, kin: &Kinematics, closed: Closed) -> bool {
     let (nodes, steps) = (&kin.planar.nodes, &kin.spatial.steps);
     let tree = !(nodes.is_empty() && steps.is_empty());
     let eligible = tree

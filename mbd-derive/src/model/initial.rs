@@ -1,14 +1,14 @@
 //! Initial positions and velocities of the free coordinates (parameters allowed); a
 //! dependent coordinate's follow from the closure.
 
+use super::Ast;
 use super::scope::Scope;
 use super::{Coord, CoordKind};
 use crate::lower::Context;
-use crate::parse::Mechanism;
 use crate::sym::Expr;
 
 pub(super) fn initial_conditions(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     coords: &[Coord],
     free_idx: &[usize],

@@ -3,12 +3,14 @@
 //! last (its potential enters only the energy). `lower` meets the user's expressions once;
 //! `generalized` works on what it returns, without `syn`.
 
+use super::Ast;
 use super::ParamCheck;
 use super::checks::check;
 use super::kinematics::{Kin, Kinematics};
 use super::scope::Scope;
 use crate::lower::{Binding, Context, Value};
-use crate::parse::{End, Load, Mechanism};
+use crate::lowered::Term;
+use crate::parse::{End, Load};
 use crate::sym::{Expr, Func, Graph, Sym};
 
 /// The loads of a model, lowered.
@@ -87,7 +89,7 @@ impl Axes {
 /// Gravity, springs, potentials, dampers and loads, with spanned errors for what has no
 /// meaning (unknown names, a torque on a particle).
 pub(super) fn lower(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     kinematics: &Kinematics,
     reactions: &mut Vec<(usize, Expr)>,
@@ -151,7 +153,7 @@ pub(super) fn lower(
 }
 
 /// A spring's or damper's end: a named point or body, or a position.
-fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End) -> Option<Vec<Expr>> {
+fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End<Term>) -> Option<Vec<Expr>> {
     match end {
         End::Named(id) => match scope.names.get(&id.to_string()) {
             Some(Binding::Value(Value::Vector(v))) => Some(v.clone()),
@@ -175,7 +177,7 @@ fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End) -> Option
 }
 
 /// A force at a point, a torque on a body, or a generalised force along a coordinate.
-fn lower_load(load: &Load, scope: &mut Scope, kin: &mut Kin<'_>) -> Option<Applied> {
+fn lower_load(load: &Load<Term>, scope: &mut Scope, kin: &mut Kin<'_>) -> Option<Applied> {
     let len = scope.dim.len();
     match load {
         Load::Force { at, value } => {

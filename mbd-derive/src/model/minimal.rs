@@ -4,13 +4,14 @@
 //! are dropped, and the equations are projected on the independent coordinates before the
 //! closed form replaces it.
 
+use super::Ast;
 use super::constraints::Constraints;
 use super::kinematics::{Kin, Kinematics};
 use super::scope::Scope;
 use super::{Coord, CoordKind, Names, Role};
 use crate::closure;
 use crate::lower::{Context, Lowerer};
-use crate::parse::{self, Errors, Mechanism};
+use crate::parse::{self, Errors};
 use crate::sym::{Expr, Graph, Sym};
 use crate::velocity;
 use std::collections::HashMap;
@@ -20,7 +21,7 @@ use syn::Ident;
 /// (asked for, friction whose normal force may need the multipliers, no independent
 /// coordinate left, or no closed form).
 pub(super) fn minimal_coordinates(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     kin: &mut Kinematics,
     loops: &mut Constraints<'_>,
@@ -175,7 +176,7 @@ fn renumber(g: &Graph, roles: &mut HashMap<Sym, Role>, coords: &[Coord]) {
 /// those defaults) and driven coordinates at `t = 0`; a parameter without a default leaves
 /// only the constant `init` positions.
 fn default_values(
-    ast: &Mechanism,
+    ast: &Ast,
     g: &mut Graph,
     coords: &[Coord],
     names: &Names,
@@ -239,7 +240,7 @@ fn check_closure_defaults(
     g: &Graph,
     loops: &Constraints<'_>,
     env: &HashMap<Sym, f64>,
-    ast: &Mechanism,
+    ast: &Ast,
     errors: &mut Errors,
 ) {
     let positioned = |c: &Ident| ast.inits.iter().any(|i| !i.velocity && i.coord == *c);

@@ -1,18 +1,17 @@
 //! Outputs and events: lowered with body queries answered in full coordinates, then
 //! reduced, with the reactions they ask for, `r_u = (M zdd - f + Phi_z^T lambda)_u`, put in.
 
+use super::Ast;
 use super::kinematics::Kin;
 use super::scope::Scope;
 use super::{Coord, CoordKind, EventEq, OutputEq};
 use crate::lower::{Context, Value};
-use crate::parse::Mechanism;
 use crate::sym::{Expr, Graph, Sym};
 use std::collections::{HashMap, HashSet};
-use syn::spanned::Spanned;
 
 /// Outputs and events in full coordinates, with reaction placeholders.
 pub(super) fn lower(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     kin: &mut Kin<'_>,
 ) -> (Vec<OutputEq>, Vec<EventEq>) {

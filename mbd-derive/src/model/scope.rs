@@ -2,9 +2,10 @@
 //! points, as symbols of one graph with their roles. `Scope` is the state every later phase
 //! shares: the graph, the roles, the names and the errors collected so far.
 
+use super::Ast;
 use super::{Coord, CoordKind, Names, Role};
 use crate::lower::{self, Binding, Context, Lowerer, Value};
-use crate::parse::{Dim, Errors, Mechanism};
+use crate::parse::{Dim, Errors};
 use crate::sym::{Expr, Graph, Sym};
 use std::collections::HashMap;
 use syn::Ident;
@@ -20,8 +21,7 @@ pub(super) struct Scope {
 }
 
 impl Scope {
-    pub fn new(ast: &Mechanism) -> Scope {
-        let errors = Errors::default();
+    pub fn new(ast: &Ast, errors: Errors) -> Scope {
         let mut g = Graph::new();
         let t = g.symbol("t");
         let mut scope = Scope {
@@ -70,7 +70,7 @@ impl Scope {
     }
 
     /// A symbol per parameter; a default must fold to a number.
-    pub fn parameters(&mut self, ast: &Mechanism) {
+    pub fn parameters(&mut self, ast: &Ast) {
         for p in &ast.params {
             let s = self.g.symbol(&p.name.to_string());
             self.role(s, Role::Param(p.name.clone()));
@@ -101,7 +101,7 @@ impl Scope {
     }
 
     /// The full coordinates `z = (free, driven, relaxed)`; a driven one with its law.
-    pub fn coordinates(&mut self, ast: &Mechanism) -> Vec<Coord> {
+    pub fn coordinates(&mut self, ast: &Ast) -> Vec<Coord> {
         let mut coords: Vec<Coord> = Vec::new();
         for (i, id) in ast.coords.iter().enumerate() {
             if ast.drives.iter().any(|d| d.name == *id) {
@@ -143,7 +143,7 @@ impl Scope {
     }
 
     /// Points, in order: a point may use the points before it.
-    pub fn points(&mut self, ast: &Mechanism) {
+    pub fn points(&mut self, ast: &Ast) {
         let len = self.dim.len();
         for p in ast.points.iter().filter(|p| p.on.is_none()) {
             let v = self.lowerer(None).vector(&p.at, Context::Kinematics, len);
@@ -154,7 +154,7 @@ impl Scope {
     }
 
     /// Springs and dampers are named too; their names must not clash with anything else.
-    pub fn element_names(&mut self, ast: &Mechanism) {
+    pub fn element_names(&mut self, ast: &Ast) {
         let mut element_names = std::collections::HashSet::new();
         for id in ast
             .springs

@@ -2,11 +2,13 @@
 //! Planar trees become `tree::Node`s, spatial ones frames composed with rotation matrices
 //! and one-degree-of-freedom `spatial::Node` steps for the recursions.
 
+use super::Ast;
+use crate::lowered::Term;
 use super::Coord;
 use super::kinematics::{BodyKin, Frame, PlanarTree, SpatialTree};
 use super::scope::Scope;
 use crate::lower::{self, Binding, Context, Lowerer, Value};
-use crate::parse::{self, Dim, Errors, Mechanism};
+use crate::parse::{self, Dim, Errors};
 use crate::sym::{Expr, Graph};
 use crate::{spatial, tree};
 use std::collections::HashMap;
@@ -16,7 +18,7 @@ use std::collections::HashMap;
 type PlanarInputs = ([Expr; 2], [Expr; 2], Expr, Expr, Expr, Option<[Expr; 2]>);
 
 pub(super) fn planar(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     coords: &[Coord],
     bodies: &mut Vec<BodyKin>,
@@ -105,9 +107,9 @@ pub(super) fn planar(
     tree
 }
 
-fn planar_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody) -> Option<PlanarInputs> {
+fn planar_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody<Term>) -> Option<PlanarInputs> {
     let vec2 =
-        |lw: &mut Lowerer<'_>, e: &Option<syn::Expr>| tree_vector(lw, e, 2).map(|v| [v[0], v[1]]);
+        |lw: &mut Lowerer<'_>, e: &Option<Term>| tree_vector(lw, e, 2).map(|v| [v[0], v[1]]);
     let (at, com) = (vec2(lw, &tb.at), vec2(lw, &tb.com));
     let offset = match &tb.angle {
         Some(e) => lw.scalar(e, Context::Constant),
@@ -138,7 +140,7 @@ struct SpatialInputs {
 }
 
 pub(super) fn spatial(
-    ast: &Mechanism,
+    ast: &Ast,
     scope: &mut Scope,
     coords: &[Coord],
     bodies: &mut Vec<BodyKin>,
@@ -215,7 +217,7 @@ pub(super) fn spatial(
     tree
 }
 
-fn spatial_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody) -> Option<SpatialInputs> {
+fn spatial_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody<Term>) -> Option<SpatialInputs> {
     let (at, com) = (tree_vector(lw, &tb.at, 3), tree_vector(lw, &tb.com, 3));
     let mass = tree_mass(lw, tb);
     let inertia = match &tb.inertia {
@@ -247,7 +249,7 @@ fn spatial_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody) -> Option<SpatialI
 /// rate); a prismatic joint moves `at` along its axis instead. `None`: a spanned error.
 fn joint_turns(
     scope: &mut Scope,
-    tb: &parse::TreeBody,
+    tb: &parse::TreeBody<Term>,
     z: &[(Expr, Expr)],
     input: &mut SpatialInputs,
 ) -> Option<Vec<(usize, Expr, Expr)>> {
@@ -289,7 +291,7 @@ fn compose(
     parent: Option<Frame>,
     turns: &[(usize, Expr, Expr)],
     at: &[Expr],
-    (tb, coords): (&parse::TreeBody, &[Coord]),
+    (tb, coords): (&parse::TreeBody<Term>, &[Coord]),
 ) -> Frame {
     let zero = identity[0][1];
     // R_joint, and the joint's angular velocity in the child's frame,
@@ -331,7 +333,7 @@ fn compose(
 fn push_steps(
     steps: &mut Vec<spatial::Node>,
     mut step_parent: Option<usize>,
-    tb: &parse::TreeBody,
+    tb: &parse::TreeBody<Term>,
     turns: &[(usize, Expr, Expr)],
     coord_of: &[usize],
     input: &SpatialInputs,
@@ -387,7 +389,7 @@ fn push_steps(
 /// A tree body's parent (`None`: the ground) among the bodies declared before it, or a
 /// spanned error.
 fn tree_parent(
-    tb: &parse::TreeBody,
+    tb: &parse::TreeBody<Term>,
     declared: &HashMap<String, usize>,
     errors: &mut Errors,
 ) -> Result<Option<usize>, ()> {
@@ -405,7 +407,7 @@ fn tree_parent(
 
 /// A joint freed by `reaction`: its origin moves by the relaxed coordinates along the
 /// ground's axes (zero in the motion; their multipliers are the joint's force).
-fn free_joint(g: &mut Graph, origin: &mut [Expr], tb: &parse::TreeBody, coords: &[Coord]) {
+fn free_joint(g: &mut Graph, origin: &mut [Expr], tb: &parse::TreeBody<Term>, coords: &[Coord]) {
     for (o, r) in origin.iter_mut().zip(tb.reaction.iter().flatten()) {
         if let Some(c) = coords.iter().find(|c| c.name == *r) {
             *o = g.add(*o, c.z);
@@ -414,7 +416,7 @@ fn free_joint(g: &mut Graph, origin: &mut [Expr], tb: &parse::TreeBody, coords: 
 }
 
 /// A tree body's `at` or `com`: a constant vector of `len` entries, zero when not given.
-fn tree_vector(lw: &mut Lowerer<'_>, e: &Option<syn::Expr>, len: usize) -> Option<Vec<Expr>> {
+fn tree_vector(lw: &mut Lowerer<'_>, e: &Option<Term>, len: usize) -> Option<Vec<Expr>> {
     match e {
         Some(e) => lw.vector(e, Context::Constant, len),
         None => Some(vec![lw.g.zero(); len]),
@@ -422,7 +424,7 @@ fn tree_vector(lw: &mut Lowerer<'_>, e: &Option<syn::Expr>, len: usize) -> Optio
 }
 
 /// A tree body's mass, with a spanned error when it is a constant that is not positive.
-fn tree_mass(lw: &mut Lowerer<'_>, tb: &parse::TreeBody) -> Option<Expr> {
+fn tree_mass(lw: &mut Lowerer<'_>, tb: &parse::TreeBody<Term>) -> Option<Expr> {
     let e = tb.mass.as_ref()?;
     let m = lw.scalar(e, Context::Constant)?;
     if lw.g.as_const(m).is_some_and(|v| v <= 0.0) {
