@@ -182,12 +182,7 @@ fn normals(u: [f64; 3]) -> ([f64; 3], [f64; 3]) {
 }
 
 /// The normal of a prismatic joint made exactly normal to its axis, or an error.
-fn normal_to(
-    axis: [f64; 3],
-    normal: [f64; 3],
-    e: &Term,
-    errors: &mut Errors,
-) -> Option<[f64; 3]> {
+fn normal_to(axis: [f64; 3], normal: [f64; 3], e: &Term, errors: &mut Errors) -> Option<[f64; 3]> {
     let c = dot(axis, normal);
     let n = [
         normal[0] - c * axis[0],
@@ -280,7 +275,12 @@ pub fn rows(
 
 /// The rows, or an error when some are identically zero (they would make the constraint
 /// Jacobian singular everywhere).
-fn nonzero(g: &Graph, errors: &mut Errors, cl: &Closure<Term>, rows: Vec<Expr>) -> Option<Vec<Expr>> {
+fn nonzero(
+    g: &Graph,
+    errors: &mut Errors,
+    cl: &Closure<Term>,
+    rows: Vec<Expr>,
+) -> Option<Vec<Expr>> {
     let zero = rows.iter().filter(|r| g.is_zero(**r)).count();
     if zero > 0 {
         errors.over(&cl.tokens, format!("{zero} of this joint's {} equations are identically zero: the loop never leaves what they constrain (a mechanism moving in a plane, written in space); write it planar, or close it by a joint of fewer equations", rows.len()));

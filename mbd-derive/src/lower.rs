@@ -5,10 +5,10 @@
 //! in either style (`sin(x)` or `x.sin()`), vector literals `[a, b]`, indexing `v[0]`, and in
 //! outputs the body queries (`velocity(rod)`, `reaction(ux)`, `der(x)`, ...).
 
+use crate::lowered::{Kind, Op, Term};
 use crate::parse::Errors;
 use crate::sym::{Expr, Func, Graph};
 use std::collections::HashMap;
-use crate::lowered::{Kind, Op, Term};
 
 /// A lowered value: a scalar, a vector (positions, velocities) or a 3x3 matrix (rotations).
 #[derive(Clone, Debug)]

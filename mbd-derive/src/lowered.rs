@@ -12,8 +12,8 @@
 use crate::geometry::Shape;
 use crate::lower::{FUNCTIONS, path_constant};
 use crate::parse::{
-    Body, Closure, Constraint, Damper, End, Errors, Event, Friction, Init, Joint, Load,
-    Mechanism, Named, Param, Point, Spring, TreeBody,
+    Body, Closure, Constraint, Damper, End, Errors, Event, Friction, Init, Joint, Load, Mechanism,
+    Named, Param, Point, Spring, TreeBody,
 };
 use proc_macro2::{Punct, Spacing, Span, TokenStream};
 use syn::spanned::Spanned;
@@ -335,8 +335,14 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
     };
     match e {
         E::Lit(lit) => one(number(&lit.lit, errors), lit.span()),
-        E::Paren(p) => one(Kind::Wrap(Box::new(term(&p.expr, errors))), p.paren_token.span.join()),
-        E::Group(g) => one(Kind::Wrap(Box::new(term(&g.expr, errors))), g.group_token.span),
+        E::Paren(p) => one(
+            Kind::Wrap(Box::new(term(&p.expr, errors))),
+            p.paren_token.span.join(),
+        ),
+        E::Group(g) => one(
+            Kind::Wrap(Box::new(term(&g.expr, errors))),
+            g.group_token.span,
+        ),
         E::Cast(c) => {
             let inner = term(&c.expr, errors);
             let last = quote::ToTokens::to_token_stream(&c.ty)

@@ -219,10 +219,9 @@ pub fn derive(lowered: Lowered, errors: Errors) -> syn::Result<Equations> {
     derive_with(lowered, errors, InertialForm::Shorter)
 }
 
-fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Result<Equations> {
-    let Lowered { ast, shapes } = lowered;
-    let ast = &ast;
-    // Names and kinematics in full coordinates; what follows needs them complete.
+/// Names and kinematics in full coordinates; what follows needs them complete, so their
+/// errors (with the lowering's) stop here.
+fn kinematics(ast: &Ast, errors: Errors) -> syn::Result<(Scope, Kinematics)> {
     let mut scope = Scope::new(ast, errors);
     scope.parameters(ast);
     let coords = scope.coordinates(ast);
@@ -232,7 +231,7 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
     let spatial = trees::spatial(ast, &mut scope, &coords, &mut bodies);
     scope.element_names(ast);
     scope.errors_so_far()?;
-    let mut kin = Kinematics {
+    let kin = Kinematics {
         coords,
         bodies,
         planar,
@@ -240,6 +239,86 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
     };
     fixed::declare(ast, &mut scope, &kin);
     scope.errors_so_far()?;
+    Ok((scope, kin))
+}
+
+/// What the model observes of the motion, and its friction: outputs, events, shapes and
+/// Coulomb forces, each in free (or minimal) coordinates, with the forces before friction.
+struct Observed {
+    outputs: Vec<OutputEq>,
+    events: Vec<EventEq>,
+    geometry: Vec<crate::geometry::Shape<Vec<Expr>>>,
+    frictions: Vec<FrictionEq>,
+    frictionless: Option<Vec<Expr>>,
+}
+
+/// The full model's rows an observation may need: reactions read the unprojected rows.
+struct Full<'a> {
+    kin: &'a Kinematics,
+    unprojected: &'a (Vec<Vec<Expr>>, Vec<Expr>),
+    phi: &'a [Expr],
+}
+
+/// Outputs, events, shapes and friction, with the reactions they ask for; friction's
+/// forces are added to `red.forces`.
+fn observe(
+    (ast, shapes): (&Ast, Vec<crate::geometry::Shape<Term>>),
+    scope: &mut Scope,
+    full: Full<'_>,
+    (red, con, minimal): (
+        &mut reduction::Reduced,
+        &constraints::InFree,
+        Option<&crate::velocity::Minimal>,
+    ),
+    (reactions, checks): (&mut Vec<(usize, Expr)>, &mut Vec<ParamCheck>),
+) -> Observed {
+    let kin = full.kin;
+    let free_idx = &red.free_idx;
+    let mut answers = kin.kin(scope.t, scope.dim, reactions);
+    let (mut outputs, mut events) = outputs::lower(ast, scope, &mut answers);
+    let dims = scope.dim.len();
+    let mut geometry = crate::geometry::lower(shapes, |e| {
+        let context = crate::lower::Context::Output;
+        scope.lowerer(Some(&mut answers)).vector(e, context, dims)
+    });
+    let at = (&kin.coords[..], &free_idx[..]);
+    let mut frictions = coulomb::lower(ast, scope, &mut answers, at, checks);
+    let rows = outputs::FullRows {
+        m: &full.unprojected.0,
+        f: &full.unprojected.1,
+        phi: full.phi,
+        lambdas: &con.lambdas,
+    };
+    let finisher = outputs::reactions(&mut scope.g, &kin.coords, reactions, &rows, &red.map);
+    let observed = (&mut outputs[..], &mut events[..]);
+    outputs::finish(scope, &finisher, observed, &kin.coords, free_idx);
+    crate::geometry::map(&mut geometry, |x| finisher.finish(&mut scope.g, x));
+    if let Some(min) = minimal {
+        let observed = outputs.iter_mut().map(|o| &mut o.expr);
+        for e in observed.chain(events.iter_mut().map(|e| &mut e.expr)) {
+            *e = min.close(&mut scope.g, &[*e])[0];
+        }
+        crate::geometry::map(&mut geometry, |x| min.close(&mut scope.g, &[x])[0]);
+    }
+    let frictionless = coulomb::apply(
+        scope,
+        &finisher,
+        (&mut frictions, ast.jacobian),
+        &mut red.forces,
+    );
+    Observed {
+        outputs,
+        events,
+        geometry,
+        frictions,
+        frictionless,
+    }
+}
+
+fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Result<Equations> {
+    let Lowered { ast, shapes } = lowered;
+    let ast = &ast;
+    let (mut scope, mut kin) = kinematics(ast, errors)?;
     let mut checks = checks::body_checks(&scope.names, &kin.bodies);
     let mut reactions: Vec<(usize, Expr)> = Vec::new();
 
@@ -276,38 +355,21 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
     constraints::check(&mut scope, &kin.coords, free_idx, phi, &qsyms, &red.mass);
 
     // Outputs, events and friction, with reactions on request.
-    let mut answers = kin.kin(scope.t, scope.dim, &mut reactions);
-    let (mut outputs, mut events) = outputs::lower(ast, &mut scope, &mut answers);
-    let dims = scope.dim.len();
-    let mut geometry = crate::geometry::lower(shapes, |e| {
-        let context = crate::lower::Context::Output;
-        scope.lowerer(Some(&mut answers)).vector(e, context, dims)
-    });
-    let at = (&kin.coords[..], &free_idx[..]);
-    let mut frictions = coulomb::lower(ast, &mut scope, &mut answers, at, &mut checks);
-    let full = outputs::FullRows {
-        m: &unprojected.0,
-        f: &unprojected.1,
+    let full = Full {
+        kin: &kin,
+        unprojected: &unprojected,
         phi: &loops.phi,
-        lambdas: &con.lambdas,
     };
-    let finisher = outputs::reactions(&mut scope.g, &kin.coords, &reactions, &full, &red.map);
-    let observed = (&mut outputs[..], &mut events[..]);
-    outputs::finish(&mut scope, &finisher, observed, &kin.coords, free_idx);
-    crate::geometry::map(&mut geometry, |x| finisher.finish(&mut scope.g, x));
-    if let Some(min) = &minimal {
-        let observed = outputs.iter_mut().map(|o| &mut o.expr);
-        for e in observed.chain(events.iter_mut().map(|e| &mut e.expr)) {
-            *e = min.close(&mut scope.g, &[*e])[0];
-        }
-        crate::geometry::map(&mut geometry, |x| min.close(&mut scope.g, &[x])[0]);
-    }
-    let frictionless = coulomb::apply(
-        &mut scope,
-        &finisher,
-        (&mut frictions, ast.jacobian),
-        &mut red.forces,
-    );
+    let parts = (&mut red, &con, minimal.as_ref());
+    let watched = (&mut reactions, &mut checks);
+    let Observed {
+        outputs,
+        events,
+        geometry,
+        frictions,
+        frictionless,
+    } = observe((ast, shapes), &mut scope, full, parts, watched);
+    let free_idx = &red.free_idx;
 
     // One free coordinate without constraints: `qdd = f / m` with the factors the two share
     // cancelled and the parameters' quotient apart (`-m g l sin(theta) / (m l^2)` is

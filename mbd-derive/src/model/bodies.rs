@@ -2,10 +2,10 @@
 //! orientation as the user wrote them, in full coordinates.
 
 use super::Ast;
-use crate::lowered::Term;
 use super::kinematics::BodyKin;
 use super::scope::Scope;
 use crate::lower::{Binding, Context, Lowerer, Value};
+use crate::lowered::Term;
 use crate::parse::{self, BodyKind, Dim};
 use crate::sym::Expr;
 use std::collections::{HashMap, HashSet};

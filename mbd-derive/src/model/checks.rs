@@ -5,7 +5,7 @@ use super::Ast;
 use super::kinematics::BodyKin;
 use super::{Equations, Names, ParamCheck, Role};
 use crate::lower::{Binding, Context, Lowerer};
-use crate::parse::{Errors};
+use crate::parse::Errors;
 use crate::sym::{Expr, Sym};
 use std::collections::HashMap;
 use syn::Ident;

@@ -3,14 +3,14 @@
 //! (`in_free_coordinates`) and what makes a set of them unusable (`check`).
 
 use super::Ast;
-use crate::lowered::Term;
 use super::kinematics::{Frame, Kinematics};
 use super::scope::Scope;
 use super::{Coord, Role};
 use crate::close;
 use crate::closure;
 use crate::lower::{Context, Lowerer};
-use crate::parse::{Dim};
+use crate::lowered::Term;
+use crate::parse::Dim;
 use crate::sym::{Expr, Sym};
 use crate::tree;
 use proc_macro2::TokenStream;
@@ -31,11 +31,7 @@ pub(super) struct InFree {
 }
 
 /// `#[constraint(..)]`s, then the equations of each closing joint (close.rs).
-pub(super) fn gather<'a>(
-    ast: &'a Ast,
-    scope: &mut Scope,
-    kin: &Kinematics,
-) -> Constraints<'a> {
+pub(super) fn gather<'a>(ast: &'a Ast, scope: &mut Scope, kin: &Kinematics) -> Constraints<'a> {
     let mut out = Constraints {
         phi: Vec::new(),
         tokens: Vec::new(),

@@ -175,12 +175,7 @@ fn renumber(g: &Graph, roles: &mut HashMap<Sym, Role>, coords: &[Coord]) {
 /// Values of the default configuration: parameter `#[default]`s, `init` positions (with
 /// those defaults) and driven coordinates at `t = 0`; a parameter without a default leaves
 /// only the constant `init` positions.
-fn default_values(
-    ast: &Ast,
-    g: &mut Graph,
-    coords: &[Coord],
-    names: &Names,
-) -> HashMap<Sym, f64> {
+fn default_values(ast: &Ast, g: &mut Graph, coords: &[Coord], names: &Names) -> HashMap<Sym, f64> {
     let mut env: HashMap<Sym, f64> = HashMap::new();
     let mut scratch = Errors::default();
     let no_names = HashMap::new();

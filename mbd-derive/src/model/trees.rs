@@ -3,11 +3,11 @@
 //! and one-degree-of-freedom `spatial::Node` steps for the recursions.
 
 use super::Ast;
-use crate::lowered::Term;
 use super::Coord;
 use super::kinematics::{BodyKin, Frame, PlanarTree, SpatialTree};
 use super::scope::Scope;
 use crate::lower::{self, Binding, Context, Lowerer, Value};
+use crate::lowered::Term;
 use crate::parse::{self, Dim, Errors};
 use crate::sym::{Expr, Graph};
 use crate::{spatial, tree};
@@ -108,8 +108,7 @@ pub(super) fn planar(
 }
 
 fn planar_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody<Term>) -> Option<PlanarInputs> {
-    let vec2 =
-        |lw: &mut Lowerer<'_>, e: &Option<Term>| tree_vector(lw, e, 2).map(|v| [v[0], v[1]]);
+    let vec2 = |lw: &mut Lowerer<'_>, e: &Option<Term>| tree_vector(lw, e, 2).map(|v| [v[0], v[1]]);
     let (at, com) = (vec2(lw, &tb.at), vec2(lw, &tb.com));
     let offset = match &tb.angle {
         Some(e) => lw.scalar(e, Context::Constant),
