@@ -1,8 +1,9 @@
 //! The `#[derive(Mechanism)]` of mbd: a mechanism described by attributes on a struct of
 //! parameters becomes exact, specialised equations of motion at compile time.
 //!
-//! Stages, each its own module: `parse` (attributes -> AST), `lower` (user expressions
-//! -> symbolic values, with spanned errors), `model` (Lagrangian mechanics in minimal
+//! Stages, each its own module: `parse` (attributes -> AST), `lowered` (the whole model
+//! once, every expression a `syn`-free term, syntax errors collected), `lower` (terms ->
+//! symbolic values over the model's names, with spanned errors), `model` (Lagrangian mechanics in minimal
 //! coordinates, constraints, reactions), `sym` (the symbolic engine: hash-consed DAG,
 //! exact derivatives), `codegen` (straight-line Rust).
 //! The language itself is documented on the facade crate `mbd`.

@@ -1,4 +1,6 @@
-//! User expressions (`syn::Expr`) -> symbolic values, with spanned errors.
+//! Lowered user expressions ([`Term`]s, `lowered.rs`) -> symbolic values over the model's
+//! names, with spanned errors: what a name means, whether a function or body query may
+//! stand where it is, what the operands' shapes allow.
 //!
 //! The expression language is a small, smooth subset of Rust: numbers, names (parameters,
 //! coordinates, `t`, `PI`), `+ - * /`, unary minus, calls of the functions in [`FUNCTIONS`]

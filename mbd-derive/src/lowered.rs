@@ -1,4 +1,4 @@
-//! Stage 3: the parsed model -> its `syn`-free description, lowered once, up front.
+//! Stage 2: the parsed (and checked) model -> its `syn`-free description, lowered once, up front.
 //!
 //! Every expression of every attribute (and of the drawn shapes) becomes a [`Term`]: the
 //! expression language's own tree (numbers, names, named constants, `+ - * /`, calls,

@@ -1,4 +1,5 @@
-//! Stage 3: the AST -> the equations of motion, as symbolic expressions.
+//! Stage 3: the lowered model (`lowered.rs`, no `syn`) -> the equations of motion, as
+//! symbolic expressions.
 //!
 //! Everything is first derived in *full* coordinates `z = (free, driven, relaxed)` with
 //! symbols for `z`, `zd`, `zdd` and `t`, then *reduced*: a driven coordinate becomes its
@@ -10,8 +11,8 @@
 //! `derive_with` is the pipeline; each phase is a module and hands the next a typed value:
 //! `scope` (names) -> `bodies`, `trees` (`Kinematics`) -> `constraints`, `minimal`
 //! (`Constraints`) -> `loads` (`Forces`) -> `inertial` (`Inertial`) -> `reduction`
-//! (`Reduced`) -> `constraints` again (`InFree`) -> `outputs`, `coulomb` -> `implicit`,
-//! `initial`, `checks` -> `Equations`.
+//! (`Reduced`) -> `constraints` again (`InFree`) -> `outputs`, `coulomb` (`Observed`) ->
+//! `implicit`, `initial`, `checks` -> `Equations`.
 
 mod bodies;
 mod checks;
