@@ -121,17 +121,20 @@ pub struct Lowered {
 
 /// Lowers every expression of `ast`, collecting every error.
 pub fn lower(ast: &Mechanism, errors: &mut Errors) -> Lowered {
+    // A default is refused as a whole when it is not a number (`Scope::parameters`): what
+    // its syntax refuses is not reported apart.
+    let params = ast
+        .params
+        .iter()
+        .map(|p| Param {
+            name: p.name.clone(),
+            default: p.default.as_ref().map(|e| term(e, &mut Errors::default())),
+        })
+        .collect();
     let mut l = |e: &syn::Expr| term(e, errors);
     let lowered = Mechanism {
         ident: ast.ident.clone(),
-        params: ast
-            .params
-            .iter()
-            .map(|p| Param {
-                name: p.name.clone(),
-                default: p.default.as_ref().map(&mut l),
-            })
-            .collect(),
+        params,
         dim: ast.dim,
         dim_span: ast.dim_span,
         gravity: ast.gravity.as_ref().map(&mut l),
@@ -334,7 +337,7 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
         last: span,
     };
     match e {
-        E::Lit(lit) => one(number(&lit.lit, errors), lit.span()),
+        E::Lit(lit) => one(number(&lit.lit, errors), lit.lit.span()),
         E::Paren(p) => one(
             Kind::Wrap(Box::new(term(&p.expr, errors))),
             p.paren_token.span.join(),
@@ -476,13 +479,20 @@ fn index(k: &LitInt, errors: &mut Errors) -> Option<usize> {
 
 /// A bare name, or a constant by path; any other path is refused.
 fn path(p: &syn::ExprPath, errors: &mut Errors) -> Term {
+    if let Some(id) = p.path.get_ident() {
+        let span = id.span();
+        return Term {
+            kind: Kind::Name(id.clone()),
+            first: span,
+            last: span,
+        };
+    }
+    // Rare (a constant by path, or a mistake): its tokens are worth making.
     let tokens = quote::ToTokens::to_token_stream(p);
     let mut spans = tokens.clone().into_iter().map(|t| t.span());
     let first = spans.next().unwrap_or_else(Span::call_site);
     let last = spans.last().unwrap_or(first);
-    let kind = if let Some(id) = p.path.get_ident() {
-        Kind::Name(id.clone())
-    } else if let Some(v) = path_constant(&p.path) {
+    let kind = if let Some(v) = path_constant(&p.path) {
         Kind::Constant(v, tokens.to_string())
     } else {
         let last_name = p
