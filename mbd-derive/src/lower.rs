@@ -130,6 +130,19 @@ pub fn path_constant(path: &syn::Path) -> Option<f64> {
     if ok { named_constant(last) } else { None }
 }
 
+/// The message for a name that is none of the model's.
+pub fn unknown_name(name: &str, struct_name: &str) -> String {
+    let upper = name.to_uppercase();
+    let hint = if named_constant(&upper).is_some() {
+        format!(": did you mean the constant `{upper}`?")
+    } else {
+        String::new()
+    };
+    format!(
+        "unknown name `{name}`: not a parameter (field) of `{struct_name}`, a coordinate, a point or a body{hint}"
+    )
+}
+
 /// Whether body query or `reaction` `fname` may stand in `ctx`: positions and angles are
 /// kinematics (forces' points, spring and damper ends), velocities are forces' too;
 /// accelerations and reactions would make the forces depend on the solution.
@@ -329,21 +342,7 @@ impl Lowerer<'_> {
             ),
             None => match named_constant(&name) {
                 Some(v) => Ok(Value::Scalar(self.g.constant(v))),
-                None => {
-                    let upper = name.to_uppercase();
-                    let hint = if named_constant(&upper).is_some() {
-                        format!(": did you mean the constant `{upper}`?")
-                    } else {
-                        String::new()
-                    };
-                    self.fail(
-                        id.span(),
-                        format!(
-                            "unknown name `{name}`: not a parameter (field) of `{}`, a coordinate, a point or a body{hint}",
-                            self.struct_name
-                        ),
-                    )
-                }
+                None => self.fail(id.span(), unknown_name(&name, self.struct_name)),
             },
         }
     }

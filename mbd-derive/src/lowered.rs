@@ -128,10 +128,14 @@ pub fn lower(ast: &Mechanism, errors: &mut Errors) -> Lowered {
         .iter()
         .map(|p| Param {
             name: p.name.clone(),
-            default: p.default.as_ref().map(|e| term(e, &mut Errors::default())),
+            default: p
+                .default
+                .as_ref()
+                .map(|e| term(e, &mut Errors::default(), None)),
         })
         .collect();
-    let mut l = |e: &syn::Expr| term(e, errors);
+    let known = Known::of(ast);
+    let mut l = |e: &syn::Expr| term(e, errors, Some(&known));
     let lowered = Mechanism {
         ident: ast.ident.clone(),
         params,
@@ -324,12 +328,49 @@ fn closure(c: &Closure, l: &mut impl FnMut(&syn::Expr) -> Term) -> Closure<Term>
     }
 }
 
-/// Lowers one expression, reporting what its syntax alone refuses.
-pub fn term(e: &syn::Expr, errors: &mut Errors) -> Term {
-    crate::guard::recurse(|| term_here(e, errors))
+/// The names the model declares anywhere (parameters, coordinates free, driven and
+/// relaxed, points, bodies) and `t`: a bare name outside them is refused at once. (Whether
+/// a known name may stand where it does is the mechanics': a point used before its
+/// declaration, a coordinate in a constant.) Each unknown name is reported once, where it
+/// first appears.
+pub struct Known {
+    names: std::collections::HashSet<String>,
+    struct_name: String,
+    reported: std::cell::RefCell<std::collections::HashSet<String>>,
 }
 
-fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
+impl Known {
+    fn of(ast: &Mechanism) -> Known {
+        let names = (ast.params.iter().map(|p| &p.name))
+            .chain(&ast.coords)
+            .chain(ast.drives.iter().map(|d| &d.name))
+            .chain(&ast.relaxed)
+            .chain(ast.points.iter().map(|p| &p.name))
+            .chain(ast.bodies.iter().map(|b| &b.name))
+            .chain(ast.tree.iter().map(|b| &b.name))
+            .map(|id| id.to_string())
+            .chain(["t".to_string()])
+            .collect();
+        Known {
+            names,
+            struct_name: ast.ident.to_string(),
+            reported: Default::default(),
+        }
+    }
+
+    fn knows(&self, id: &Ident) -> bool {
+        let name = id.to_string();
+        self.names.contains(&name) || crate::lower::named_constant(&name).is_some()
+    }
+}
+
+/// Lowers one expression, reporting what its syntax alone refuses, and (with `known`)
+/// the names the model does not have.
+pub fn term(e: &syn::Expr, errors: &mut Errors, known: Option<&Known>) -> Term {
+    crate::guard::recurse(|| term_here(e, errors, known))
+}
+
+fn term_here(e: &syn::Expr, errors: &mut Errors, known: Option<&Known>) -> Term {
     use syn::Expr as E;
     let one = |kind, span: Span| Term {
         kind,
@@ -339,15 +380,15 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
     match e {
         E::Lit(lit) => one(number(&lit.lit, errors), lit.lit.span()),
         E::Paren(p) => one(
-            Kind::Wrap(Box::new(term(&p.expr, errors))),
+            Kind::Wrap(Box::new(term(&p.expr, errors, known))),
             p.paren_token.span.join(),
         ),
         E::Group(g) => one(
-            Kind::Wrap(Box::new(term(&g.expr, errors))),
+            Kind::Wrap(Box::new(term(&g.expr, errors, known))),
             g.group_token.span,
         ),
         E::Cast(c) => {
-            let inner = term(&c.expr, errors);
+            let inner = term(&c.expr, errors, known);
             let last = quote::ToTokens::to_token_stream(&c.ty)
                 .into_iter()
                 .last()
@@ -359,9 +400,9 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
                 last,
             }
         }
-        E::Path(p) => path(p, errors),
+        E::Path(p) => path(p, errors, known),
         E::Unary(u) => {
-            let inner = term(&u.expr, errors);
+            let inner = term(&u.expr, errors, known);
             let last = inner.last;
             let first = u.op.span();
             let kind = match u.op {
@@ -374,7 +415,7 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
             Term { kind, first, last }
         }
         E::Binary(b) => {
-            let (l, r) = (term(&b.left, errors), term(&b.right, errors));
+            let (l, r) = (term(&b.left, errors, known), term(&b.right, errors, known));
             let last = r.last;
             let op = match b.op {
                 syn::BinOp::Add(_) => Some(Op::Add),
@@ -399,11 +440,11 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
             Term { kind, first, last }
         }
         E::Array(a) => {
-            let items = a.elems.iter().map(|x| term(x, errors)).collect();
+            let items = a.elems.iter().map(|x| term(x, errors, known)).collect();
             one(Kind::Array(items), a.bracket_token.span.join())
         }
         E::Index(i) => {
-            let inner = term(&i.expr, errors);
+            let inner = term(&i.expr, errors, known);
             let first = inner.first;
             let k = match &*i.index {
                 E::Lit(syn::ExprLit {
@@ -428,13 +469,13 @@ fn term_here(e: &syn::Expr, errors: &mut Errors) -> Term {
                 errors.at(p.span(), "expected a function name");
                 return one(Kind::Invalid, c.span());
             };
-            let args = c.args.iter().map(|a| term(a, errors)).collect();
+            let args = arguments(name, c.args.iter(), errors, known);
             let kind = call(name, args, || c.span(), errors);
             one(kind, name.span()).until(c.paren_token.span.join())
         }
         E::MethodCall(m) => {
             let args = std::iter::once(&*m.receiver).chain(&m.args);
-            let args: Vec<Term> = args.map(|a| term(a, errors)).collect();
+            let args = arguments(&m.method, args, errors, known);
             let first = args[0].first;
             let kind = call(&m.method, args, || m.span(), errors);
             one(kind, first).until(m.paren_token.span.join())
@@ -478,11 +519,21 @@ fn index(k: &LitInt, errors: &mut Errors) -> Option<usize> {
 }
 
 /// A bare name, or a constant by path; any other path is refused.
-fn path(p: &syn::ExprPath, errors: &mut Errors) -> Term {
+fn path(p: &syn::ExprPath, errors: &mut Errors, known: Option<&Known>) -> Term {
     if let Some(id) = p.path.get_ident() {
         let span = id.span();
+        let kind = match known {
+            Some(k) if !k.knows(id) => {
+                let name = id.to_string();
+                if k.reported.borrow_mut().insert(name.clone()) {
+                    errors.at(span, crate::lower::unknown_name(&name, &k.struct_name));
+                }
+                Kind::Invalid
+            }
+            _ => Kind::Name(id.clone()),
+        };
         return Term {
-            kind: Kind::Name(id.clone()),
+            kind,
             first: span,
             last: span,
         };
@@ -526,6 +577,21 @@ fn path(p: &syn::ExprPath, errors: &mut Errors) -> Term {
         Kind::Invalid
     };
     Term { kind, first, last }
+}
+
+/// A call's arguments; the body or coordinate a body query or `reaction` names is the
+/// mechanics' to judge (it says what is not a body), so it is not checked as a name here.
+fn arguments<'e>(
+    name: &Ident,
+    args: impl Iterator<Item = &'e syn::Expr>,
+    errors: &mut Errors,
+    known: Option<&Known>,
+) -> Vec<Term> {
+    let fname = name.to_string();
+    let query = crate::lower::BODY_QUERIES.contains(&fname.as_str()) || fname == "reaction";
+    args.enumerate()
+        .map(|(i, a)| term(a, errors, if query && i == 0 { None } else { known }))
+        .collect()
 }
 
 /// A call of a known function with the right number of arguments (`span`: the call's,
