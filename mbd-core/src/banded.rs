@@ -30,6 +30,8 @@ struct Pattern {
     pos: Vec<usize>,
     /// Half-bandwidth in that order.
     kl: usize,
+    /// Coordinates (`N`).
+    coords: usize,
 }
 
 impl Pattern {
@@ -78,6 +80,7 @@ impl Pattern {
             phi_q,
             pos,
             kl,
+            coords: N,
         }
     }
 }
@@ -100,6 +103,7 @@ fn nonzeros(x: &[f64], mut each: impl FnMut(usize, f64)) {
 
 /// `L U` of a banded matrix with partial pivoting (row interchanges), rows stored as windows
 /// of columns `i - kl ..= i + ku + kl` (the fill of pivoting stays inside).
+#[derive(Debug)]
 struct BandLu {
     n: usize,
     kl: usize,
@@ -223,38 +227,69 @@ fn solve<const N: usize, const M: usize>(
     u: &Vector<N>,
     b: &Vector<M>,
 ) -> Option<(Vector<N>, Vector<M>)> {
-    let n = N + M;
-    let (kl, pos) = (pattern.kl, &pattern.pos);
-    if kl * MAX_BAND_FRACTION >= n {
-        return None;
-    }
-    let mut lu = BandLu::zeros(n, kl, kl);
-    for &(i, j, v) in &pattern.mass {
-        let (e1, e2) = (lu.at(pos[i], pos[j]), lu.at(pos[j], pos[i]));
-        lu.a[e1] = v;
-        lu.a[e2] = v;
-    }
-    for &(k, j, v) in &pattern.phi_q {
-        let (r, c) = (pos[N + k], pos[j]);
-        let (e1, e2) = (lu.at(r, c), lu.at(c, r));
-        lu.a[e1] = v;
-        lu.a[e2] = v;
-    }
-    lu.factor()?;
-    let mut z = vec![0.0; n];
-    for i in 0..N {
-        z[pos[i]] = u[i];
-    }
-    for k in 0..M {
-        z[pos[N + k]] = b[k];
-    }
+    let lu = SaddleLu::from_pattern(pattern, N + M)?;
+    let mut z: Vec<f64> = u.iter().chain(b.iter()).copied().collect();
     lu.solve(&mut z);
-    let x = Vector::<N>::from_fn(|i, _| z[pos[i]]);
-    let lambda = Vector::<M>::from_fn(|k, _| z[pos[N + k]]);
+    let x = Vector::<N>::from_fn(|i, _| z[i]);
+    let lambda = Vector::<M>::from_fn(|k, _| z[N + k]);
     x.iter()
         .chain(lambda.iter())
         .all(|v| v.is_finite())
         .then_some((x, lambda))
+}
+
+/// The banded LU of a saddle-point matrix `[M Phi_q^T; Phi_q 0]`, kept to solve many
+/// right-hand sides: the iteration matrix of an implicit method, factored once and reused
+/// over the Newton iterations of several steps.
+#[derive(Debug)]
+pub struct SaddleLu {
+    lu: BandLu,
+    /// Position in the band of unknown `i` (coordinates, then multipliers).
+    pos: Vec<usize>,
+}
+
+impl SaddleLu {
+    /// Factor, when the bandwidth is small against the order and the pivots stay within
+    /// [`PIVOT_RATIO`]; `None` otherwise.
+    pub fn factor<const N: usize, const M: usize>(
+        mass: &Matrix<N, N>,
+        phi_q: &Matrix<M, N>,
+    ) -> Option<Self> {
+        Self::from_pattern(Pattern::dense(mass, phi_q), N + M)
+    }
+
+    fn from_pattern(pattern: Pattern, n: usize) -> Option<Self> {
+        let (kl, pos, coords) = (pattern.kl, pattern.pos, pattern.coords);
+        if kl * MAX_BAND_FRACTION >= n {
+            return None;
+        }
+        let mut lu = BandLu::zeros(n, kl, kl);
+        for &(i, j, v) in &pattern.mass {
+            let (e1, e2) = (lu.at(pos[i], pos[j]), lu.at(pos[j], pos[i]));
+            lu.a[e1] = v;
+            lu.a[e2] = v;
+        }
+        for &(k, j, v) in &pattern.phi_q {
+            let (r, c) = (pos[coords + k], pos[j]);
+            let (e1, e2) = (lu.at(r, c), lu.at(c, r));
+            lu.a[e1] = v;
+            lu.a[e2] = v;
+        }
+        lu.factor()?;
+        Some(SaddleLu { lu, pos })
+    }
+
+    /// Solve in place: `z = [u; b]` in, `[x; lambda]` out.
+    pub fn solve(&self, z: &mut [f64]) {
+        let mut w = vec![0.0; z.len()];
+        for (i, &v) in z.iter().enumerate() {
+            w[self.pos[i]] = v;
+        }
+        self.lu.solve(&mut w);
+        for (i, v) in z.iter_mut().enumerate() {
+            *v = w[self.pos[i]];
+        }
+    }
 }
 
 #[cfg(test)]

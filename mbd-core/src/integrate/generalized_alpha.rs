@@ -29,8 +29,9 @@ use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
 use crate::jacobian::forward_difference;
+use crate::banded::SaddleLu;
 use crate::linalg::Lu;
-use crate::model::{Constrained, Mechanism, OdeSystem, Vector};
+use crate::model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
 
 /// The initial state of a run: time, positions, velocities, accelerations, and the first
 /// unknowns `z0 = [q0; extra]`.
@@ -168,7 +169,7 @@ impl GeneralizedAlpha {
             z0: q0,
         };
         const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
-        self.run::<N, N, D>(start, t1, events, observer, stack, residual)
+        self.run::<N, N, D>(start, t1, events, observer, stack, residual, no_structure())
     }
 
     /// Integrate a closed loop in index-3 form (`A = N + M` unknowns `(q1, lambda1)` per
@@ -226,6 +227,10 @@ impl GeneralizedAlpha {
             qdd0,
             z0,
         };
+        // The iteration matrix from structure: `M` and `Phi_q` at the iterate (see `Factor`).
+        let structure = |t: f64, q1: &Vector<N>, c1: f64| {
+            Factor::saddle(&(sys.mass_matrix(t, q1) * c1), &sys.phi_q(t, q1))
+        };
         self.run::<N, A, D>(
             start,
             t1,
@@ -238,22 +243,26 @@ impl GeneralizedAlpha {
                 let lambda = z.fixed_rows::<M>(N) * scale;
                 let mut r = Vector::<A>::zeros();
                 r.fixed_rows_mut::<N>(0).copy_from(
-                    &(sys.mass_matrix(t, &q1) * qdd1 + sys.phi_q(t, &q1).transpose() * lambda
-                        - sys.forces(t, &q1, qd1)),
+                    &(sys.inverse_dynamics(t, &q1, qd1, qdd1)
+                        + sys.phi_q(t, &q1).transpose() * lambda),
                 );
                 r.fixed_rows_mut::<M>(N)
                     .copy_from(&(sys.phi(t, &q1) * scale));
                 r
             },
+            Some(structure),
         )
     }
 
     /// The stepping loop. The unknowns of a step are `z = [q1; extra]` (`K >= N`);
     /// `residual(1 / (beta h^2), t1, z, qd1, qdd1)` gets the velocities and accelerations
     /// that the generalized-α formulas give for `q1`; `pack(q, qd)` is the state recorded.
+    /// `structure(t1, q1, c1)`, where given, factors the iteration matrix from the model's
+    /// own matrices (see [`Factor`]); without it (or where it fails to converge) the matrix is
+    /// the forward-difference Jacobian of the residual.
     #[allow(
         clippy::too_many_arguments,
-        reason = "the run's start, end, events, observer, state packing and residual"
+        reason = "the run's start, end, events, observer, state packing, residual and matrix"
     )]
     fn run<const N: usize, const K: usize, const D: usize>(
         &self,
@@ -263,6 +272,7 @@ impl GeneralizedAlpha {
         observer: Option<&mut Observer<'_, D>>,
         pack: impl Fn(&Vector<N>, &Vector<N>) -> Vector<D>,
         residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
+        structure: Option<impl Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>>,
     ) -> Result<Solution<D>> {
         let Start {
             t0,
@@ -293,7 +303,7 @@ impl GeneralizedAlpha {
             return recorder.finish(stats);
         }
         let (mut q, mut qd, mut qdd, mut a, mut z) = (q0, qd0, qdd0, qdd0, z0);
-        let (bh2, scale) = (c.beta * h * h, 1.0 / (c.beta * h * h));
+        let bh2 = c.beta * h * h;
         // The unknowns after q1 (the multipliers) are carried scaled by beta h^2, like the
         // constraint rows: unscaled, a multiplier of 1e7 N next to positions of 0.1 m gave
         // the forward-difference Jacobian a column below the residual's rounding (a zero
@@ -301,6 +311,11 @@ impl GeneralizedAlpha {
         for i in N..K {
             z[i] *= bh2;
         }
+        let mut newton = Newton {
+            factor: None,
+            structure,
+            structured: true,
+        };
         for k in 0..steps {
             let t = t0 + k as f64 * h;
             let t_next = if k + 1 == steps {
@@ -321,56 +336,24 @@ impl GeneralizedAlpha {
                     (a1 * (1.0 - c.alpha_m) + a * c.alpha_m - qdd * c.alpha_f) / (1.0 - c.alpha_f);
                 (base + d, a1, qd1, qdd1)
             };
-            let r = |z: &Vector<K>| {
-                let (q1, _, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
-                let mut zq = *z;
-                zq.fixed_rows_mut::<N>(0).copy_from(&q1);
-                residual(scale, t_next, &zq, &qd1, &qdd1)
-            };
             // Predictor: the acceleration stays what it was (qdd1 = qdd).
             let a_pred = (qdd - a * c.alpha_m) / (1.0 - c.alpha_m);
             z.fixed_rows_mut::<N>(0).copy_from(&(a_pred * bh2));
-            // An increment dd moves q1 by dd and qd1 by gamma / (beta h) dd.
-            let v_gain = c.gamma / (c.beta * h);
-            let failed = Error::NewtonFailed { t: t_next, h };
-            let mut lu = None;
-            let mut converged = false;
-            let mut last_size = f64::INFINITY;
-            for iteration in 0..self.max_iterations {
-                if lu.is_none() || iteration == 4 {
-                    let jac = forward_difference(|z| Ok(r(z)), &z)
-                        .map_err(|_| Error::NonFinite { t: t_next })?;
-                    stats.n_rhs += K + 1;
-                    stats.n_jac += 1;
-                    stats.n_lu += 1;
-                    lu = Some(Lu::factor(jac).ok_or(failed.clone())?);
-                }
-                let rz = r(&z);
-                stats.n_rhs += 1;
-                let dz = lu
-                    .as_ref()
-                    .map(|lu| lu.solve(&(-rz)))
-                    .ok_or(failed.clone())?;
-                if !dz.iter().all(|v| v.is_finite()) {
-                    return Err(Error::NonFinite { t: t_next });
-                }
-                z += dz;
-                let (q1, _, qd1, _) = kinematics(&z.fixed_rows::<N>(0).into_owned());
-                let positions = (0..N).all(|i| dz[i].abs() <= self.tol * (1.0 + q1[i].abs()));
-                let velocities =
-                    (0..N).all(|i| v_gain * dz[i].abs() <= self.tol * (1.0 + qd1[i].abs()));
-                // Past the positions' tolerance, increments that stop halving are the
-                // residual's rounding (a stiff model amplifies it): as converged as it gets.
-                let size = dz.fixed_rows::<N>(0).amax();
-                if positions && (velocities || size > 0.5 * last_size) {
-                    converged = true;
-                    break;
-                }
-                last_size = size;
-            }
-            if !converged {
-                return Err(failed);
-            }
+            let step = Step {
+                t1: t_next,
+                h,
+                bh2,
+                c1: (1.0 - c.alpha_m) / (1.0 - c.alpha_f),
+                v_gain: c.gamma / (c.beta * h),
+            };
+            z = self.newton(
+                &mut newton,
+                &step,
+                z,
+                |d| kinematics(d),
+                &residual,
+                &mut stats,
+            )?;
             let (q1, a1, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
             let (y1, seg) =
                 second_order_end_packed(&pack, t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
@@ -384,6 +367,94 @@ impl GeneralizedAlpha {
         recorder.finish(stats)
     }
 
+    /// Newton's iteration for one step from `z` (the predictor). The matrix from structure
+    /// is kept over steps and refactored at the iterate only when the iteration slows
+    /// (contraction above [`SLOW`]), as Radau5 keeps its Jacobian; the forward-difference
+    /// matrix is formed at every step's predictor and once more at the fifth iteration.
+    /// Converged when the last increment, or the error left estimated from the contraction
+    /// `theta` (`theta / (1 - theta)` times it), passes [`Self::tol`]'s test; or, the
+    /// positions' test met, when increments that were shrinking fast stop halving (the
+    /// residual's rounding, which a stiff model amplifies).
+    fn newton<const N: usize, const K: usize, F>(
+        &self,
+        newton: &mut Newton<K, F>,
+        step: &Step,
+        z0: Vector<K>,
+        kinematics: impl Fn(&Vector<N>) -> (Vector<N>, Vector<N>, Vector<N>, Vector<N>),
+        residual: &impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
+        stats: &mut Stats,
+    ) -> Result<Vector<K>>
+    where
+        F: Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>,
+    {
+        let Step {
+            t1, h, bh2, v_gain, ..
+        } = *step;
+        let r = |z: &Vector<K>| {
+            let (q1, _, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
+            let mut zq = *z;
+            zq.fixed_rows_mut::<N>(0).copy_from(&q1);
+            residual(1.0 / bh2, t1, &zq, &qd1, &qdd1)
+        };
+        let failed = Error::NewtonFailed { t: t1, h };
+        let mut z = z0;
+        // The forward-difference matrix depends on the step: formed at every step.
+        if !newton.structured() {
+            newton.factor = None;
+        }
+        let (mut fresh, mut last, mut last_theta) = (false, f64::INFINITY, 0.0);
+        for iteration in 0..self.max_iterations {
+            if newton.factor.is_none() || (!newton.structured() && iteration == 4) {
+                let q1 = kinematics(&z.fixed_rows::<N>(0).into_owned()).0;
+                newton.form(&r, step, (&z, &q1), stats)?;
+                fresh = true;
+            }
+            let rz = r(&z);
+            stats.n_rhs += 1;
+            let dz = newton.solve(&rz).ok_or(failed.clone())?;
+            if !dz.iter().all(|v| v.is_finite()) {
+                return Err(Error::NonFinite { t: t1 });
+            }
+            z += dz;
+            let (q1, _, qd1, _) = kinematics(&z.fixed_rows::<N>(0).into_owned());
+            let size = dz.fixed_rows::<N>(0).amax();
+            let theta = if iteration == 0 { 0.0 } else { size / last };
+            // `passes(f)`: the increment scaled by `f` meets the positions' and the
+            // velocities' tests.
+            let passes = |f: f64, velocities: bool| {
+                (0..N).all(|i| {
+                    let d = f * dz[i].abs();
+                    d <= self.tol * (1.0 + q1[i].abs())
+                        && (!velocities || v_gain * d <= self.tol * (1.0 + qd1[i].abs()))
+                })
+            };
+            let left = if iteration > 0 && theta < 1.0 {
+                theta / (1.0 - theta)
+            } else {
+                1.0
+            };
+            let rounding = theta > 0.5 && (fresh || last_theta <= SLOW);
+            if passes(1.0, true) || passes(left, true) || (passes(1.0, false) && rounding) {
+                return Ok(z);
+            }
+            if theta > SLOW && !fresh {
+                // A matrix from earlier steps: refactor, at the predictor if diverging.
+                newton.factor = None;
+                if theta >= 1.0 {
+                    z = z0;
+                }
+            } else if theta >= 1.0 && newton.structured() && fresh {
+                // The matrix from structure lacks what dominates here (stiff forces): the
+                // forward-difference Jacobian from now on, from the predictor.
+                newton.structured = false;
+                newton.factor = None;
+                z = z0;
+            }
+            (last, last_theta) = (size, theta);
+        }
+        Err(failed)
+    }
+
     fn validate(&self) -> Result<()> {
         let bad = |what: &'static str, detail: String| Err(Error::InvalidInput { what, detail });
         positive_finite("h", self.h)?;
@@ -391,6 +462,135 @@ impl GeneralizedAlpha {
         if self.max_iterations == 0 || self.max_steps == 0 {
             return bad("max_iterations/max_steps", "must be at least 1".to_string());
         }
+        Ok(())
+    }
+}
+
+/// Contraction of Newton's increments above which a matrix kept from earlier steps is
+/// refactored at the iterate.
+const SLOW: f64 = 0.2;
+
+/// Saddle-point systems larger than this (`N + M`) are factored banded
+/// ([`crate::banded::SaddleLu`]), smaller ones dense.
+const BANDED_FROM: usize = 24;
+
+/// No structure: the forward-difference matrix.
+#[allow(clippy::type_complexity, reason = "the structure argument's type")]
+fn no_structure<const N: usize, const K: usize>()
+-> Option<fn(f64, &Vector<N>, f64) -> Option<Factor<K>>> {
+    None
+}
+
+/// What one step's Newton iteration needs to know of the step.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    t1: f64,
+    h: f64,
+    /// `beta h^2`.
+    bh2: f64,
+    /// `(1 - alpha_m) / (1 - alpha_f)`: `d qdd1 / d q1` times `beta h^2`.
+    c1: f64,
+    /// `gamma / (beta h)`: `d qd1 / d q1`.
+    v_gain: f64,
+}
+
+/// A factored iteration matrix. From structure (closed loops, unknowns `[d; beta h^2
+/// lambda]`): the residual's derivative times `beta h^2`,
+///
+/// ```text
+/// [c1 M + gamma h C + beta h^2 K,  Phi_q^T]      c1 = (1 - alpha_m) / (1 - alpha_f),
+/// [Phi_q,                          0      ]      C = -df/dqd,  K = d(M qdd + Phi_q^T lambda - f)/dq,
+/// ```
+///
+/// taken as the simplified-Newton matrix `[c1 M, Phi_q^T; Phi_q, 0]`: `C` and `K` are
+/// `O(h)` and `O(h^2)` beside `c1 M` (their absence only slows the contraction, which the
+/// convergence test measures; the answer is the residual's root either way). Banded for a
+/// large assembly, dense LU below [`BANDED_FROM`] or where the band refuses (a pivot ratio
+/// below `1e-8`, near a singular position). Otherwise the forward-difference Jacobian of
+/// the residual.
+pub(crate) enum Factor<const K: usize> {
+    Saddle(SaddleLu),
+    Dense(Box<Lu<f64, K>>),
+}
+
+impl<const K: usize> Factor<K> {
+    /// `[c1 M, Phi_q^T; Phi_q, 0]` factored (`mass` is `c1 M`); `None` when singular.
+    fn saddle<const N: usize, const M: usize>(
+        mass: &Matrix<N, N>,
+        phi_q: &Matrix<M, N>,
+    ) -> Option<Self> {
+        const { assert!(K == N + M, "the unknowns are (q, lambda)") };
+        if K > BANDED_FROM
+            && let Some(lu) = SaddleLu::factor(mass, phi_q)
+        {
+            return Some(Factor::Saddle(lu));
+        }
+        let mut j = Box::new(Matrix::<K, K>::zeros());
+        j.fixed_view_mut::<N, N>(0, 0).copy_from(mass);
+        j.fixed_view_mut::<M, N>(N, 0).copy_from(phi_q);
+        j.fixed_view_mut::<N, M>(0, N).copy_from(&phi_q.transpose());
+        Lu::factor(*j).map(|lu| Factor::Dense(Box::new(lu)))
+    }
+
+    /// `J^-1 r`.
+    fn solve(&self, r: &Vector<K>) -> Vector<K> {
+        match self {
+            Factor::Saddle(lu) => {
+                let mut z = *r;
+                lu.solve(z.as_mut_slice());
+                z
+            }
+            Factor::Dense(lu) => lu.solve(r),
+        }
+    }
+}
+
+/// Newton's matrix over a run: the factor kept (with the factor its right-hand side is
+/// scaled by: `beta h^2` from structure, 1 for forward differences), how to form it from
+/// structure, and whether structure still serves (a model whose stiff forces the matrix
+/// from structure leaves out turns to forward differences for the rest of the run).
+struct Newton<const K: usize, F> {
+    factor: Option<(Factor<K>, f64)>,
+    structure: Option<F>,
+    structured: bool,
+}
+
+impl<const K: usize, F> Newton<K, F> {
+    fn structured(&self) -> bool {
+        self.structured && self.structure.is_some()
+    }
+
+    /// The increment `-J^-1 r`.
+    fn solve(&self, r: &Vector<K>) -> Option<Vector<K>> {
+        let (factor, scale) = self.factor.as_ref()?;
+        Some(factor.solve(&(r * -*scale)))
+    }
+
+    /// Form and factor the matrix at the iterate `z` (positions `q1`).
+    fn form<const N: usize>(
+        &mut self,
+        r: &impl Fn(&Vector<K>) -> Vector<K>,
+        step: &Step,
+        (z, q1): (&Vector<K>, &Vector<N>),
+        stats: &mut Stats,
+    ) -> Result<()>
+    where
+        F: Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>,
+    {
+        let Step { t1, h, bh2, c1, .. } = *step;
+        stats.n_jac += 1;
+        stats.n_lu += 1;
+        let failed = Error::NewtonFailed { t: t1, h };
+        if self.structured()
+            && let Some(structure) = &self.structure
+        {
+            self.factor = Some((structure(t1, q1, c1).ok_or(failed)?, bh2));
+            return Ok(());
+        }
+        let jac = forward_difference(|z| Ok(r(z)), z).map_err(|_| Error::NonFinite { t: t1 })?;
+        stats.n_rhs += K + 1;
+        let lu = Lu::factor(jac).ok_or(failed)?;
+        self.factor = Some((Factor::Dense(Box::new(lu)), 1.0));
         Ok(())
     }
 }
@@ -452,7 +652,7 @@ impl Integrator for GeneralizedAlpha {
             qdd0,
             z0: q0,
         };
-        let run = self.run::<D, D, D>(start, t1, events, observer, pack, residual);
+        let run = self.run::<D, D, D>(start, t1, events, observer, pack, residual, no_structure());
         match (run, failure.take()) {
             (Err(_), Some(e)) => Err(e),
             (run, _) => run.map(|mut s| {
