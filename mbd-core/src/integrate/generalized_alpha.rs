@@ -398,10 +398,12 @@ impl GeneralizedAlpha {
         };
         let failed = Error::NewtonFailed { t: t1, h };
         let mut z = z0;
-        // The forward-difference matrix depends on the step: formed at every step.
+        // The forward-difference matrix depends on the step: formed at every step. Each
+        // step tries the matrix from structure first, where there is one.
         if !newton.structured() {
             newton.factor = None;
         }
+        newton.structured = true;
         let (mut fresh, mut last, mut last_theta) = (false, f64::INFINITY, 0.0);
         for iteration in 0..self.max_iterations {
             if newton.factor.is_none() || (!newton.structured() && iteration == 4) {
@@ -437,6 +439,14 @@ impl GeneralizedAlpha {
             if passes(1.0, true) || passes(left, true) || (passes(1.0, false) && rounding) {
                 return Ok(z);
             }
+            // Increments that a matrix formed in this step no longer contracts, within
+            // `STALL` times the positions' tolerance: the residual's rounding amplified by
+            // an ill-conditioned matrix (near a singular position, along the motions the
+            // constraints stop fixing), as converged as it gets; the better of the last two
+            // iterates.
+            if theta >= 0.5 && fresh && passes(1.0 / STALL, false) {
+                return Ok(if theta > 1.0 { z - dz } else { z });
+            }
             if theta > SLOW && !fresh {
                 // A matrix from earlier steps: refactor, at the predictor if diverging.
                 newton.factor = None;
@@ -444,8 +454,9 @@ impl GeneralizedAlpha {
                     z = z0;
                 }
             } else if theta >= 1.0 && newton.structured() && fresh {
-                // The matrix from structure lacks what dominates here (stiff forces): the
-                // forward-difference Jacobian from now on, from the predictor.
+                // The matrix from structure lacks what dominates here (stiff forces, or
+                // the curvature of the constraints near a singular position): the
+                // forward-difference Jacobian for this step, from the predictor.
                 newton.structured = false;
                 newton.factor = None;
                 z = z0;
@@ -469,6 +480,10 @@ impl GeneralizedAlpha {
 /// Contraction of Newton's increments above which a matrix kept from earlier steps is
 /// refactored at the iterate.
 const SLOW: f64 = 0.2;
+
+/// Newton's increments that stall (a matrix formed in the step no longer contracts them)
+/// within this many times the positions' tolerance end the iteration.
+const STALL: f64 = 1e3;
 
 /// Saddle-point systems larger than this (`N + M`) are factored banded
 /// ([`crate::banded::SaddleLu`]), smaller ones dense.
@@ -547,8 +562,8 @@ impl<const K: usize> Factor<K> {
 
 /// Newton's matrix over a run: the factor kept (with the factor its right-hand side is
 /// scaled by: `beta h^2` from structure, 1 for forward differences), how to form it from
-/// structure, and whether structure still serves (a model whose stiff forces the matrix
-/// from structure leaves out turns to forward differences for the rest of the run).
+/// structure, and whether structure serves this step (where the matrix from structure does
+/// not contract, the step turns to forward differences).
 struct Newton<const K: usize, F> {
     factor: Option<(Factor<K>, f64)>,
     structure: Option<F>,
