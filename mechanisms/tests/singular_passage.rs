@@ -124,9 +124,10 @@ fn radau5() {
     assert!(err < 1e-4, "{err:e}");
 }
 
-/// Generalized-α (index 3) at h = 1e-3, whose Newton iteration fails at the first flat
-/// position unbridged (the first second only: its forward-difference Jacobian of 161
-/// columns per step is slow).
+/// Generalized-α (index 3) at h = 1e-3 through the bridge: its Newton iteration (the
+/// banded matrix from `M` and `Phi_q`, increments that stall at the rounding accepted)
+/// passes the flat positions by itself, so nothing is bridged; still on the parallelogram
+/// branch (its own test: `fourbar_assembly_generalized_alpha.rs`).
 #[test]
 fn generalized_alpha_is_bridged_on_the_parallelogram_branch() {
     big_stack(generalized_alpha);
@@ -147,7 +148,7 @@ fn generalized_alpha() {
             &Settings::new(h * h),
         )
         .unwrap();
-    assert_eq!(run.passages.len(), 1);
+    assert!(run.passages.is_empty(), "{:?}", run.passages);
     let err = check(&a, &run, 1.0, "generalized-alpha 1e-3");
     assert!(err < 1e-3, "{err:e}");
 }
