@@ -6,7 +6,7 @@
 use crate::bricard::Bricard;
 use crate::fourbar_assembly::{self as fa, FourBarAssembly};
 use crate::workprecision::{Failure, Measured, Method, Problem, Quantity, Setting};
-use mbd::integrate::Integrator;
+use mbd::integrate::{GeneralizedAlpha, Integrator};
 use mbd::passage::{self, Settings};
 use mbd::{Mechanism, Options, Vector};
 
@@ -16,7 +16,7 @@ pub fn problems() -> Vec<Problem> {
         Problem {
             name: "fourbar_assembly",
             title: "IFToMM A02, 40 four-bar loops: crank 0's tip at 1 s (a singular position bridged)",
-            methods: &[Method::Dopri5, Method::Dop853],
+            methods: &[Method::Dopri5, Method::Dop853, Method::GeneralizedAlpha],
             run: assembly,
         },
         Problem {
@@ -64,6 +64,19 @@ fn assembly(s: &Setting) -> Result<Measured, Failure> {
             &[],
             &Settings::new(s.value),
         )?,
+        // Index 3, its Newton matrix from `M` and `Phi_q`: passes the flat positions itself.
+        Method::GeneralizedAlpha => {
+            passage::solve_generalized_alpha::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
+                &GeneralizedAlpha::new(crate::workprecision::RHO_INF, s.value)
+                    .recording(mbd::Record::Final, false),
+                &a,
+                0.0,
+                y0,
+                T_ASSEMBLY,
+                &[],
+                &Settings::new(s.value * s.value),
+            )?
+        }
         other => return Err(Failure::Unsupported(format!("{other} is not swept here"))),
     };
     let tip = a.tip(&run.solution.y_end);

@@ -30,11 +30,11 @@
 
 use super::{Integrator, positive_finite, second_order_end_packed, stack};
 use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
+use crate::banded::SaddleLu;
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
 use crate::jacobian::forward_difference;
-use crate::banded::SaddleLu;
 use crate::linalg::Lu;
 use crate::model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
 
