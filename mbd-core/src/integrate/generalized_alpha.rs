@@ -378,9 +378,8 @@ impl GeneralizedAlpha {
     /// (contraction above [`SLOW`]), as Radau5 keeps its Jacobian; the forward-difference
     /// matrix is formed at every step's predictor and once more at the fifth iteration.
     /// Converged when the last increment, or the error left estimated from the contraction
-    /// `theta` (`theta / (1 - theta)` times it), passes [`Self::tol`]'s test; or, the
-    /// positions' test met, when increments that were shrinking fast stop halving (the
-    /// residual's rounding, which a stiff model amplifies).
+    /// `theta` (`theta / (1 - theta)` times it), passes [`Self::tol`]'s test; or when the
+    /// increments stall within [`STALL`] times the positions' test (rounding).
     fn newton<const N: usize, const K: usize, F>(
         &self,
         newton: &mut Newton<K, F>,
