@@ -30,8 +30,6 @@ struct Pattern {
     pos: Vec<usize>,
     /// Half-bandwidth in that order.
     kl: usize,
-    /// Coordinates (`N`).
-    coords: usize,
 }
 
 impl Pattern {
@@ -80,7 +78,6 @@ impl Pattern {
             phi_q,
             pos,
             kl,
-            coords: N,
         }
     }
 }
@@ -227,11 +224,34 @@ fn solve<const N: usize, const M: usize>(
     u: &Vector<N>,
     b: &Vector<M>,
 ) -> Option<(Vector<N>, Vector<M>)> {
-    let lu = SaddleLu::from_pattern(pattern, N + M)?;
-    let mut z: Vec<f64> = u.iter().chain(b.iter()).copied().collect();
+    let n = N + M;
+    let (kl, pos) = (pattern.kl, &pattern.pos);
+    if kl * MAX_BAND_FRACTION >= n {
+        return None;
+    }
+    let mut lu = BandLu::zeros(n, kl, kl);
+    for &(i, j, v) in &pattern.mass {
+        let (e1, e2) = (lu.at(pos[i], pos[j]), lu.at(pos[j], pos[i]));
+        lu.a[e1] = v;
+        lu.a[e2] = v;
+    }
+    for &(k, j, v) in &pattern.phi_q {
+        let (r, c) = (pos[N + k], pos[j]);
+        let (e1, e2) = (lu.at(r, c), lu.at(c, r));
+        lu.a[e1] = v;
+        lu.a[e2] = v;
+    }
+    lu.factor()?;
+    let mut z = vec![0.0; n];
+    for i in 0..N {
+        z[pos[i]] = u[i];
+    }
+    for k in 0..M {
+        z[pos[N + k]] = b[k];
+    }
     lu.solve(&mut z);
-    let x = Vector::<N>::from_fn(|i, _| z[i]);
-    let lambda = Vector::<M>::from_fn(|k, _| z[N + k]);
+    let x = Vector::<N>::from_fn(|i, _| z[pos[i]]);
+    let lambda = Vector::<M>::from_fn(|k, _| z[pos[N + k]]);
     x.iter()
         .chain(lambda.iter())
         .all(|v| v.is_finite())
@@ -239,8 +259,8 @@ fn solve<const N: usize, const M: usize>(
 }
 
 /// The banded LU of a saddle-point matrix `[M Phi_q^T; Phi_q 0]`, kept to solve many
-/// right-hand sides: the iteration matrix of an implicit method, factored once and reused
-/// over the Newton iterations of several steps.
+/// right-hand sides: the iteration matrix of an implicit method (generalized-α), factored
+/// once and reused over the Newton iterations of several steps.
 #[derive(Debug)]
 pub struct SaddleLu {
     lu: BandLu,
@@ -255,28 +275,28 @@ impl SaddleLu {
         mass: &Matrix<N, N>,
         phi_q: &Matrix<M, N>,
     ) -> Option<Self> {
-        Self::from_pattern(Pattern::dense(mass, phi_q), N + M)
-    }
-
-    fn from_pattern(pattern: Pattern, n: usize) -> Option<Self> {
-        let (kl, pos, coords) = (pattern.kl, pattern.pos, pattern.coords);
-        if kl * MAX_BAND_FRACTION >= n {
+        let pattern = Pattern::dense(mass, phi_q);
+        let (kl, pos) = (pattern.kl, &pattern.pos);
+        if kl * MAX_BAND_FRACTION >= N + M {
             return None;
         }
-        let mut lu = BandLu::zeros(n, kl, kl);
-        for &(i, j, v) in &pattern.mass {
+        let mut lu = BandLu::zeros(N + M, kl, kl);
+        for &(i, j, v) in pattern.mass.iter() {
             let (e1, e2) = (lu.at(pos[i], pos[j]), lu.at(pos[j], pos[i]));
             lu.a[e1] = v;
             lu.a[e2] = v;
         }
-        for &(k, j, v) in &pattern.phi_q {
-            let (r, c) = (pos[coords + k], pos[j]);
+        for &(k, j, v) in pattern.phi_q.iter() {
+            let (r, c) = (pos[N + k], pos[j]);
             let (e1, e2) = (lu.at(r, c), lu.at(c, r));
             lu.a[e1] = v;
             lu.a[e2] = v;
         }
         lu.factor()?;
-        Some(SaddleLu { lu, pos })
+        Some(SaddleLu {
+            lu,
+            pos: pattern.pos,
+        })
     }
 
     /// Solve in place: `z = [u; b]` in, `[x; lambda]` out.
@@ -356,6 +376,32 @@ mod tests {
         let dense = saddle_point(&mass, &u, &p, &b).unwrap();
         let sparse = saddle_point_sparse::<N, M>(&lower, &u, &rows, &b).unwrap();
         assert_eq!(dense, sparse);
+    }
+
+    /// One factorisation kept for several right-hand sides (a Newton iteration's) gives
+    /// what the one-shot solve gives for each.
+    #[test]
+    fn kept_factor_solves_many_right_hand_sides() {
+        let (mass, p, u, b) = chain();
+        let lu = SaddleLu::factor(&mass, &p).expect("banded, well conditioned");
+        for scale in [1.0, -3.0] {
+            let (x, lambda) = saddle_point(&mass, &(u * scale), &p, &(b * scale)).unwrap();
+            let mut z: Vec<f64> = (u * scale)
+                .iter()
+                .chain((b * scale).iter())
+                .copied()
+                .collect();
+            lu.solve(&mut z);
+            let (zx, zl) = z.split_at(N);
+            assert!(
+                x.iter().zip(zx).all(|(a, b)| (a - b).abs() < 1e-13),
+                "{x} vs {zx:?}"
+            );
+            assert!(
+                lambda.iter().zip(zl).all(|(a, b)| (a - b).abs() < 1e-13),
+                "{lambda} vs {zl:?}"
+            );
+        }
     }
 
     /// A repeated constraint row makes the system singular: no answer (the caller falls
