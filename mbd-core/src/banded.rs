@@ -378,6 +378,16 @@ mod tests {
         assert_eq!(dense, sparse);
     }
 
+    /// A repeated constraint row makes the system singular: no answer (the caller falls
+    /// back to the rank-robust solve).
+    #[test]
+    fn refuses_a_redundant_row() {
+        let (mass, mut p, u, b) = chain();
+        let last = p.row(M - 2).into_owned();
+        p.set_row(M - 1, &last);
+        assert!(saddle_point(&mass, &u, &p, &b).is_none());
+    }
+
     /// One factorisation kept for several right-hand sides (a Newton iteration's) gives
     /// what the one-shot solve gives for each.
     #[test]
@@ -402,15 +412,5 @@ mod tests {
                 "{lambda} vs {zl:?}"
             );
         }
-    }
-
-    /// A repeated constraint row makes the system singular: no answer (the caller falls
-    /// back to the rank-robust solve).
-    #[test]
-    fn refuses_a_redundant_row() {
-        let (mass, mut p, u, b) = chain();
-        let last = p.row(M - 2).into_owned();
-        p.set_row(M - 1, &last);
-        assert!(saddle_point(&mass, &u, &p, &b).is_none());
     }
 }
