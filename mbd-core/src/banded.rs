@@ -207,6 +207,59 @@ pub fn saddle_point<const N: usize, const M: usize>(
     solve::<N, M>(Pattern::dense(mass, phi_q), u, b)
 }
 
+/// As [`saddle_point`], by the symmetric `L D L^T` alone (no pivoted LU behind it): it
+/// answers only where `Phi_q` is well away from losing rank (its multiplier pivots scale
+/// with the squares of `Phi_q`'s singular values), the case in which a mass-orthogonal
+/// projection may take the exact correction instead of the augmented Lagrangian's
+/// least-squares one. `None` for small systems (`N + M <= `[`MIN_ORDER`]).
+pub fn saddle_point_well_conditioned<const N: usize, const M: usize>(
+    mass: &Matrix<N, N>,
+    u: &Vector<N>,
+    phi_q: &Matrix<M, N>,
+    b: &Vector<M>,
+) -> Option<(Vector<N>, Vector<M>)> {
+    if N + M <= MIN_ORDER {
+        return None;
+    }
+    let pattern = Pattern::dense(mass, phi_q);
+    if pattern.kl * MAX_BAND_FRACTION >= N + M {
+        return None;
+    }
+    let z = ldl_solve::<N>(&pattern, &ordered(&pattern, u, b))?;
+    unordered(&pattern, &z)
+}
+
+/// Systems up to this order are left to the dense solves (as `solve::solve_augmented`
+/// does): the band pays off on large assemblies.
+const MIN_ORDER: usize = 24;
+
+/// The right-hand side `[u; b]` in the band's order.
+fn ordered<const N: usize, const M: usize>(
+    pattern: &Pattern<'_>,
+    u: &Vector<N>,
+    b: &Vector<M>,
+) -> Vec<f64> {
+    let mut z = vec![0.0; N + M];
+    for (i, &p) in pattern.pos.iter().enumerate() {
+        z[p] = if i < N { u[i] } else { b[i - N] };
+    }
+    z
+}
+
+/// `(x, lambda)` from the solution in the band's order, when finite.
+fn unordered<const N: usize, const M: usize>(
+    pattern: &Pattern<'_>,
+    z: &[f64],
+) -> Option<(Vector<N>, Vector<M>)> {
+    let pos = &pattern.pos;
+    let x = Vector::<N>::from_fn(|i, _| z[pos[i]]);
+    let lambda = Vector::<M>::from_fn(|k, _| z[pos[N + k]]);
+    x.iter()
+        .chain(lambda.iter())
+        .all(|v| v.is_finite())
+        .then_some((x, lambda))
+}
+
 /// As [`saddle_point`], with `M` and `Phi_q` given by their non-zeros `(row, column, value)`
 /// (`M` by its lower triangle and diagonal, each entry once): the form generated code emits
 /// for a large assembly, whose dense matrices are mostly zeros.
@@ -228,25 +281,12 @@ fn solve<const N: usize, const M: usize>(
     u: &Vector<N>,
     b: &Vector<M>,
 ) -> Option<(Vector<N>, Vector<M>)> {
-    let n = N + M;
-    let (kl, pos) = (pattern.kl, &pattern.pos);
-    if kl * MAX_BAND_FRACTION >= n {
+    if pattern.kl * MAX_BAND_FRACTION >= N + M {
         return None;
     }
-    let mut z = vec![0.0; n];
-    for i in 0..N {
-        z[pos[i]] = u[i];
-    }
-    for k in 0..M {
-        z[pos[N + k]] = b[k];
-    }
+    let z = ordered(&pattern, u, b);
     let z = ldl_solve::<N>(&pattern, &z).or_else(|| lu_solve::<N>(&pattern, z))?;
-    let x = Vector::<N>::from_fn(|i, _| z[pos[i]]);
-    let lambda = Vector::<M>::from_fn(|k, _| z[pos[N + k]]);
-    x.iter()
-        .chain(lambda.iter())
-        .all(|v| v.is_finite())
-        .then_some((x, lambda))
+    unordered(&pattern, &z)
 }
 
 /// The banded LU with partial pivoting of the permuted system, `rhs` in the band's order.
