@@ -332,19 +332,23 @@ fn ldl_solve<const N: usize>(pattern: &Pattern<'_>, rhs: &[f64]) -> Option<Vec<f
         ldl.a[e] = v;
     }
     ldl.factor()?;
-    let mut padded = vec![0.0; kl + rhs.len()];
-    padded[kl..].copy_from_slice(rhs);
-    ldl.solve(&mut padded);
-    let x = padded.split_off(kl);
-    // Residual `rhs - K x` from the triplets (`K` symmetric: each off-diagonal entry twice).
-    let mut r = rhs.to_vec();
-    let mut scale = vec![0.0_f64; rhs.len()];
+    // One buffer: the solution after `kl` zeros (the padding rows' unknowns), then the
+    // residual `rhs - K x` and the magnitudes of its terms, from the triplets (`K`
+    // symmetric: each off-diagonal entry twice).
+    let n = rhs.len();
+    let mut work = vec![0.0; kl + 3 * n];
+    work[kl..kl + n].copy_from_slice(rhs);
+    ldl.solve(&mut work[..kl + n]);
+    let (x, rest) = work[kl..].split_at_mut(n);
+    let (r, scale) = rest.split_at_mut(n);
+    r.copy_from_slice(rhs);
     let mut apply = |a: usize, b: usize, v: f64| {
-        r[a] -= v * x[b];
-        scale[a] += (v * x[b]).abs();
+        let (va, vb) = (v * x[b], v * x[a]);
+        r[a] -= va;
+        scale[a] += va.abs();
         if a != b {
-            r[b] -= v * x[a];
-            scale[b] += (v * x[a]).abs();
+            r[b] -= vb;
+            scale[b] += vb.abs();
         }
     };
     for &(i, j, v) in pattern.mass.iter() {
@@ -353,9 +357,11 @@ fn ldl_solve<const N: usize>(pattern: &Pattern<'_>, rhs: &[f64]) -> Option<Vec<f
     for &(k, j, v) in pattern.phi_q.iter() {
         apply(pos[N + k], pos[j], v);
     }
-    let ok =
-        (r.iter().zip(&scale).zip(rhs)).all(|((r, s), b)| r.abs() <= RESIDUAL_TOL * (s + b.abs()));
-    ok.then_some(x)
+    let ok = (r.iter().zip(scale.iter()).zip(rhs))
+        .all(|((r, s), b)| r.abs() <= RESIDUAL_TOL * (s + b.abs()));
+    work.truncate(kl + n);
+    work.drain(..kl);
+    ok.then_some(work)
 }
 
 /// The `L D L^T` answer is kept while every residual component stays below this times the
