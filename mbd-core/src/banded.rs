@@ -11,6 +11,7 @@
 //! caller falls back to the rank-robust augmented Lagrangian of `crate::augmented`.
 
 use crate::model::{Matrix, Vector};
+use std::borrow::Cow;
 
 /// The LU answers only while `min |pivot| / max |pivot|` stays above this.
 pub const PIVOT_RATIO: f64 = 1e-8;
@@ -21,18 +22,18 @@ const MAX_BAND_FRACTION: usize = 3;
 /// The non-zeros of `M` (lower triangle and diagonal) and `Phi_q`, read once column by
 /// column (the storage order), and an order of the saddle-point unknowns: coordinates in
 /// turn, each multiplier right after the last coordinate of its row.
-struct Pattern {
+struct Pattern<'a> {
     /// `(i, j, M_ij)` with `i >= j`.
-    mass: Vec<(usize, usize, f64)>,
+    mass: Cow<'a, [(usize, usize, f64)]>,
     /// `(k, j, Phi_q[k, j])`.
-    phi_q: Vec<(usize, usize, f64)>,
+    phi_q: Cow<'a, [(usize, usize, f64)]>,
     /// Position in the band of coordinate `i` (`0..N`) and multiplier `k` (`N..N + M`).
     pos: Vec<usize>,
     /// Half-bandwidth in that order.
     kl: usize,
 }
 
-impl Pattern {
+impl<'a> Pattern<'a> {
     /// From the non-zeros of dense matrices, read column by column (the storage order).
     fn dense<const N: usize, const M: usize>(mass: &Matrix<N, N>, phi_q: &Matrix<M, N>) -> Self {
         let mut m = Vec::with_capacity(3 * N);
@@ -43,15 +44,15 @@ impl Pattern {
         for (j, col) in phi_q.as_slice().chunks_exact(M.max(1)).enumerate() {
             nonzeros(col, |k, v| p.push((k, j, v)));
         }
-        Self::new::<N, M>(m, p)
+        Self::new::<N, M>(Cow::Owned(m), Cow::Owned(p))
     }
 
     fn new<const N: usize, const M: usize>(
-        mass: Vec<(usize, usize, f64)>,
-        phi_q: Vec<(usize, usize, f64)>,
+        mass: Cow<'a, [(usize, usize, f64)]>,
+        phi_q: Cow<'a, [(usize, usize, f64)]>,
     ) -> Self {
         let mut last = vec![0_usize; M];
-        for &(k, j, _) in &phi_q {
+        for &(k, j, _) in phi_q.iter() {
             last[k] = last[k].max(j);
         }
         let mut rows: Vec<usize> = (0..M).collect();
@@ -207,6 +208,59 @@ pub fn saddle_point<const N: usize, const M: usize>(
     solve::<N, M>(Pattern::dense(mass, phi_q), u, b)
 }
 
+/// As [`saddle_point`], by the symmetric `L D L^T` alone (no pivoted LU behind it): it
+/// answers only where `Phi_q` is well away from losing rank (its multiplier pivots scale
+/// with the squares of `Phi_q`'s singular values), the case in which a mass-orthogonal
+/// projection may take the exact correction instead of the augmented Lagrangian's
+/// least-squares one. `None` for small systems (`N + M <= `[`MIN_ORDER`]).
+pub fn saddle_point_well_conditioned<const N: usize, const M: usize>(
+    mass: &Matrix<N, N>,
+    u: &Vector<N>,
+    phi_q: &Matrix<M, N>,
+    b: &Vector<M>,
+) -> Option<(Vector<N>, Vector<M>)> {
+    if N + M <= MIN_ORDER {
+        return None;
+    }
+    let pattern = Pattern::dense(mass, phi_q);
+    if pattern.kl * MAX_BAND_FRACTION >= N + M {
+        return None;
+    }
+    let z = ldl_solve::<N>(&pattern, &ordered(&pattern, u, b))?;
+    unordered(&pattern, &z)
+}
+
+/// Systems up to this order are left to the dense solves (as `solve::solve_augmented`
+/// does): the band pays off on large assemblies.
+const MIN_ORDER: usize = 24;
+
+/// The right-hand side `[u; b]` in the band's order.
+fn ordered<const N: usize, const M: usize>(
+    pattern: &Pattern<'_>,
+    u: &Vector<N>,
+    b: &Vector<M>,
+) -> Vec<f64> {
+    let mut z = vec![0.0; N + M];
+    for (i, &p) in pattern.pos.iter().enumerate() {
+        z[p] = if i < N { u[i] } else { b[i - N] };
+    }
+    z
+}
+
+/// `(x, lambda)` from the solution in the band's order, when finite.
+fn unordered<const N: usize, const M: usize>(
+    pattern: &Pattern<'_>,
+    z: &[f64],
+) -> Option<(Vector<N>, Vector<M>)> {
+    let pos = &pattern.pos;
+    let x = Vector::<N>::from_fn(|i, _| z[pos[i]]);
+    let lambda = Vector::<M>::from_fn(|k, _| z[pos[N + k]]);
+    x.iter()
+        .chain(lambda.iter())
+        .all(|v| v.is_finite())
+        .then_some((x, lambda))
+}
+
 /// As [`saddle_point`], with `M` and `Phi_q` given by their non-zeros `(row, column, value)`
 /// (`M` by its lower triangle and diagonal, each entry once): the form generated code emits
 /// for a large assembly, whose dense matrices are mostly zeros.
@@ -216,46 +270,222 @@ pub fn saddle_point_sparse<const N: usize, const M: usize>(
     phi_q: &[(usize, usize, f64)],
     b: &Vector<M>,
 ) -> Option<(Vector<N>, Vector<M>)> {
-    solve::<N, M>(Pattern::new::<N, M>(mass.to_vec(), phi_q.to_vec()), u, b)
+    solve::<N, M>(
+        Pattern::new::<N, M>(Cow::Borrowed(mass), Cow::Borrowed(phi_q)),
+        u,
+        b,
+    )
 }
 
 fn solve<const N: usize, const M: usize>(
-    pattern: Pattern,
+    pattern: Pattern<'_>,
     u: &Vector<N>,
     b: &Vector<M>,
 ) -> Option<(Vector<N>, Vector<M>)> {
-    let n = N + M;
-    let (kl, pos) = (pattern.kl, &pattern.pos);
-    if kl * MAX_BAND_FRACTION >= n {
+    if pattern.kl * MAX_BAND_FRACTION >= N + M {
         return None;
     }
-    let mut lu = BandLu::zeros(n, kl, kl);
-    for &(i, j, v) in &pattern.mass {
+    let z = ordered(&pattern, u, b);
+    let z = ldl_solve::<N>(&pattern, &z).or_else(|| lu_solve::<N>(&pattern, z))?;
+    unordered(&pattern, &z)
+}
+
+/// The banded LU with partial pivoting of the permuted system, `rhs` in the band's order.
+fn lu_solve<const N: usize>(pattern: &Pattern<'_>, mut rhs: Vec<f64>) -> Option<Vec<f64>> {
+    let (kl, pos) = (pattern.kl, &pattern.pos);
+    let mut lu = BandLu::zeros(rhs.len(), kl, kl);
+    for &(i, j, v) in pattern.mass.iter() {
         let (e1, e2) = (lu.at(pos[i], pos[j]), lu.at(pos[j], pos[i]));
         lu.a[e1] = v;
         lu.a[e2] = v;
     }
-    for &(k, j, v) in &pattern.phi_q {
+    for &(k, j, v) in pattern.phi_q.iter() {
         let (r, c) = (pos[N + k], pos[j]);
         let (e1, e2) = (lu.at(r, c), lu.at(c, r));
         lu.a[e1] = v;
         lu.a[e2] = v;
     }
     lu.factor()?;
-    let mut z = vec![0.0; n];
-    for i in 0..N {
-        z[pos[i]] = u[i];
+    lu.solve(&mut rhs);
+    Some(rhs)
+}
+
+/// The symmetric `L D L^T` of the permuted system without pivoting, `rhs` in the band's
+/// order: a quarter of the pivoted LU's work (no row interchanges, so no fill past the band,
+/// and one triangle). In this order it exists whenever `Phi_q` has full row rank (each
+/// multiplier follows every coordinate its row touches: its pivot is minus a positive
+/// quadratic form; each coordinate's, the energy left on the coordinates not yet
+/// eliminated, positive), but without pivoting its growth is not bounded a priori: the
+/// answer is kept only if its pivots stay within [`PIVOT_RATIO`] and its residual is at
+/// rounding level ([`RESIDUAL_TOL`]); else `None` and the pivoted LU answers.
+fn ldl_solve<const N: usize>(pattern: &Pattern<'_>, rhs: &[f64]) -> Option<Vec<f64>> {
+    let (kl, pos) = (pattern.kl, &pattern.pos);
+    if kl > MAX_LDL_BAND {
+        return None;
     }
-    for k in 0..M {
-        z[pos[N + k]] = b[k];
+    let mut ldl = BandLdl::zeros(rhs.len(), kl);
+    for &(i, j, v) in pattern.mass.iter() {
+        let e = ldl.at(pos[i], pos[j]);
+        ldl.a[e] = v;
     }
-    lu.solve(&mut z);
-    let x = Vector::<N>::from_fn(|i, _| z[pos[i]]);
-    let lambda = Vector::<M>::from_fn(|k, _| z[pos[N + k]]);
-    x.iter()
-        .chain(lambda.iter())
-        .all(|v| v.is_finite())
-        .then_some((x, lambda))
+    for &(k, j, v) in pattern.phi_q.iter() {
+        let e = ldl.at(pos[N + k], pos[j]);
+        ldl.a[e] = v;
+    }
+    ldl.factor()?;
+    // One buffer: the solution after `kl` zeros (the padding rows' unknowns), then the
+    // residual `rhs - K x` and the magnitudes of its terms, from the triplets (`K`
+    // symmetric: each off-diagonal entry twice).
+    let n = rhs.len();
+    let mut work = vec![0.0; kl + 3 * n];
+    work[kl..kl + n].copy_from_slice(rhs);
+    ldl.solve(&mut work[..kl + n]);
+    let (x, rest) = work[kl..].split_at_mut(n);
+    let (r, scale) = rest.split_at_mut(n);
+    r.copy_from_slice(rhs);
+    let mut apply = |a: usize, b: usize, v: f64| {
+        let (va, vb) = (v * x[b], v * x[a]);
+        r[a] -= va;
+        scale[a] += va.abs();
+        if a != b {
+            r[b] -= vb;
+            scale[b] += vb.abs();
+        }
+    };
+    for &(i, j, v) in pattern.mass.iter() {
+        apply(pos[i], pos[j], v);
+    }
+    for &(k, j, v) in pattern.phi_q.iter() {
+        apply(pos[N + k], pos[j], v);
+    }
+    let ok = (r.iter().zip(scale.iter()).zip(rhs))
+        .all(|((r, s), b)| r.abs() <= RESIDUAL_TOL * (s + b.abs()));
+    work.truncate(kl + n);
+    work.drain(..kl);
+    ok.then_some(work)
+}
+
+/// The `L D L^T` answer is kept while every residual component stays below this times the
+/// sum of the magnitudes of its terms (componentwise backward error; the pivoted LU reaches
+/// a few units of rounding).
+const RESIDUAL_TOL: f64 = 1e-12;
+
+/// `L D L^T` of a symmetric banded matrix of half-bandwidth `kl`, row `i` of the lower
+/// triangle stored as the window of columns `i - kl ..= i` (`L` below the diagonal, `D` on
+/// it), after `kl` rows of padding (`D = 1`, `L = 0`), so that every row has a full window:
+/// the kernels then run fixed-length loops ([`factor_k`], [`solve_k`], monomorphised for
+/// each bandwidth up to [`MAX_LDL_BAND`]).
+struct BandLdl {
+    n: usize,
+    kl: usize,
+    a: Vec<f64>,
+}
+
+/// The widest band the `L D L^T` kernels are instantiated for; wider ones take the LU.
+const MAX_LDL_BAND: usize = 8;
+
+impl BandLdl {
+    fn zeros(n: usize, kl: usize) -> Self {
+        let w = kl + 1;
+        let mut a = vec![0.0; (n + kl) * w];
+        for p in 0..kl {
+            a[p * w + kl] = 1.0;
+        }
+        BandLdl { n, kl, a }
+    }
+
+    /// Index of `(i, j)`, `i - kl <= j <= i`.
+    #[inline]
+    fn at(&self, i: usize, j: usize) -> usize {
+        (i + self.kl) * (self.kl + 1) + j + self.kl - i
+    }
+
+    /// Factor in place; `None` when a pivot vanishes, is not finite, or the pivots' ratio
+    /// falls below [`PIVOT_RATIO`].
+    fn factor(&mut self) -> Option<()> {
+        macro_rules! by_band {
+            ($($k:literal)*) => {
+                match self.kl {
+                    $($k => factor_k::<$k>(&mut self.a, self.n),)*
+                    _ => None,
+                }
+            };
+        }
+        let (lo, hi) = by_band!(0 1 2 3 4 5 6 7 8)?;
+        (lo >= PIVOT_RATIO * hi).then_some(())
+    }
+
+    /// `x`: `kl` zeros, then the right-hand side; the solution in its place.
+    fn solve(&self, x: &mut [f64]) {
+        macro_rules! by_band {
+            ($($k:literal)*) => {
+                match self.kl {
+                    $($k => solve_k::<$k>(&self.a, x),)*
+                    _ => unreachable!("factor refused the band"),
+                }
+            };
+        }
+        by_band!(0 1 2 3 4 5 6 7 8)
+    }
+}
+
+/// [`BandLdl::factor`] for half-bandwidth `K`: row by row, `u_c = L_ic d_c` formed first
+/// and then scaled by `1 / d_c`; the least and largest `|d|`, or `None` at a zero or
+/// non-finite pivot.
+fn factor_k<const K: usize>(a: &mut [f64], n: usize) -> Option<(f64, f64)> {
+    let w = K + 1;
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+    for p in K..K + n {
+        let (done, rest) = a.split_at_mut(p * w);
+        let row = &mut rest[..w];
+        let mut u = [0.0; K];
+        for c in 0..K {
+            // Row `p - K + c` shares columns `c' < c` of row p at `c' + K - c` of its own.
+            let rj = &done[(p - K + c) * w..(p - K + c + 1) * w];
+            let mut v = row[c];
+            for k in 0..c {
+                v -= u[k] * rj[k + K - c];
+            }
+            u[c] = v;
+            row[c] = v / rj[K];
+        }
+        let mut d = row[K];
+        for c in 0..K {
+            d -= u[c] * row[c];
+        }
+        if !(d.abs() > 0.0 && d.is_finite()) {
+            return None;
+        }
+        lo = lo.min(d.abs());
+        hi = hi.max(d.abs());
+        row[K] = d;
+    }
+    Some((lo, hi))
+}
+
+/// `L D L^T x = b` in place with the factors of [`factor_k`]; `x` holds `K` zeros (the
+/// padding rows' unknowns) and then `b`.
+fn solve_k<const K: usize>(a: &[f64], x: &mut [f64]) {
+    let w = K + 1;
+    let n = x.len() - K;
+    for p in K..K + n {
+        let row = &a[p * w..(p + 1) * w];
+        let mut s = x[p];
+        for c in 0..K {
+            s -= row[c] * x[p - K + c];
+        }
+        x[p] = s;
+    }
+    for p in K..K + n {
+        x[p] /= a[p * w + K];
+    }
+    for p in (K..K + n).rev() {
+        let row = &a[p * w..(p + 1) * w];
+        let xp = x[p];
+        for c in 0..K {
+            x[p - K + c] -= row[c] * xp;
+        }
+    }
 }
 
 /// The banded LU of a saddle-point matrix `[M Phi_q^T; Phi_q 0]`, kept to solve many
@@ -376,6 +606,30 @@ mod tests {
         let dense = saddle_point(&mass, &u, &p, &b).unwrap();
         let sparse = saddle_point_sparse::<N, M>(&lower, &u, &rows, &b).unwrap();
         assert_eq!(dense, sparse);
+    }
+
+    /// The symmetric `L D L^T` answers a well-conditioned chain of loops (the fast path, not
+    /// the fallback) and agrees with the pivoted LU to rounding.
+    #[test]
+    fn ldl_answers_and_agrees_with_the_pivoted_lu() {
+        let (mass, p, u, b) = chain();
+        let pattern = Pattern::dense(&mass, &p);
+        let pos = pattern.pos.clone();
+        let mut rhs = vec![0.0; A];
+        for i in 0..N {
+            rhs[pos[i]] = u[i];
+        }
+        for k in 0..M {
+            rhs[pos[N + k]] = b[k];
+        }
+        let ldl = ldl_solve::<N>(&pattern, &rhs).expect("full row rank: L D L^T exists");
+        let lu = lu_solve::<N>(&pattern, rhs).expect("banded, well conditioned");
+        let diff = ldl
+            .iter()
+            .zip(&lu)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(diff < 1e-12, "L D L^T and LU differ by {diff}");
     }
 
     /// A repeated constraint row makes the system singular: no answer (the caller falls

@@ -38,8 +38,15 @@ pub(crate) fn metric_correction<S: Constrained<N, M>, const N: usize, const M: u
     r: &Vector<M>,
 ) -> Result<Vector<N>> {
     let mass = sys.mass_matrix(t, q);
-    let dx =
-        AugmentedLagrangian::new(t, &mass, jac)?.solve_least_squares(&Vector::zeros(), &(-r))?;
+    // A large assembly well away from a singular position: the exact correction by one
+    // banded L D L^T (what the iteration below converges to there, at a fraction of its cost).
+    let exact = crate::banded::saddle_point_well_conditioned(&mass, &Vector::zeros(), jac, &(-r));
+    let dx = match exact {
+        Some((dx, _)) => dx,
+        None => {
+            AugmentedLagrangian::new(t, &mass, jac)?.solve_least_squares(&Vector::zeros(), &(-r))?
+        }
+    };
     if dx.iter().all(|v| v.is_finite()) {
         Ok(dx)
     } else {
