@@ -7,6 +7,7 @@
 pub mod analysis;
 pub mod augmented;
 pub mod banded;
+pub mod chart;
 pub mod closure;
 pub mod ensemble;
 pub mod error;

@@ -8,6 +8,7 @@
 //! exact derivatives), `codegen` (straight-line Rust).
 //! The language itself is documented on the facade crate `mbd`.
 
+mod ball;
 mod check;
 mod close;
 mod closure;

@@ -137,6 +137,10 @@ pub enum Joint<E = Expr> {
     Universal(Ident, Ident),
     /// Spatial: `rot_z(a) rot_y(b) rot_x(c)` (yaw, pitch, roll; singular at `b = ±π/2`).
     Spherical(Ident, Ident, Ident),
+    /// Spatial: a spherical joint in modified Rodrigues parameters `sigma = tan(phi/4) n`
+    /// (rotation by `phi` about the unit `n`; no singularity short of `phi = 2π`, and the
+    /// integrators switch to the shadow set past `phi = π`: `ball.rs`).
+    Ball(Ident, Ident, Ident),
     /// Welded to the parent.
     Fixed,
 }
@@ -147,7 +151,7 @@ impl<E> Joint<E> {
         match self {
             Joint::Revolute { coord, .. } | Joint::Prismatic { coord, .. } => vec![coord],
             Joint::Universal(a, b) => vec![a, b],
-            Joint::Spherical(a, b, c) => vec![a, b, c],
+            Joint::Spherical(a, b, c) | Joint::Ball(a, b, c) => vec![a, b, c],
             Joint::Fixed => Vec::new(),
         }
     }
@@ -858,12 +862,12 @@ impl Mechanism {
 }
 
 /// `revolute(q)` (planar), `revolute(q, x | y | z)` (spatial), `prismatic(s, axis)`,
-/// `universal(a, b)`, `spherical(a, b, c)` or `fixed`. Which joints suit the mechanism's
+/// `universal(a, b)`, `spherical(a, b, c)`, `ball(a, b, c)` or `fixed`. Which joints suit the mechanism's
 /// dimension is checked with the mechanics.
 fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
     const EXPECTED: &str = "expected a joint: `revolute(coordinate)` (planar), \
         `revolute(coordinate, x | y | z)` (spatial), `prismatic(coordinate, axis)`, \
-        `universal(a, b)`, `spherical(a, b, c)` or `fixed`";
+        `universal(a, b)`, `spherical(a, b, c)`, `ball(a, b, c)` or `fixed`";
     match &e {
         Expr::Path(p) if p.path.is_ident("fixed") => Some(Joint::Fixed),
         Expr::Call(c) => {
@@ -901,6 +905,9 @@ fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
                 }
                 (Some("spherical"), Some(a), 3) if name(1).is_some() && name(2).is_some() => {
                     Some(Joint::Spherical(a, name(1)?, name(2)?))
+                }
+                (Some("ball"), Some(a), 3) if name(1).is_some() && name(2).is_some() => {
+                    Some(Joint::Ball(a, name(1)?, name(2)?))
                 }
                 _ => {
                     errors.over(&e, EXPECTED);

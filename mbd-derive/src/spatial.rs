@@ -32,14 +32,24 @@ pub enum Step {
         coord: usize,
         axis: V3,
     },
+    /// A ball joint (`ball.rs`): three coordinates, the modified Rodrigues parameters
+    /// `sigma` (their position symbols), rotation `R(sigma)`, motion subspace the columns of
+    /// `E(sigma)`. The articulated-body recursion takes it as one three-degree-of-freedom
+    /// joint in the child's angular velocity (a 3x3 `D`), so nothing in it is singular.
+    Ball {
+        coords: [usize; 3],
+        sigma: V3,
+    },
     Fixed,
 }
 
 impl Step {
-    fn coord(&self) -> Option<usize> {
+    /// The coordinates the step moves.
+    fn coords(&self) -> Vec<usize> {
         match self {
-            Step::Revolute { coord, .. } | Step::Prismatic { coord, .. } => Some(*coord),
-            Step::Fixed => None,
+            Step::Revolute { coord, .. } | Step::Prismatic { coord, .. } => vec![*coord],
+            Step::Ball { coords, .. } => coords.to_vec(),
+            Step::Fixed => Vec::new(),
         }
     }
 }
@@ -224,9 +234,12 @@ struct Transform {
 
 impl Transform {
     fn new(g: &mut Graph, node: &Node) -> Self {
-        let rot = node
-            .turn
-            .map(|(axis, angle)| lower::rotation(g, ["rot_x", "rot_y", "rot_z"][axis], angle));
+        let rot = match node.step {
+            Step::Ball { sigma, .. } => Some(crate::ball::rotation(g, sigma)),
+            _ => node
+                .turn
+                .map(|(axis, angle)| lower::rotation(g, ["rot_x", "rot_y", "rot_z"][axis], angle)),
+        };
         Transform { rot, r: node.at }
     }
 
@@ -307,21 +320,60 @@ impl Transform {
     }
 }
 
-/// The motion subspace of a step in the child's frame.
-fn subspace(g: &mut Graph, step: &Step, x: &Transform) -> Option<Sv> {
+/// The motion subspace of a step in the child's frame: a column per coordinate it moves.
+fn subspace(g: &mut Graph, step: &Step, x: &Transform) -> Vec<(usize, Sv)> {
     let z = [g.zero(); 3];
     match step {
-        Step::Revolute { axis, .. } => {
+        Step::Revolute { axis, coord } => {
             let mut e = z;
             e[*axis] = g.one();
-            Some(Sv { a: e, l: z })
+            vec![(*coord, Sv { a: e, l: z })]
         }
-        Step::Prismatic { axis, .. } => Some(Sv {
-            a: z,
-            l: x.to_child(g, *axis),
-        }),
-        Step::Fixed => None,
+        Step::Prismatic { axis, coord } => vec![(
+            *coord,
+            Sv {
+                a: z,
+                l: x.to_child(g, *axis),
+            },
+        )],
+        Step::Ball { coords, sigma } => {
+            let e = crate::ball::rate_matrix(g, *sigma);
+            (0..3)
+                .map(|k| {
+                    let a = [e[0][k], e[1][k], e[2][k]];
+                    (coords[k], Sv { a, l: z })
+                })
+                .collect()
+        }
+        Step::Fixed => Vec::new(),
     }
+}
+
+/// `S' qd` of a step whose subspace moves with its coordinates (a ball joint's
+/// `(E' sigma', 0)`), `None` for the others.
+fn subspace_rate(g: &mut Graph, step: &Step, velocity: &[Expr]) -> Option<Sv> {
+    let Step::Ball { coords, sigma } = step else {
+        return None;
+    };
+    let rate = coords.map(|j| velocity[j]);
+    let z = g.zero();
+    Some(Sv {
+        a: crate::ball::bias(g, *sigma, rate),
+        l: [z; 3],
+    })
+}
+
+/// `sum_k S_k x_k` over a step's columns.
+fn combine_columns(g: &mut Graph, s: &[(usize, Sv)], x: &[Expr]) -> Option<Sv> {
+    let mut out: Option<Sv> = None;
+    for &(j, col) in s {
+        let term = sv_scale(g, col, x[j]);
+        out = Some(match out {
+            Some(o) => sv_add(g, o, term),
+            None => term,
+        });
+    }
+    out
 }
 
 /// What the recursion needs of the coordinates, indexed like the full coordinates.
@@ -334,9 +386,10 @@ pub struct Inputs<'a> {
     pub gravity: V3,
 }
 
-/// Pass 1 of one frame.
+/// Pass 1 of one frame (`c = v x v_J`: without `S' qd`, which the articulated-body
+/// recursion's ball joint does not have in its own velocity coordinates).
 struct Outward {
-    s: Option<Sv>,
+    s: Vec<(usize, Sv)>,
     v: Sv,
     c: Sv,
     p: Sv,
@@ -348,19 +401,18 @@ fn outward(
     node: &Node,
     x: &Transform,
     parent: Option<Sv>,
-    rate: Option<Expr>,
+    velocity: &[Expr],
 ) -> Outward {
     let z = [g.zero(); 3];
     let zero = Sv { a: z, l: z };
     let s = subspace(g, &node.step, x);
     let vp = parent.map_or(zero, |v| x.motion(g, v));
-    let (v, c) = match (s, rate) {
-        (Some(si), Some(rate)) => {
-            let vj = sv_scale(g, si, rate);
+    let (v, c) = match combine_columns(g, &s, velocity) {
+        Some(vj) => {
             let v = sv_add(g, vp, vj);
             (v, cross_motion(g, v, vj))
         }
-        _ => (vp, zero),
+        None => (vp, zero),
     };
     let inertia = inertia_at_origin(g, node.mass, node.com, &node.inertia);
     let iv = si_mul(g, &inertia, v);
@@ -374,12 +426,34 @@ fn outward(
     }
 }
 
-/// What pass 3 needs of a free step: `U = I^A S`, `u = tau - S . p^A` and `1 / D`.
+/// What pass 3 needs of a free step: `U = I^A S`, `u = tau - S . p^A` and `1 / D`; of a
+/// ball joint (in its angular velocity `w`, `S = (1, 0)`): `I^A`'s blocks `a` (`= D`) and
+/// `b`, `D^-1` and `u = n - p^A_a` (`n` the moment of its generalised forces).
 #[derive(Clone, Copy)]
-struct Articulated {
-    u_vec: Sv,
-    u: Expr,
-    inv_d: Expr,
+enum Articulated {
+    Step { u_vec: Sv, u: Expr, inv_d: Expr },
+    Ball { a: M3, b: M3, d_inv: M3, u: V3 },
+}
+
+/// The inverse of a symmetric 3x3 matrix: its adjugate over its determinant (one division).
+fn inverse_sym(g: &mut Graph, m: &M3) -> M3 {
+    let cof = |g: &mut Graph, i: usize, k: usize| {
+        let (i1, i2, k1, k2) = ((i + 1) % 3, (i + 2) % 3, (k + 1) % 3, (k + 2) % 3);
+        let (p, q) = (g.mul(m[i1][k1], m[i2][k2]), g.mul(m[i1][k2], m[i2][k1]));
+        g.sub(p, q)
+    };
+    let c: M3 = std::array::from_fn(|i| std::array::from_fn(|k| cof(g, i, k)));
+    let det = g.dot(&m[0], &c[0]);
+    let one = g.one();
+    let inv_det = g.div(one, det);
+    let mut out = c;
+    for r in 0..3 {
+        for k in r..3 {
+            out[r][k] = g.mul(c[k][r], inv_det);
+            out[k][r] = out[r][k];
+        }
+    }
+    out
 }
 
 /// Pass 2 of one frame: what it hands its parent, in the parent's frame.
@@ -388,92 +462,209 @@ fn inward(
     x: &Transform,
     o: &Outward,
     step: &Step,
-    joint: Joint,
+    joint: &Joint,
     (i_a, p_a): (Si, Sv),
 ) -> ((Si, Sv), Option<Articulated>) {
-    let Some(si) = o.s else {
-        return ((x.inertia(g, &i_a), x.force(g, p_a)), None);
-    };
-    match joint {
-        Joint::Free { tau } => {
-            let uv = si_mul(g, &i_a, si);
-            let d = sv_dot(g, si, uv);
-            let sp = sv_dot(g, si, p_a);
-            let u = g.sub(tau, sp);
-            let one = g.one();
-            let inv_d = g.div(one, d);
-            // I^a = I^A - U U^T / D.
-            let ud = Sv {
-                a: scale3(g, uv.a, inv_d),
-                l: scale3(g, uv.l, inv_d),
-            };
-            let mut ia = i_a;
-            for r in 0..3 {
-                for k in 0..3 {
-                    let (aa, ab, am) = (
-                        g.mul(ud.a[r], uv.a[k]),
-                        g.mul(ud.a[r], uv.l[k]),
-                        g.mul(ud.l[r], uv.l[k]),
-                    );
-                    ia.a[r][k] = g.sub(i_a.a[r][k], aa);
-                    ia.b[r][k] = g.sub(i_a.b[r][k], ab);
-                    ia.m[r][k] = g.sub(i_a.m[r][k], am);
-                }
-            }
-            if let Step::Revolute { axis, .. } = step {
-                // S = e_axis: I^a S = 0 exactly (the symbolic form would keep rounding
-                // noise, and work).
-                let z = g.zero();
-                for k in 0..3 {
-                    ia.a[*axis][k] = z;
-                    ia.a[k][*axis] = z;
-                    ia.b[*axis][k] = z;
-                }
-            }
-            // p^a = p^A + I^a c + U u / D.
-            let ic = si_mul(g, &ia, o.c);
-            let uu = sv_scale(g, ud, u);
-            let pa = sv_add(g, p_a, ic);
-            let mut pa = sv_add(g, pa, uu);
-            if let Step::Revolute { axis, .. } = step {
-                // The step transmits no moment about its axis but its own effort.
-                pa.a[*axis] = tau;
-            }
-            let art = Articulated {
-                u_vec: uv,
-                u,
-                inv_d,
-            };
-            ((x.inertia(g, &ia), x.force(g, pa)), Some(art))
+    let (ia, pa, art) = match (joint, o.s.first()) {
+        (Joint::Free { tau }, Some(&(_, si))) => {
+            let (ia, pa, art) = articulate(g, o, step, *tau, (i_a, p_a), si);
+            (ia, pa, Some(art))
         }
-        Joint::Driven { qdd } => {
-            let sq = sv_scale(g, si, qdd);
+        (Joint::Ball { moment }, _) => {
+            let (ia, pa, art) = articulate_ball(g, o, *moment, (i_a, p_a));
+            (ia, pa, Some(art))
+        }
+        (Joint::Driven { qdd }, _) => {
+            let sq = combine_columns(g, &o.s, qdd).expect("a driven step moves");
             let acc = sv_add(g, o.c, sq);
             let ic = si_mul(g, &i_a, acc);
-            let p = sv_add(g, p_a, ic);
-            ((x.inertia(g, &i_a), x.force(g, p)), None)
+            (i_a, sv_add(g, p_a, ic), None)
         }
-        Joint::Locked => ((x.inertia(g, &i_a), x.force(g, p_a)), None),
-    }
+        _ => (i_a, p_a, None),
+    };
+    ((x.inertia(g, &ia), x.force(g, pa)), art)
 }
 
-/// How a step's coordinate enters the recursion.
-#[derive(Clone, Copy)]
+/// A free one-degree-of-freedom step: `I^a = I^A - U U^T / D`, `p^a = p^A + I^a c + U u / D`.
+fn articulate(
+    g: &mut Graph,
+    o: &Outward,
+    step: &Step,
+    tau: Expr,
+    (i_a, p_a): (Si, Sv),
+    si: Sv,
+) -> (Si, Sv, Articulated) {
+    let uv = si_mul(g, &i_a, si);
+    let d = sv_dot(g, si, uv);
+    let sp = sv_dot(g, si, p_a);
+    let u = g.sub(tau, sp);
+    let one = g.one();
+    let inv_d = g.div(one, d);
+    let ud = Sv {
+        a: scale3(g, uv.a, inv_d),
+        l: scale3(g, uv.l, inv_d),
+    };
+    let mut ia = i_a;
+    for r in 0..3 {
+        for k in 0..3 {
+            let (aa, ab, am) = (
+                g.mul(ud.a[r], uv.a[k]),
+                g.mul(ud.a[r], uv.l[k]),
+                g.mul(ud.l[r], uv.l[k]),
+            );
+            ia.a[r][k] = g.sub(i_a.a[r][k], aa);
+            ia.b[r][k] = g.sub(i_a.b[r][k], ab);
+            ia.m[r][k] = g.sub(i_a.m[r][k], am);
+        }
+    }
+    if let Step::Revolute { axis, .. } = step {
+        // S = e_axis: I^a S = 0 exactly (the symbolic form would keep rounding
+        // noise, and work).
+        let z = g.zero();
+        for k in 0..3 {
+            ia.a[*axis][k] = z;
+            ia.a[k][*axis] = z;
+            ia.b[*axis][k] = z;
+        }
+    }
+    let ic = si_mul(g, &ia, o.c);
+    let uu = sv_scale(g, ud, u);
+    let pa = sv_add(g, p_a, ic);
+    let mut pa = sv_add(g, pa, uu);
+    if let Step::Revolute { axis, .. } = step {
+        // The step transmits no moment about its axis but its own effort.
+        pa.a[*axis] = tau;
+    }
+    let art = Articulated::Step {
+        u_vec: uv,
+        u,
+        inv_d,
+    };
+    (ia, pa, art)
+}
+
+/// A free ball joint in its angular velocity (`S = (1, 0)`, `D = a`): `I^a` keeps only
+/// `m - b^T D^-1 b` (its `a` and `b` blocks are exactly zero), and `p^a` the moment `n` and
+/// the force `p^A_l + (m - b^T D^-1 b) c_l + b^T D^-1 u`.
+fn articulate_ball(g: &mut Graph, o: &Outward, moment: V3, (i_a, p_a): (Si, Sv)) -> (Si, Sv, Articulated) {
+    let d_inv = inverse_sym(g, &i_a.a);
+    let u = sub3(g, moment, p_a.a);
+    // b^T D^-1, then the reduced mass block.
+    let bt_dinv = lower::matmul(g, &transpose(&i_a.b), &d_inv);
+    let reduced = lower::matmul(g, &bt_dinv, &i_a.b);
+    let z = g.zero();
+    let mut ia = Si {
+        a: [[z; 3]; 3],
+        b: [[z; 3]; 3],
+        m: i_a.m,
+    };
+    for r in 0..3 {
+        for k in r..3 {
+            ia.m[r][k] = g.sub(i_a.m[r][k], reduced[r][k]);
+            ia.m[k][r] = ia.m[r][k];
+        }
+    }
+    let mc = mat_vec(g, &ia.m, o.c.l);
+    let bu = mat_vec(g, &bt_dinv, u);
+    let fl = add3(g, p_a.l, mc);
+    let pa = Sv {
+        a: moment,
+        l: add3(g, fl, bu),
+    };
+    let art = Articulated::Ball {
+        a: i_a.a,
+        b: i_a.b,
+        d_inv,
+        u,
+    };
+    (ia, pa, art)
+}
+
+/// How a step's coordinates enter the recursion.
 enum Joint {
     Free { tau: Expr },
-    Driven { qdd: Expr },
+    /// A ball joint's three free coordinates, by the moment of their generalised forces.
+    Ball { moment: V3 },
+    /// Every coordinate driven: the known accelerations, per full coordinate.
+    Driven { qdd: Vec<Expr> },
     Locked,
 }
 
 impl Joint {
-    fn of(step: &Step, inp: &Inputs<'_>) -> Self {
-        match step.coord() {
-            Some(j) => match inp.prescribed[j] {
-                None => Joint::Free { tau: inp.tau[j] },
-                Some(qdd) => Joint::Driven { qdd },
-            },
-            None => Joint::Locked,
+    fn of(g: &mut Graph, step: &Step, inp: &Inputs<'_>) -> Self {
+        let coords = step.coords();
+        if coords.is_empty() {
+            return Joint::Locked;
         }
+        // A ball joint with a driven coordinate is refused where it is declared
+        // (model/trees.rs), so a ball here is free.
+        let ball = matches!(step, Step::Ball { .. });
+        if !ball && inp.prescribed[coords[0]].is_some() {
+            let zero = g.zero();
+            let mut qdd = vec![zero; inp.velocity.len()];
+            for &j in &coords {
+                qdd[j] = inp.prescribed[j].expect("all prescribed");
+            }
+            return Joint::Driven { qdd };
+        }
+        match step {
+            Step::Ball { sigma, coords } => {
+                let tau = coords.map(|j| inp.tau[j]);
+                Joint::Ball {
+                    moment: crate::ball::moment(g, *sigma, tau),
+                }
+            }
+            _ => Joint::Free {
+                tau: inp.tau[coords[0]],
+            },
+        }
+    }
+}
+
+/// Pass 3 of one frame with `a'` (its parent's acceleration carried over, plus `c`): the
+/// accelerations of its free coordinates into `qdd`, and its own acceleration.
+fn accelerate(
+    g: &mut Graph,
+    node: &Node,
+    o: &Outward,
+    joint: &Joint,
+    art: Option<Articulated>,
+    (a_prime, velocity): (Sv, &[Expr]),
+    qdd: &mut [Option<Expr>],
+) -> Sv {
+    match (joint, art, o.s.first()) {
+        (Joint::Free { .. }, Some(Articulated::Step { u_vec, u, inv_d }), Some(&(j, si))) => {
+            let ua = sv_dot(g, u_vec, a_prime);
+            let num = g.sub(u, ua);
+            let acc = g.mul(num, inv_d);
+            qdd[j] = Some(acc);
+            let sq = sv_scale(g, si, acc);
+            sv_add(g, a_prime, sq)
+        }
+        (Joint::Ball { .. }, Some(Articulated::Ball { a, b, d_inv, u }), _) => {
+            // w' = D^-1 (u - U^T a'), U^T a' = a a'_a + b a'_l.
+            let (aa, ba) = (mat_vec(g, &a, a_prime.a), mat_vec(g, &b, a_prime.l));
+            let ua = add3(g, aa, ba);
+            let rest = sub3(g, u, ua);
+            let w_dot = mat_vec(g, &d_inv, rest);
+            let Step::Ball { coords, sigma } = node.step else {
+                unreachable!("a ball's articulation is a ball step's")
+            };
+            let rate = coords.map(|j| velocity[j]);
+            let sdd = crate::ball::sigma_dd(g, sigma, rate, w_dot);
+            for (&j, e) in coords.iter().zip(sdd) {
+                qdd[j] = Some(e);
+            }
+            Sv {
+                a: add3(g, a_prime.a, w_dot),
+                l: a_prime.l,
+            }
+        }
+        (Joint::Driven { qdd: known }, _, _) => {
+            let sq = combine_columns(g, &o.s, known).expect("a driven step moves");
+            sv_add(g, a_prime, sq)
+        }
+        _ => a_prime,
     }
 }
 
@@ -481,13 +672,12 @@ impl Joint {
 /// step moves, by the three passes of the articulated-body algorithm, unrolled.
 pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<Option<Expr>> {
     let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
-    let joints: Vec<Joint> = nodes.iter().map(|n| Joint::of(&n.step, inp)).collect();
+    let joints: Vec<Joint> = nodes.iter().map(|n| Joint::of(g, &n.step, inp)).collect();
     // Pass 1, root to tips.
     let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
     for (node, x) in nodes.iter().zip(&xs) {
         let parent = node.parent.map(|p| out[p].v);
-        let rate = node.step.coord().map(|j| inp.velocity[j]);
-        let o = outward(g, node, x, parent, rate);
+        let o = outward(g, node, x, parent, inp.velocity);
         out.push(o);
     }
     // Pass 2, tips to root.
@@ -500,7 +690,7 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
             &xs[i],
             &out[i],
             &nodes[i].step,
-            joints[i],
+            &joints[i],
             (ia[i], pa[i]),
         );
         arts[i] = art;
@@ -527,26 +717,9 @@ pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<
         let parent = node.parent.map_or(base, |p| a[p]);
         let ap = xs[i].motion(g, parent);
         let a_prime = sv_add(g, ap, out[i].c);
-        let acc = match (out[i].s, joints[i], arts[i]) {
-            (Some(si), Joint::Free { .. }, Some(art)) => {
-                let ua = sv_dot(g, art.u_vec, a_prime);
-                let num = g.sub(art.u, ua);
-                let acc = g.mul(num, art.inv_d);
-                if let Some(j) = node.step.coord() {
-                    qdd[j] = Some(acc);
-                }
-                Some((si, acc))
-            }
-            (Some(si), Joint::Driven { qdd }, _) => Some((si, qdd)),
-            _ => None,
-        };
-        a.push(match acc {
-            Some((si, acc)) => {
-                let sq = sv_scale(g, si, acc);
-                sv_add(g, a_prime, sq)
-            }
-            None => a_prime,
-        });
+        let inputs = (a_prime, inp.velocity);
+        let acc = accelerate(g, node, &out[i], &joints[i], arts[i], inputs, &mut qdd);
+        a.push(acc);
     }
     qdd
 }
@@ -579,10 +752,12 @@ pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inert
     let mut twice_kinetic = zero;
     for (node, x) in nodes.iter().zip(&xs) {
         let parent = node.parent.map(|p| out[p].v);
-        let rate = node.step.coord().map(|j| inp.velocity[j]);
-        let o = outward(g, node, x, parent, rate);
+        let o = outward(g, node, x, parent, inp.velocity);
         let ap = x.motion(g, node.parent.map_or(base, |p| acc[p]));
-        let a = sv_add(g, ap, o.c);
+        let mut a = sv_add(g, ap, o.c);
+        if let Some(r) = subspace_rate(g, &node.step, inp.velocity) {
+            a = sv_add(g, a, r);
+        }
         let ia = si_mul(g, &o.inertia, a);
         force.push(sv_add(g, ia, o.p));
         let iv = si_mul(g, &o.inertia, o.v);
@@ -595,7 +770,7 @@ pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inert
     let mut forces = inp.tau.to_vec();
     let mut composite: Vec<Si> = out.iter().map(|o| o.inertia).collect();
     for i in (0..nodes.len()).rev() {
-        if let (Some(s), Some(j)) = (out[i].s, nodes[i].step.coord()) {
+        for &(j, s) in &out[i].s {
             let effort = sv_dot(g, s, force[i]);
             forces[j] = g.sub(forces[j], effort);
         }
@@ -617,19 +792,23 @@ pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inert
     // unit rate of its step, projected on every step from i to the root.
     let mut mass = vec![vec![zero; nz]; nz];
     for i in 0..nodes.len() {
-        let (Some(s), Some(ji)) = (out[i].s, nodes[i].step.coord()) else {
-            continue;
-        };
-        let mut f = si_mul(g, &composite[i], s);
-        mass[ji][ji] = sv_dot(g, s, f);
-        let mut k = i;
-        while let Some(p) = nodes[k].parent {
-            f = xs[k].force(g, f);
-            k = p;
-            if let (Some(sk), Some(jk)) = (out[k].s, nodes[k].step.coord()) {
+        for (c, &(ji, s)) in out[i].s.iter().enumerate() {
+            let mut f = si_mul(g, &composite[i], s);
+            // The step's own columns (a ball joint's 3x3 block).
+            for &(jk, sk) in &out[i].s[..=c] {
                 let m = sv_dot(g, sk, f);
                 mass[ji][jk] = m;
                 mass[jk][ji] = m;
+            }
+            let mut k = i;
+            while let Some(p) = nodes[k].parent {
+                f = xs[k].force(g, f);
+                k = p;
+                for &(jk, sk) in &out[k].s {
+                    let m = sv_dot(g, sk, f);
+                    mass[ji][jk] = m;
+                    mass[jk][ji] = m;
+                }
             }
         }
     }
@@ -645,7 +824,7 @@ pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inert
 pub fn covers(nodes: &[Node], nz: usize) -> bool {
     let mut seen = vec![false; nz];
     for n in nodes {
-        if let Some(j) = n.step.coord() {
+        for j in n.step.coords() {
             if j >= nz || seen[j] {
                 return false;
             }
@@ -658,6 +837,7 @@ pub fn covers(nodes: &[Node], nz: usize) -> bool {
 /// `M(q) a` by Newton-Euler at rest without gravity (`a`: per full coordinate, zero for the
 /// coordinates that do not move): O(n) code, so that the mass matrix of a long tree can be
 /// formed column by column at run time instead of written out entry by entry (O(n d)).
+/// A ball joint's `S' qd` is left out: it is a velocity term, part of `f`.
 pub fn mass_times(g: &mut Graph, nodes: &[Node], accel: &[Expr]) -> Vec<Expr> {
     let zero = g.zero();
     let z = [zero; 3];
@@ -669,8 +849,7 @@ pub fn mass_times(g: &mut Graph, nodes: &[Node], accel: &[Expr]) -> Vec<Expr> {
         let s = subspace(g, &node.step, x);
         let parent = node.parent.map_or(Sv { a: z, l: z }, |p| acc[p]);
         let mut a = x.motion(g, parent);
-        if let (Some(s), Some(j)) = (s, node.step.coord()) {
-            let sa = sv_scale(g, s, accel[j]);
+        if let Some(sa) = combine_columns(g, &s, accel) {
             a = sv_add(g, a, sa);
         }
         let inertia = inertia_at_origin(g, node.mass, node.com, &node.inertia);
@@ -680,7 +859,7 @@ pub fn mass_times(g: &mut Graph, nodes: &[Node], accel: &[Expr]) -> Vec<Expr> {
     }
     let mut out = vec![zero; accel.len()];
     for i in (0..nodes.len()).rev() {
-        if let (Some(s), Some(j)) = (subspaces[i], nodes[i].step.coord()) {
+        for &(j, s) in &subspaces[i] {
             out[j] = sv_dot(g, s, force[i]);
         }
         if let Some(p) = nodes[i].parent {
@@ -714,12 +893,13 @@ pub fn inverse_dynamics(
     let mut force: Vec<Sv> = Vec::with_capacity(nodes.len());
     for (node, x) in nodes.iter().zip(&xs) {
         let parent = node.parent.map(|p| out[p].v);
-        let rate = node.step.coord().map(|j| inp.velocity[j]);
-        let o = outward(g, node, x, parent, rate);
+        let o = outward(g, node, x, parent, inp.velocity);
         let ap = x.motion(g, node.parent.map_or(base, |p| acc[p]));
         let mut a = sv_add(g, ap, o.c);
-        if let (Some(s), Some(j)) = (o.s, node.step.coord()) {
-            let sa = sv_scale(g, s, accel[j]);
+        if let Some(r) = subspace_rate(g, &node.step, inp.velocity) {
+            a = sv_add(g, a, r);
+        }
+        if let Some(sa) = combine_columns(g, &o.s, accel) {
             a = sv_add(g, a, sa);
         }
         let ia = si_mul(g, &o.inertia, a);
@@ -729,7 +909,7 @@ pub fn inverse_dynamics(
     }
     let mut efforts: Vec<Expr> = inp.tau.iter().map(|&t| g.neg(t)).collect();
     for i in (0..nodes.len()).rev() {
-        if let (Some(s), Some(j)) = (out[i].s, nodes[i].step.coord()) {
+        for &(j, s) in &out[i].s {
             let effort = sv_dot(g, s, force[i]);
             efforts[j] = g.add(effort, efforts[j]);
         }

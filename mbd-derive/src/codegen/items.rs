@@ -34,6 +34,8 @@ struct Shape<'a> {
     direction: Option<TokenStream>,
     solve_qdd_lambda: TokenStream,
     parts: Parts,
+    /// The ball joints' chart switch, when the model has one (`ball.rs`).
+    charts: Option<TokenStream>,
 }
 
 pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
@@ -124,6 +126,7 @@ impl<'a> Shape<'a> {
             direction,
             solve_qdd_lambda,
             parts,
+            charts: crate::ball::switch(ast, &eq.free, n),
         }
     }
 }
@@ -410,10 +413,16 @@ fn ode_impl(
 ) -> TokenStream {
     let (ident, n, m, d, constrained) = (sh.ident, sh.n, sh.m, sh.d, sh.constrained);
     let recursion = &accel.recursion;
-    let project = constrained.then(|| {
+    let onto_constraints = constrained.then(|| {
+        quote!(::mbd::__private::analysis::projection::project_state::<Self, #n, #m, #d>(self, t, y)?;)
+    });
+    let charts = &sh.charts;
+    let project = (constrained || charts.is_some()).then(|| {
         quote! {
             fn project(&self, t: f64, y: &mut ::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<()> {
-                ::mbd::__private::analysis::projection::project_state::<Self, #n, #m, #d>(self, t, y)
+                #charts
+                #onto_constraints
+                Ok(())
             }
         }
     });

@@ -31,8 +31,8 @@ pub(super) fn planar(
                 scope.errors.at(a.span(), "a planar revolute joint turns about the plane's normal: write `revolute(q)` without an axis");
                 continue;
             }
-            parse::Joint::Universal(..) | parse::Joint::Spherical(..) => {
-                scope.errors.at(tb.joint_span, "a `universal` or `spherical` joint needs a spatial mechanism: `#[mechanism(spatial)]`");
+            parse::Joint::Universal(..) | parse::Joint::Spherical(..) | parse::Joint::Ball(..) => {
+                scope.errors.at(tb.joint_span, "a `universal`, `spherical` or `ball` joint needs a spatial mechanism: `#[mechanism(spatial)]`");
                 continue;
             }
             _ => {}
@@ -164,6 +164,9 @@ pub(super) fn spatial(
             .iter()
             .filter_map(|c| coords.iter().find(|k| k.name == **c).map(|k| (k.z, k.zd)))
             .collect();
+        if !ball_coordinates_free(tb, coords, &mut scope.errors) {
+            continue;
+        }
         let Some(mut input) = spatial_inputs(&mut scope.lowerer(None), tb) else {
             continue;
         };
@@ -244,15 +247,26 @@ fn spatial_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody<Term>) -> Option<Sp
     })
 }
 
-/// The joint as elementary rotations `R_1(q_1) R_2(q_2) ..` (axis 0/1/2 for x/y/z, angle,
-/// rate); a prismatic joint moves `at` along its axis instead. `None`: a spanned error.
+/// A joint's rotation: elementary rotations `R_1(q_1) R_2(q_2) ..` (axis 0/1/2 for x/y/z,
+/// angle, rate), or a ball joint's modified Rodrigues parameters and their rates.
+enum Turns {
+    Elementary(Vec<(usize, Expr, Expr)>),
+    Ball { sigma: [Expr; 3], rate: [Expr; 3] },
+}
+
+/// The joint's rotation; a prismatic joint moves `at` along its axis instead. `None`: a
+/// spanned error.
 fn joint_turns(
     scope: &mut Scope,
     tb: &parse::TreeBody<Term>,
     z: &[(Expr, Expr)],
     input: &mut SpatialInputs,
-) -> Option<Vec<(usize, Expr, Expr)>> {
-    Some(match (&tb.joint, z) {
+) -> Option<Turns> {
+    if let (parse::Joint::Ball(..), &[a, b, c]) = (&tb.joint, z) {
+        let (sigma, rate) = ([a.0, b.0, c.0], [a.1, b.1, c.1]);
+        return Some(Turns::Ball { sigma, rate });
+    }
+    Some(Turns::Elementary(match (&tb.joint, z) {
         (parse::Joint::Revolute { axis: None, .. }, _) => {
             scope.errors.at(
                 tb.joint_span,
@@ -280,7 +294,7 @@ fn joint_turns(
             Vec::new()
         }
         _ => Vec::new(),
-    })
+    }))
 }
 
 /// A body's frame from its parent's (`None`: the ground) and its joint's turns.
@@ -288,24 +302,18 @@ fn compose(
     g: &mut Graph,
     identity: [[Expr; 3]; 3],
     parent: Option<Frame>,
-    turns: &[(usize, Expr, Expr)],
+    turns: &Turns,
     at: &[Expr],
     (tb, coords): (&parse::TreeBody<Term>, &[Coord]),
 ) -> Frame {
     let zero = identity[0][1];
-    // R_joint, and the joint's angular velocity in the child's frame,
-    // sum_i (R_{i+1} .. R_k)^T e_i q_i' (built from the last rotation back).
-    let mut relative = identity;
-    let mut omega_joint = [zero; 3];
-    for &(e, angle, rate) in turns.iter().rev() {
-        for (k, w) in omega_joint.iter_mut().enumerate() {
-            // (P^T e)_k = P[e][k] for P = R_{i+1} .. R_k.
-            let term = g.mul(relative[e][k], rate);
-            *w = g.add(*w, term);
-        }
-        let r = lower::rotation(g, ["rot_x", "rot_y", "rot_z"][e], angle);
-        relative = lower::matmul(g, &r, &relative);
-    }
+    let (relative, omega_joint) = match turns {
+        Turns::Elementary(turns) => elementary(g, identity, turns),
+        &Turns::Ball { sigma, rate } => (
+            crate::ball::rotation(g, sigma),
+            crate::ball::omega(g, sigma, rate),
+        ),
+    };
     let parent = parent.unwrap_or(Frame {
         origin: [zero; 3],
         rot: identity,
@@ -327,35 +335,60 @@ fn compose(
     Frame { origin, rot, omega }
 }
 
+/// `R_joint` of elementary rotations, and the joint's angular velocity in the child's frame,
+/// `sum_i (R_{i+1} .. R_k)^T e_i q_i'` (built from the last rotation back).
+fn elementary(
+    g: &mut Graph,
+    identity: [[Expr; 3]; 3],
+    turns: &[(usize, Expr, Expr)],
+) -> ([[Expr; 3]; 3], [Expr; 3]) {
+    let mut relative = identity;
+    let mut omega_joint = [identity[0][1]; 3];
+    for &(e, angle, rate) in turns.iter().rev() {
+        for (k, w) in omega_joint.iter_mut().enumerate() {
+            // (P^T e)_k = P[e][k] for P = R_{i+1} .. R_k.
+            let term = g.mul(relative[e][k], rate);
+            *w = g.add(*w, term);
+        }
+        let r = lower::rotation(g, ["rot_x", "rot_y", "rot_z"][e], angle);
+        relative = lower::matmul(g, &r, &relative);
+    }
+    (relative, omega_joint)
+}
+
 /// The joint as one-degree-of-freedom steps of the spatial recursion; the body's mass and
 /// inertia ride on the last.
 fn push_steps(
     steps: &mut Vec<spatial::Node>,
     mut step_parent: Option<usize>,
     tb: &parse::TreeBody<Term>,
-    turns: &[(usize, Expr, Expr)],
+    turns: &Turns,
     coord_of: &[usize],
     input: &SpatialInputs,
     zero: Expr,
 ) {
     let (at, com, axis) = (&input.at, &input.com, &input.axis);
-    let joint_steps: Vec<(spatial::Step, Option<(usize, Expr)>)> = match (&tb.joint, coord_of) {
-        (parse::Joint::Prismatic { .. }, &[coord]) if axis.len() == 3 => {
-            vec![(
-                spatial::Step::Prismatic {
-                    coord,
-                    axis: [axis[0], axis[1], axis[2]],
-                },
-                None,
-            )]
+    let joint_steps: Vec<(spatial::Step, Option<(usize, Expr)>)> = match (turns, coord_of) {
+        _ if matches!(tb.joint, parse::Joint::Prismatic { .. }) && axis.len() == 3 => {
+            let axis = [axis[0], axis[1], axis[2]];
+            match coord_of {
+                &[coord] => vec![(spatial::Step::Prismatic { coord, axis }, None)],
+                _ => vec![(spatial::Step::Fixed, None)],
+            }
         }
-        _ if turns.len() == coord_of.len() && !turns.is_empty() => turns
-            .iter()
-            .zip(coord_of)
-            .map(|(&(axis, angle, _), &coord)| {
-                (spatial::Step::Revolute { coord, axis }, Some((axis, angle)))
-            })
-            .collect(),
+        (&Turns::Ball { sigma, .. }, &[c0, c1, c2]) => {
+            let coords = [c0, c1, c2];
+            vec![(spatial::Step::Ball { coords, sigma }, None)]
+        }
+        (Turns::Elementary(turns), _) if turns.len() == coord_of.len() && !turns.is_empty() => {
+            turns
+                .iter()
+                .zip(coord_of)
+                .map(|(&(axis, angle, _), &coord)| {
+                    (spatial::Step::Revolute { coord, axis }, Some((axis, angle)))
+                })
+                .collect()
+        }
         _ => vec![(spatial::Step::Fixed, None)],
     };
     let last = joint_steps.len() - 1;
@@ -382,6 +415,26 @@ fn push_steps(
             },
         });
         step_parent = Some(steps.len() - 1);
+    }
+}
+
+/// A ball joint's coordinates move together (its rates are one angular velocity): none of
+/// them may be driven. `false` after a spanned error.
+fn ball_coordinates_free(tb: &parse::TreeBody<Term>, coords: &[Coord], errors: &mut Errors) -> bool {
+    if !matches!(tb.joint, parse::Joint::Ball(..)) {
+        return true;
+    }
+    let driven = tb.joint.coords().into_iter().find(|c| {
+        coords
+            .iter()
+            .any(|k| k.name == **c && !matches!(k.kind, super::CoordKind::Free))
+    });
+    match driven {
+        Some(c) => {
+            errors.at(c.span(), format!("`{c}` is a coordinate of a ball joint, which cannot be driven: its three coordinates describe one rotation (drive a `spherical` joint's angles instead)"));
+            false
+        }
+        None => true,
     }
 }
 

@@ -1,0 +1,261 @@
+//! The ball joint (`joint = ball(s1, s2, s3)`): a spherical joint in modified Rodrigues
+//! parameters, without the Euler angles' singularity. Checked against
+//! - the same body written out with `rigid3` and the parameters' rotation matrix typed in
+//!   by hand (Kane's projections of a rotation the derive differentiates itself);
+//! - its own three generated algorithms (articulated body, composite rigid body + Newton-Euler,
+//!   Kane);
+//! - the Euler-angle `spherical` joint away from its singularity (to 1e-10 along a motion);
+//! - physics: energy and angular momentum about the vertical through gimbal-lock
+//!   orientations, where the Euler form stops, and a heavy top's steady precession in
+//!   closed form.
+
+use approx::assert_relative_eq;
+use mbd::integrate::{Dopri5, Integrator, Options};
+use mbd::prelude::*;
+use mbd::{Matrix, Vector};
+
+/// A heavy body on a ball joint, its mass centre `h` below the joint and off its axis by
+/// `e`, with a general inertia tensor (the `HeavyBody` of `spatial_tree.rs` on a ball joint).
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -g)]
+#[body(top, joint = ball(s1, s2, s3), com = [e, 0.0, -h], mass = m,
+       inertia = [[ia, 0.01, 0.0], [0.01, ib, 0.02], [0.0, 0.02, ic]])]
+#[output(omega_x = angular_velocity(top)[0])]
+#[output(omega_y = angular_velocity(top)[1])]
+#[output(omega_z = angular_velocity(top)[2])]
+#[output(x = position(top)[0])]
+#[output(y = position(top)[1])]
+#[output(z = position(top)[2])]
+#[output(vx = velocity(top)[0])]
+#[output(vy = velocity(top)[1])]
+pub struct BallBody {
+    pub m: f64,
+    pub e: f64,
+    pub h: f64,
+    pub ia: f64,
+    pub ib: f64,
+    pub ic: f64,
+    pub g: f64,
+}
+
+/// [`BallBody`] through the articulated-body recursion (one body: by default the mass
+/// matrix), `M` and `f` by composite rigid bodies and Newton-Euler.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, recursive)]
+#[gravity(0.0, 0.0, -g)]
+#[body(top, joint = ball(s1, s2, s3), com = [e, 0.0, -h], mass = m,
+       inertia = [[ia, 0.01, 0.0], [0.01, ib, 0.02], [0.0, 0.02, ic]])]
+pub struct BallBodyRecursive {
+    pub m: f64,
+    pub e: f64,
+    pub h: f64,
+    pub ia: f64,
+    pub ib: f64,
+    pub ic: f64,
+    pub g: f64,
+}
+
+/// [`BallBody`] with the rotation typed in: `R = 1 + (8 S^2 + 4 (1 - s2) S) / (1 + s2)^2`,
+/// `S = [sigma]x`, written out entry by entry (`S^2 = sigma sigma^T - s2 1`).
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -g)]
+#[coords(s1, s2, s3)]
+#[rigid3(top, mass = m, inertia = [[ia, 0.01, 0.0], [0.01, ib, 0.02], [0.0, 0.02, ic]],
+    at = [[1.0 + (8.0 * (s1 * s1 - (s1 * s1 + s2 * s2 + s3 * s3))) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s1 * s2 - 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s3) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s1 * s3 + 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s2) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3))],
+          [(8.0 * s2 * s1 + 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s3) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           1.0 + (8.0 * (s2 * s2 - (s1 * s1 + s2 * s2 + s3 * s3))) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s2 * s3 - 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s1) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3))],
+          [(8.0 * s3 * s1 - 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s2) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s3 * s2 + 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s1) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           1.0 + (8.0 * (s3 * s3 - (s1 * s1 + s2 * s2 + s3 * s3))) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3))]]
+        * [e, 0.0, -h],
+    rotation = [[1.0 + (8.0 * (s1 * s1 - (s1 * s1 + s2 * s2 + s3 * s3))) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s1 * s2 - 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s3) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s1 * s3 + 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s2) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3))],
+          [(8.0 * s2 * s1 + 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s3) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           1.0 + (8.0 * (s2 * s2 - (s1 * s1 + s2 * s2 + s3 * s3))) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s2 * s3 - 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s1) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3))],
+          [(8.0 * s3 * s1 - 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s2) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           (8.0 * s3 * s2 + 4.0 * (1.0 - s1 * s1 - s2 * s2 - s3 * s3) * s1) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3)),
+           1.0 + (8.0 * (s3 * s3 - (s1 * s1 + s2 * s2 + s3 * s3))) / ((1.0 + s1 * s1 + s2 * s2 + s3 * s3) * (1.0 + s1 * s1 + s2 * s2 + s3 * s3))]])]
+pub struct BallBodyByHand {
+    pub m: f64,
+    pub e: f64,
+    pub h: f64,
+    pub ia: f64,
+    pub ib: f64,
+    pub ic: f64,
+    pub g: f64,
+}
+
+/// The same body on the Euler-angle joint (`rot_z(psi) rot_y(theta) rot_x(phi)`).
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[gravity(0.0, 0.0, -g)]
+#[body(top, joint = spherical(psi, theta, phi), com = [e, 0.0, -h], mass = m,
+       inertia = [[ia, 0.01, 0.0], [0.01, ib, 0.02], [0.0, 0.02, ic]])]
+#[output(omega_x = angular_velocity(top)[0])]
+#[output(omega_y = angular_velocity(top)[1])]
+#[output(omega_z = angular_velocity(top)[2])]
+#[output(x = position(top)[0])]
+#[output(y = position(top)[1])]
+#[output(z = position(top)[2])]
+pub struct EulerBody {
+    pub m: f64,
+    pub e: f64,
+    pub h: f64,
+    pub ia: f64,
+    pub ib: f64,
+    pub ic: f64,
+    pub g: f64,
+}
+
+const BODY: BallBody = BallBody {
+    m: 2.0,
+    e: 0.05,
+    h: 0.4,
+    ia: 0.12,
+    ib: 0.1,
+    ic: 0.03,
+    g: 9.81,
+};
+
+fn recursive() -> BallBodyRecursive {
+    let p = &BODY;
+    BallBodyRecursive { m: p.m, e: p.e, h: p.h, ia: p.ia, ib: p.ib, ic: p.ic, g: p.g }
+}
+
+fn by_hand() -> BallBodyByHand {
+    let p = &BODY;
+    BallBodyByHand { m: p.m, e: p.e, h: p.h, ia: p.ia, ib: p.ib, ic: p.ic, g: p.g }
+}
+
+fn euler() -> EulerBody {
+    let p = &BODY;
+    EulerBody { m: p.m, e: p.e, h: p.h, ia: p.ia, ib: p.ib, ic: p.ic, g: p.g }
+}
+
+fn inertia() -> Matrix<3, 3> {
+    let p = &BODY;
+    Matrix::<3, 3>::new(p.ia, 0.01, 0.0, 0.01, p.ib, 0.02, 0.0, 0.02, p.ic)
+}
+
+fn skew(a: &Vector<3>) -> Matrix<3, 3> {
+    Matrix::<3, 3>::new(0.0, -a[2], a[1], a[2], 0.0, -a[0], -a[1], a[0], 0.0)
+}
+
+/// The rotation of modified Rodrigues parameters, written out here apart from the macro.
+fn mrp_rotation(s: &Vector<3>) -> Matrix<3, 3> {
+    let s2 = s.norm_squared();
+    let x = skew(s);
+    Matrix::<3, 3>::identity() + (8.0 * x * x + 4.0 * (1.0 - s2) * x) / (1.0 + s2).powi(2)
+}
+
+/// `B = (1 - s2) 1 + 2 [s]x + 2 s s^T`: `sigma' = B w / 4`, `w` the body-frame angular
+/// velocity (Schaub and Junkins, "Analytical Mechanics of Space Systems", eq. 3.163).
+fn mrp_b(s: &Vector<3>) -> Matrix<3, 3> {
+    (1.0 - s.norm_squared()) * Matrix::<3, 3>::identity() + 2.0 * skew(s) + 2.0 * s * s.transpose()
+}
+
+/// The parameters of a rotation matrix, through its unit quaternion (Shepperd's choice of
+/// the largest component), `sigma = q_v / (1 + q_0)` with `q_0 >= 0` (so `|sigma| <= 1`).
+fn mrp_of(r: &Matrix<3, 3>) -> Vector<3> {
+    let tr = r.trace();
+    let q = if tr > 0.0 {
+        let s = 2.0 * (1.0 + tr).sqrt();
+        [0.25 * s, (r[(2, 1)] - r[(1, 2)]) / s, (r[(0, 2)] - r[(2, 0)]) / s, (r[(1, 0)] - r[(0, 1)]) / s]
+    } else {
+        let i = (0..3).max_by(|&a, &b| r[(a, a)].total_cmp(&r[(b, b)])).unwrap();
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let s = 2.0 * (1.0 + r[(i, i)] - r[(j, j)] - r[(k, k)]).sqrt();
+        let mut q = [(r[(k, j)] - r[(j, k)]) / s, 0.0, 0.0, 0.0];
+        q[1 + i] = 0.25 * s;
+        q[1 + j] = (r[(j, i)] + r[(i, j)]) / s;
+        q[1 + k] = (r[(k, i)] + r[(i, k)]) / s;
+        q
+    };
+    let sign = if q[0] < 0.0 { -1.0 } else { 1.0 };
+    Vector::<3>::new(q[1], q[2], q[3]) * sign / (1.0 + sign * q[0])
+}
+
+/// The ball joint's state for a rotation and a world-frame angular velocity.
+fn ball_state(r: &Matrix<3, 3>, w_world: &Vector<3>) -> Vector<6> {
+    let s = mrp_of(r);
+    let sd = mrp_b(&s) * (r.transpose() * w_world) / 4.0;
+    Vector::<6>::new(s[0], s[1], s[2], sd[0], sd[1], sd[2])
+}
+
+/// `rot_z(psi) rot_y(theta) rot_x(phi)`.
+fn zyx(psi: f64, theta: f64, phi: f64) -> Matrix<3, 3> {
+    let (sz, cz) = psi.sin_cos();
+    let (sy, cy) = theta.sin_cos();
+    let (sx, cx) = phi.sin_cos();
+    let rz = Matrix::<3, 3>::new(cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0);
+    let ry = Matrix::<3, 3>::new(cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy);
+    let rx = Matrix::<3, 3>::new(1.0, 0.0, 0.0, 0.0, cx, -sx, 0.0, sx, cx);
+    rz * ry * rx
+}
+
+fn split(y: &Vector<6>) -> (Vector<3>, Vector<3>) {
+    (y.fixed_rows::<3>(0).into_owned(), y.fixed_rows::<3>(3).into_owned())
+}
+
+/// Energy and angular momentum about the vertical through the joint, from the state by
+/// hand: `m g z_c + (m |v_c|^2 + w . I_c w) / 2` and `m (r x v)_z + (R I R^T w)_z`.
+fn invariants(y: &Vector<6>) -> (f64, f64) {
+    let p = &BODY;
+    let o = p.outputs(0.0, y).unwrap();
+    let (q, qd) = split(y);
+    let rot = mrp_rotation(&q);
+    let w = Vector::<3>::new(o.omega_x, o.omega_y, o.omega_z);
+    let spin = rot * inertia() * rot.transpose() * w;
+    let momentum = p.m * (o.x * o.vy - o.y * o.vx) + spin[2];
+    (p.energy(0.0, &q, &qd), momentum)
+}
+
+const STATES: [([f64; 3], [f64; 3]); 4] = [
+    ([0.3, -0.2, 0.5], [0.4, 1.1, -0.7]),
+    ([-0.7, 0.6, 0.1], [-2.0, 0.3, 1.5]),
+    ([0.9, 0.5, -0.4], [1.0, -1.0, 0.5]),
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
+];
+
+#[test]
+fn ball_joint_equals_its_rotation_typed_in() {
+    let (p, hand) = (&BODY, by_hand());
+    for (q, qd) in STATES {
+        let (q, qd) = (Vector::<3>::from(q), Vector::<3>::from(qd));
+        let (m, m_hand): (Matrix<3, 3>, Matrix<3, 3>) = (p.mass_matrix(0.0, &q), hand.mass_matrix(0.0, &q));
+        assert_relative_eq!(m, m_hand, epsilon = 1e-14, max_relative = 1e-12);
+        assert_relative_eq!(p.forces(0.0, &q, &qd), hand.forces(0.0, &q, &qd), epsilon = 1e-13, max_relative = 1e-12);
+        assert_relative_eq!(p.energy(0.0, &q, &qd), hand.energy(0.0, &q, &qd), max_relative = 1e-13);
+    }
+    // The generated angular velocity is the body-frame `w` of `sigma' = B w / 4`, in world axes.
+    let (q, qd) = (Vector::<3>::new(0.6, -0.3, 0.5), Vector::<3>::new(0.2, 0.9, -1.3));
+    let y = Vector::<6>::new(q[0], q[1], q[2], qd[0], qd[1], qd[2]);
+    let o = p.outputs(0.0, &y).unwrap();
+    let w_body = mrp_b(&q).try_inverse().unwrap() * qd * 4.0;
+    let w = mrp_rotation(&q) * w_body;
+    assert_relative_eq!(Vector::<3>::new(o.omega_x, o.omega_y, o.omega_z), w, max_relative = 1e-13);
+}
+
+#[test]
+fn ball_joint_recursions_equal_the_mass_matrix_form() {
+    let (p, rec) = (&BODY, recursive());
+    assert!(BallBodyRecursive::GENERATED.parts.contains(&"articulated_body"));
+    assert!(!BallBody::GENERATED.parts.contains(&"articulated_body"));
+    for (q, qd) in STATES {
+        let (q, qd) = (Vector::<3>::from(q), Vector::<3>::from(qd));
+        // Composite rigid bodies and Newton-Euler against Kane.
+        let (m, m_rec): (Matrix<3, 3>, Matrix<3, 3>) = (p.mass_matrix(0.0, &q), rec.mass_matrix(0.0, &q));
+        assert_relative_eq!(m, m_rec, epsilon = 1e-14, max_relative = 1e-12);
+        assert_relative_eq!(p.forces(0.0, &q, &qd), rec.forces(0.0, &q, &qd), epsilon = 1e-13, max_relative = 1e-12);
+        // The articulated body (3x3 D in the angular velocity) against M^-1 f.
+        let (a, a_rec) = (p.acceleration(0.0, &q, &qd).unwrap(), rec.acceleration(0.0, &q, &qd).unwrap());
+        assert!((a - a_rec).norm() <= 1e-12 * a.norm().max(1.0), "{a:?} {a_rec:?}");
+    }
+}
