@@ -417,3 +417,73 @@ fn ball_joint_passes_gimbal_lock_conserving_energy_and_vertical_momentum() {
     assert!(near.stats.n_steps > 10 * ball_steps, "{} against {ball_steps}", near.stats.n_steps);
     assert!(beside(1e-6).is_err());
 }
+
+/// Two bodies on ball joints (a double spherical pendulum, the lower bar's joint at the
+/// upper bar's end, off its axis) with a damped revolute wheel on the lower bar:
+/// and generalised forces on a ball coordinate (`moment = B^T tau / 4` in the recursion):
+/// the articulated-body recursion through two 3x3 joints, against the same tree's
+/// composite-rigid-body and Newton-Euler form and against Kane's (`mass_matrix`).
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, inverse_dynamics)]
+#[gravity(0.0, 0.0, -g)]
+#[body(upper, joint = ball(a1, a2, a3), com = [0.0, 0.02, -l / 2.0], mass = m1,
+       inertia = [[0.05, 0.003, 0.0], [0.003, 0.045, 0.002], [0.0, 0.002, 0.01]])]
+#[body(lower, parent = upper, joint = ball(b1, b2, b3), at = [0.03, 0.0, -l],
+       com = [0.01, 0.0, -l / 2.0], mass = m2, inertia = diag(0.03, 0.032, 0.005))]
+#[body(wheel, parent = lower, joint = revolute(c, z), at = [0.0, 0.0, -l], mass = m3,
+       inertia = diag(0.002, 0.002, 0.004))]
+#[generalized_force(spin, along = c, value = -0.3 * der(c))]
+#[generalized_force(twist, along = b2, value = -0.2 * der(b2) + 0.1 * a1)]
+pub struct BallChain {
+    pub m1: f64,
+    pub m2: f64,
+    pub m3: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// [`BallChain`] by Kane's projections.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, mass_matrix)]
+#[gravity(0.0, 0.0, -g)]
+#[body(upper, joint = ball(a1, a2, a3), com = [0.0, 0.02, -l / 2.0], mass = m1,
+       inertia = [[0.05, 0.003, 0.0], [0.003, 0.045, 0.002], [0.0, 0.002, 0.01]])]
+#[body(lower, parent = upper, joint = ball(b1, b2, b3), at = [0.03, 0.0, -l],
+       com = [0.01, 0.0, -l / 2.0], mass = m2, inertia = diag(0.03, 0.032, 0.005))]
+#[body(wheel, parent = lower, joint = revolute(c, z), at = [0.0, 0.0, -l], mass = m3,
+       inertia = diag(0.002, 0.002, 0.004))]
+#[generalized_force(spin, along = c, value = -0.3 * der(c))]
+#[generalized_force(twist, along = b2, value = -0.2 * der(b2) + 0.1 * a1)]
+pub struct BallChainKane {
+    pub m1: f64,
+    pub m2: f64,
+    pub m3: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+#[test]
+fn ball_chain_recursions_equal_kanes_form() {
+    let p = BallChain { m1: 1.2, m2: 0.8, m3: 0.3, l: 0.7, g: 9.81 };
+    let k = BallChainKane { m1: 1.2, m2: 0.8, m3: 0.3, l: 0.7, g: 9.81 };
+    assert!(BallChain::GENERATED.parts.contains(&"articulated_body"));
+    let states: [([f64; 7], [f64; 7]); 3] = [
+        ([0.3, -0.2, 0.5, -0.6, 0.4, 0.1, 1.0], [0.4, 1.1, -0.7, 0.9, -0.3, 1.2, 5.0]),
+        ([-0.9, 0.1, 0.35, 0.99, -0.05, 0.02, -2.0], [-2.0, 0.3, 1.5, 0.1, 2.2, -0.8, -3.0]),
+        ([0.0; 7], [0.0; 7]),
+    ];
+    for (q, qd) in states {
+        let (q, qd) = (Vector::<7>::from(q), Vector::<7>::from(qd));
+        let (m, m_kane): (Matrix<7, 7>, Matrix<7, 7>) = (p.mass_matrix(0.0, &q), k.mass_matrix(0.0, &q));
+        assert_relative_eq!(m, m_kane, epsilon = 1e-13, max_relative = 1e-12);
+        let f = p.forces(0.0, &q, &qd);
+        assert_relative_eq!(f, k.forces(0.0, &q, &qd), epsilon = 1e-12, max_relative = 1e-12);
+        let (a, a_kane) = (p.acceleration(0.0, &q, &qd).unwrap(), k.acceleration(0.0, &q, &qd).unwrap());
+        assert!((a - a_kane).norm() <= 1e-12 * a.norm().max(1.0), "{a:?}\n{a_kane:?}");
+        // Inverse dynamics by Newton-Euler: M qdd - f, zero at the motion's own qdd.
+        let probe = Vector::<7>::from_fn(|i, _| 0.3 * i as f64 - 1.0);
+        let id = p.inverse_dynamics(0.0, &q, &qd, &probe);
+        assert!((id - (m * probe - f)).norm() <= 1e-12 * (m.norm() * probe.norm() + f.norm()));
+        assert!(p.inverse_dynamics(0.0, &q, &qd, &a).norm() <= 1e-12 * f.norm().max(1.0));
+    }
+}
