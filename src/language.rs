@@ -10,6 +10,7 @@
 //! | [Friction coefficients](#friction-coefficients) | `friction` with `mu_k`, `mu_s` and a normal force expression |
 //! | [Trees: recursion or mass matrix](#trees-recursion-or-mass-matrix) | `mechanism(recursive)`, `mechanism(mass_matrix)`, planar `body` with `fixed` joint, a spring between a body's mass centre and a ground `point`, outputs `velocity`, `acceleration`, `angular_acceleration` |
 //! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`, `prismatic`, `revolute(q, y)`), spatial `close`, `mechanism(augmented)` in space |
+//! | [Ball joints](#ball-joints) | spatial `body` with `ball(s1, s2, s3)`, `mbd::chart` for its initial state |
 //!
 //! The crate-level examples cover the rest: `gravity`, `coords`, `particle`, `init`,
 //! `event(falling, terminal)` (the thrown ball); a planar `body` with a body-fixed offset and
@@ -380,5 +381,70 @@
 //! let qdd = -cp.g * q.sin() / (cp.l * (1.0 - share * q.cos().powi(2)));
 //! assert!((acc[1] - qdd).abs() < 1e-13);
 //! assert!((acc[0] - share * cp.l * q.cos() * qdd).abs() < 1e-13);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Ball joints
+//!
+//! `joint = ball(s1, s2, s3)` is a spherical joint without a singular orientation. Its
+//! coordinates are the *modified Rodrigues parameters* of the joint's rotation: turned by
+//! `phi` about the unit axis `n` (in the parent's frame, as the rotation of the child's
+//! axes), `sigma = (s1, s2, s3) = tan(phi / 4) n`; zero is the joint's rest orientation, and
+//! for small turns `sigma` is a quarter of the rotation vector. Their rates are
+//! `sigma' = B w / 4`, `B = (1 - |sigma|^2) 1 + 2 [sigma]x + 2 sigma sigma^T`, with `w` the
+//! child's angular velocity relative to the parent in the child's axes; `B` is invertible
+//! at every finite `sigma`, so no orientation makes the mass matrix singular, whereas
+//! `spherical(a, b, c)` (`rot_z(a) rot_y(b) rot_x(c)`) cannot move through `b = ±π/2` (its
+//! mass matrix is singular there, and DOPRI5 crawls near it). The parameters grow without
+//! bound towards a full turn; the *shadow set* `-sigma / |sigma|^2` is the same
+//! orientation, and the generated model switches to it whenever `|sigma| > 1` (`phi > π`)
+//! after each accepted step (`OdeSystem::project`; the rates are mapped too), so a
+//! spinning body's coordinates jump once per turn while its orientation, angular velocity,
+//! energy and every output that depends on them move smoothly. Read orientation from
+//! outputs, not from `s1`, `s2`, `s3`; events on those coordinates would see the jumps. A
+//! ball coordinate cannot be driven (a spanned error): its three coordinates are one
+//! rotation. `spherical` keeps its meaning (Euler angles are what one drives and reads);
+//! choose `ball` for free rotation.
+//!
+//! [`mbd::chart`](crate::chart) turns a known orientation and angular velocity into the
+//! joint's state: `parameters(R)` (the set with `|sigma| <= 1`) and `rates(sigma, w)`,
+//! `rotation(sigma)` back. Below, a rigid pendulum swings in a steady cone at `alpha`
+//! from the downward vertical, turning at `Omega` about the vertical: with `A = a + m l^2`
+//! about the joint and `c` about its own axis, `Omega^2 = m g l / ((A - c) cos alpha)`
+//! (`g / (l cos alpha)` for a point mass), and its mass centre goes round a horizontal
+//! circle.
+//!
+//! ```
+//! use mbd::integrate::{Dopri5, Integrator, Options};
+//! use mbd::prelude::*;
+//! use mbd::{Matrix, Vector};
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial)]
+//! #[gravity(0.0, 0.0, -g)]
+//! #[body(bob, joint = ball(s1, s2, s3), com = [0.0, 0.0, -l], mass = m, inertia = diag(a, a, c))]
+//! #[output(centre = position(bob))]
+//! pub struct Cone { pub m: f64, pub l: f64, pub a: f64, pub c: f64, pub g: f64 }
+//!
+//! let p = Cone { m: 1.5, l: 0.8, a: 0.02, c: 0.01, g: 9.81 };
+//! let alpha: f64 = 0.5;
+//! let big_a = p.a + p.m * p.l * p.l;
+//! let omega = (p.m * p.g * p.l / ((big_a - p.c) * alpha.cos())).sqrt();
+//! // Tilted by alpha about x, turning at omega about the vertical (in the body's axes: R^T w).
+//! let rot = Matrix::<3, 3>::new(1.0, 0.0, 0.0, 0.0, alpha.cos(), -alpha.sin(), 0.0, alpha.sin(), alpha.cos());
+//! let sigma = mbd::chart::parameters(&rot);
+//! let rate = mbd::chart::rates(&sigma, &(rot.transpose() * Vector::<3>::new(0.0, 0.0, omega)));
+//! let y0 = Vector::<6>::new(sigma[0], sigma[1], sigma[2], rate[0], rate[1], rate[2]);
+//! let period = 2.0 * std::f64::consts::PI / omega;
+//! let opts = Options { rtol: 1e-11, atol: 1e-11, ..Default::default() };
+//! let sol = Dopri5::new(opts).solve(&p, 0.0, y0, period, &[])?;
+//! for k in 1..=4 {
+//!     let t = period * k as f64 / 4.0;
+//!     let o = p.outputs(t, &sol.at(t).unwrap())?;
+//!     let turn = omega * t;
+//!     let want = [p.l * alpha.sin() * -turn.sin(), p.l * alpha.sin() * turn.cos(), -p.l * alpha.cos()];
+//!     assert!((o.centre_x - want[0]).abs() < 1e-8 && (o.centre_y - want[1]).abs() < 1e-8);
+//!     assert!((o.centre_z - want[2]).abs() < 1e-8);
+//! }
 //! # Ok::<(), mbd::Error>(())
 //! ```

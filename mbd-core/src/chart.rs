@@ -9,7 +9,56 @@
 //! [`crate::OdeSystem::project`], after each accepted step; the orientation, the angular
 //! velocity and so every output and the energy are the same on both sides of the switch.
 
-use crate::model::Vector;
+use crate::model::{Matrix, Vector};
+
+/// `[a]x`, the cross-product matrix.
+fn skew(a: &Vector<3>) -> Matrix<3, 3> {
+    Matrix::<3, 3>::new(0.0, -a[2], a[1], a[2], 0.0, -a[0], -a[1], a[0], 0.0)
+}
+
+/// The rotation (child to parent) of the parameters `sigma`:
+/// `R = 1 + (8 [sigma]x^2 + 4 (1 - s2) [sigma]x) / (1 + s2)^2`, `s2 = |sigma|^2`.
+pub fn rotation(sigma: &Vector<3>) -> Matrix<3, 3> {
+    let s2 = sigma.norm_squared();
+    let x = skew(sigma);
+    Matrix::<3, 3>::identity() + (8.0 * x * x + 4.0 * (1.0 - s2) * x) / (1.0 + s2).powi(2)
+}
+
+/// The parameters of a rotation matrix, the set with `|sigma| <= 1`: `sigma = q_v / (1 + q_0)`
+/// from the unit quaternion `(q_0 >= 0, q_v)`, which is found from the largest of its
+/// components (Shepperd's method), so it is accurate at every angle. For a joint's initial
+/// position from a rotation one knows.
+pub fn parameters(r: &Matrix<3, 3>) -> Vector<3> {
+    let tr = r.trace();
+    let q = if tr > 0.0 {
+        let s = 2.0 * (1.0 + tr).sqrt();
+        let v = Vector::<3>::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+        (0.25 * s, v / s)
+    } else {
+        let i = (0..3)
+            .max_by(|&a, &b| r[(a, a)].total_cmp(&r[(b, b)]))
+            .unwrap_or(0);
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let s = 2.0 * (1.0 + r[(i, i)] - r[(j, j)] - r[(k, k)]).sqrt();
+        let mut v = Vector::<3>::zeros();
+        v[i] = 0.25 * s;
+        v[j] = (r[(j, i)] + r[(i, j)]) / s;
+        v[k] = (r[(k, i)] + r[(i, k)]) / s;
+        ((r[(k, j)] - r[(j, k)]) / s, v)
+    };
+    let (q0, v) = if q.0 < 0.0 { (-q.0, -q.1) } else { q };
+    v / (1.0 + q0)
+}
+
+/// The parameters' rates for the joint's angular velocity `w` in the child's frame:
+/// `sigma' = B w / 4`, `B = (1 - s2) 1 + 2 [sigma]x + 2 sigma sigma^T`. For a joint's
+/// initial velocity (`w = R^T w_world` for an angular velocity in the parent's axes).
+pub fn rates(sigma: &Vector<3>, w: &Vector<3>) -> Vector<3> {
+    let b = (1.0 - sigma.norm_squared()) * Matrix::<3, 3>::identity()
+        + 2.0 * skew(sigma)
+        + 2.0 * sigma * sigma.transpose();
+    b * w / 4.0
+}
 
 /// Switch every ball joint whose parameters left the unit ball to its shadow set.
 /// `balls[k]` holds the state indices of joint `k`'s three coordinates; their rates are at
@@ -49,6 +98,28 @@ mod tests {
             }
         }
         r
+    }
+
+    #[test]
+    fn parameters_invert_rotation_at_every_angle() {
+        for (axis, angle) in [([0.3, -0.5, 0.8], 0.7), ([1.0, 0.0, 0.0], 3.1), ([0.0, 0.6, -0.8], -2.9), ([0.2, 0.2, 0.96], 0.0)] {
+            let n = Vector::<3>::from(axis).normalize();
+            let sigma = n * (angle / 4.0_f64).tan();
+            let r = super::rotation(&sigma);
+            assert!((r * r.transpose() - Matrix::<3, 3>::identity()).norm() < 1e-14);
+            let back = parameters(&r);
+            assert!((back - sigma).norm() < 1e-14, "{back:?} {sigma:?}");
+            // Independently: the rotation by `angle` about `n` (Rodrigues' formula).
+            let x = skew(&n);
+            let rodrigues = Matrix::<3, 3>::identity() + angle.sin() * x + (1.0 - angle.cos()) * x * x;
+            assert!((rodrigues - r).norm() < 1e-14);
+        }
+        // Rates: R' = R [w]x, checked by a central difference along sigma'.
+        let (sigma, w) = (Vector::<3>::new(0.3, -0.2, 0.6), Vector::<3>::new(1.0, -2.0, 0.5));
+        let sd = rates(&sigma, &w);
+        let h = 1e-6;
+        let dr = (super::rotation(&(sigma + h * sd)) - super::rotation(&(sigma - h * sd))) / (2.0 * h);
+        assert!((dr - super::rotation(&sigma) * skew(&w)).norm() < 1e-9);
     }
 
     #[test]

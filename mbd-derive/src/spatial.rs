@@ -10,7 +10,9 @@
 //! a rotation about a coordinate axis (or none) and a shift, so the transforms are a few
 //! products, and each joint costs one division: `D = S . I^A S` is a scalar. A step's joint
 //! axis is singular exactly where the joint's coordinates are (a spherical joint at
-//! `b = +-pi/2`, where the mass matrix is singular too).
+//! `b = +-pi/2`, where the mass matrix is singular too). A ball joint (`ball.rs`) is one
+//! node with three columns instead, taken by the articulated-body pass in its angular
+//! velocity with a 3x3 `D`: nothing in it is singular.
 
 use crate::lower;
 use crate::sym::{Expr, Graph};
