@@ -288,7 +288,7 @@ fn rolled_recursion(
     first: usize,
     qdd: &[Expr],
 ) -> (TokenStream, usize) {
-    let len = rolled.len;
+    let (len, per) = (rolled.len, rolled.per);
     let ident = |e: Expr| {
         let s = eq.g.as_sym(e).expect("a placeholder is a symbol");
         format_ident!("{}", eq.g.sym_name(s))
@@ -300,7 +300,7 @@ fn rolled_recursion(
     let others: Vec<(usize, Expr)> = qdd
         .iter()
         .enumerate()
-        .filter(|(i, e)| !(first..first + len).contains(i) && !eq.g.is_zero(**e))
+        .filter(|(i, e)| !(first..first + len * per).contains(i) && !eq.g.is_zero(**e))
         .map(|(i, &e)| (i, e))
         .collect();
     for (index, l) in rolled.loops.iter().enumerate() {
@@ -338,24 +338,27 @@ fn rolled_recursion(
         // One link.
         let mut roots: Vec<Expr> = l.carried.iter().map(|c| c.2).collect();
         roots.extend(l.stored.iter().map(|st| st.1));
-        roots.extend(l.qdd);
+        roots.extend(l.qdd.iter().copied());
         let body = Block::after(eq, &roots, &known, temporaries);
         temporaries += body.len();
         let coordinate = velocities.then(|| {
-            let (q, qd) = (ident(rolled.q), ident(rolled.qd));
-            quote! {
-                let #q = q[#first + link];
-                let #qd = qd[#first + link];
-            }
+            let reads = rolled.coords.iter().enumerate().map(|(k, &(q, qd))| {
+                let (q, qd) = (ident(q), ident(qd));
+                quote! {
+                    let #q = q[#first + #per * link + #k];
+                    let #qd = qd[#first + #per * link + #k];
+                }
+            });
+            quote!(#(#reads)*)
         });
         let stmts = body.stmts();
         let stores = l.stored.iter().map(|st| {
             let (name, v) = (ident(st.0), body.leaf(st.1));
             quote!(#name[link] = #v;)
         });
-        let acc = l.qdd.map(|e| {
+        let acc = l.qdd.iter().enumerate().map(|(k, &e)| {
             let v = body.leaf(e);
-            quote!(qdd[#first + link] = #v;)
+            quote!(qdd[#first + #per * link + #k] = #v;)
         });
         let (names, next): (Vec<_>, Vec<_>) = l
             .carried
@@ -372,7 +375,7 @@ fn rolled_recursion(
                 #coordinate
                 #stmts
                 #(#stores)*
-                #acc
+                #(#acc)*
                 (#(#names,)*) = (#(#next,)*);
             }
         });

@@ -17,6 +17,9 @@
 use crate::lower;
 use crate::sym::{Expr, Graph};
 
+mod roll;
+pub use roll::rolled;
+
 type V3 = [Expr; 3];
 type M3 = [[Expr; 3]; 3];
 
@@ -560,9 +563,9 @@ fn articulate_ball(g: &mut Graph, o: &Outward, moment: V3, (i_a, p_a): (Si, Sv))
         b: [[z; 3]; 3],
         m: i_a.m,
     };
-    for r in 0..3 {
-        for k in r..3 {
-            ia.m[r][k] = g.sub(i_a.m[r][k], reduced[r][k]);
+    for (r, row) in reduced.iter().enumerate() {
+        for (k, &x) in row.iter().enumerate().skip(r) {
+            ia.m[r][k] = g.sub(i_a.m[r][k], x);
             ia.m[k][r] = ia.m[r][k];
         }
     }
@@ -670,60 +673,99 @@ fn accelerate(
     }
 }
 
+/// The three passes of the articulated-body algorithm over a tree, unrolled; the rest of a
+/// tree whose tail run is rolled (`roll.rs`) uses them with the run's hand-on.
+struct Unrolled {
+    xs: Vec<Transform>,
+    joints: Vec<Joint>,
+    out: Vec<Outward>,
+}
+
+impl Unrolled {
+    /// Pass 1, root to tips.
+    fn new(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Self {
+        let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
+        let joints: Vec<Joint> = nodes.iter().map(|n| Joint::of(g, &n.step, inp)).collect();
+        let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
+        for (node, x) in nodes.iter().zip(&xs) {
+            let parent = node.parent.map(|p| out[p].v);
+            let o = outward(g, node, x, parent, inp.velocity);
+            out.push(o);
+        }
+        Unrolled { xs, joints, out }
+    }
+
+    /// Passes 2 (tips to root, with `hand_on` added at its node: a rolled run's) and 3
+    /// (root to tips): every frame's acceleration and the free coordinates' `qdd`.
+    fn finish(
+        &self,
+        g: &mut Graph,
+        nodes: &[Node],
+        inp: &Inputs<'_>,
+        hand_on: Option<(usize, (Si, Sv))>,
+    ) -> (Vec<Sv>, Vec<Option<Expr>>) {
+        let mut ia: Vec<Si> = self.out.iter().map(|o| o.inertia).collect();
+        let mut pa: Vec<Sv> = self.out.iter().map(|o| o.p).collect();
+        if let Some((at, up)) = hand_on {
+            add_hand_on(g, (&mut ia[at], &mut pa[at]), up);
+        }
+        let mut arts: Vec<Option<Articulated>> = vec![None; nodes.len()];
+        for i in (0..nodes.len()).rev() {
+            let (up, art) = inward(
+                g,
+                &self.xs[i],
+                &self.out[i],
+                &nodes[i].step,
+                &self.joints[i],
+                (ia[i], pa[i]),
+            );
+            arts[i] = art;
+            if let Some(p) = nodes[i].parent {
+                add_hand_on(g, (&mut ia[p], &mut pa[p]), up);
+            }
+        }
+        // Gravity as an upward acceleration of the ground.
+        let base = base_acceleration(g, inp.gravity);
+        let mut a: Vec<Sv> = Vec::with_capacity(nodes.len());
+        let mut qdd = vec![None; inp.velocity.len()];
+        for (i, node) in nodes.iter().enumerate() {
+            let parent = node.parent.map_or(base, |p| a[p]);
+            let ap = self.xs[i].motion(g, parent);
+            let a_prime = sv_add(g, ap, self.out[i].c);
+            let inputs = (a_prime, inp.velocity);
+            let o = &self.out[i];
+            let acc = accelerate(g, node, o, &self.joints[i], arts[i], inputs, &mut qdd);
+            a.push(acc);
+        }
+        (a, qdd)
+    }
+}
+
+/// `(0, -gravity)`: the ground's acceleration that stands for gravity.
+fn base_acceleration(g: &mut Graph, gravity: V3) -> Sv {
+    let z = g.zero();
+    Sv {
+        a: [z; 3],
+        l: gravity.map(|x| g.neg(x)),
+    }
+}
+
+/// A child's articulated inertia and bias force added to its parent's.
+fn add_hand_on(g: &mut Graph, (ia, pa): (&mut Si, &mut Sv), (i_up, p_up): (Si, Sv)) {
+    for r in 0..3 {
+        for k in 0..3 {
+            ia.a[r][k] = g.add(ia.a[r][k], i_up.a[r][k]);
+            ia.b[r][k] = g.add(ia.b[r][k], i_up.b[r][k]);
+            ia.m[r][k] = g.add(ia.m[r][k], i_up.m[r][k]);
+        }
+    }
+    *pa = sv_add(g, *pa, p_up);
+}
+
 /// The accelerations of the free joint coordinates: `Some(qdd)` at each free coordinate a
 /// step moves, by the three passes of the articulated-body algorithm, unrolled.
 pub fn articulated_body(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Vec<Option<Expr>> {
-    let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
-    let joints: Vec<Joint> = nodes.iter().map(|n| Joint::of(g, &n.step, inp)).collect();
-    // Pass 1, root to tips.
-    let mut out: Vec<Outward> = Vec::with_capacity(nodes.len());
-    for (node, x) in nodes.iter().zip(&xs) {
-        let parent = node.parent.map(|p| out[p].v);
-        let o = outward(g, node, x, parent, inp.velocity);
-        out.push(o);
-    }
-    // Pass 2, tips to root.
-    let mut ia: Vec<Si> = out.iter().map(|o| o.inertia).collect();
-    let mut pa: Vec<Sv> = out.iter().map(|o| o.p).collect();
-    let mut arts: Vec<Option<Articulated>> = vec![None; nodes.len()];
-    for i in (0..nodes.len()).rev() {
-        let ((i_up, p_up), art) = inward(
-            g,
-            &xs[i],
-            &out[i],
-            &nodes[i].step,
-            &joints[i],
-            (ia[i], pa[i]),
-        );
-        arts[i] = art;
-        if let Some(p) = nodes[i].parent {
-            for r in 0..3 {
-                for k in 0..3 {
-                    ia[p].a[r][k] = g.add(ia[p].a[r][k], i_up.a[r][k]);
-                    ia[p].b[r][k] = g.add(ia[p].b[r][k], i_up.b[r][k]);
-                    ia[p].m[r][k] = g.add(ia[p].m[r][k], i_up.m[r][k]);
-                }
-            }
-            pa[p] = sv_add(g, pa[p], p_up);
-        }
-    }
-    // Pass 3, root to tips; gravity as an upward acceleration of the ground.
-    let z = g.zero();
-    let base = Sv {
-        a: [z; 3],
-        l: inp.gravity.map(|x| g.neg(x)),
-    };
-    let mut a: Vec<Sv> = Vec::with_capacity(nodes.len());
-    let mut qdd = vec![None; inp.velocity.len()];
-    for (i, node) in nodes.iter().enumerate() {
-        let parent = node.parent.map_or(base, |p| a[p]);
-        let ap = xs[i].motion(g, parent);
-        let a_prime = sv_add(g, ap, out[i].c);
-        let inputs = (a_prime, inp.velocity);
-        let acc = accelerate(g, node, &out[i], &joints[i], arts[i], inputs, &mut qdd);
-        a.push(acc);
-    }
-    qdd
+    Unrolled::new(g, nodes, inp).finish(g, nodes, inp, None).1
 }
 
 /// The mass matrix, the forces at zero joint accelerations and the kinetic energy of a

@@ -536,8 +536,8 @@ pub struct Loop {
     /// Per-link values kept for the later loops: placeholder symbol (read at the link's
     /// index), value.
     pub stored: Vec<(Expr, Expr)>,
-    /// The link's joint acceleration (the last loop).
-    pub qdd: Option<Expr>,
+    /// The link's joint accelerations, one per coordinate of a link (the last loop).
+    pub qdd: Vec<Expr>,
 }
 
 /// The articulated-body recursion with a run of identical links (the tail of a `chain`)
@@ -548,9 +548,11 @@ pub struct Loop {
 pub struct Rolled {
     /// Full-coordinate index of the run's first joint; the run's joints are consecutive.
     pub first_coord: usize,
+    /// Links in the run, coordinates per link (a spatial link's steps: `spatial/roll.rs`).
     pub len: usize,
-    pub q: Expr,
-    pub qd: Expr,
+    pub per: usize,
+    /// Placeholders of a link's coordinates and rates, in order.
+    pub coords: Vec<(Expr, Expr)>,
     /// Outward velocities, inward articulated inertias, outward accelerations.
     pub loops: [Loop; 3],
     /// The accelerations of the other free coordinates (`None` at the run's), evaluated
@@ -561,7 +563,9 @@ pub struct Rolled {
 impl Rolled {
     /// Every placeholder symbol, and whether it is read per link (a stored array).
     pub fn placeholders(&self) -> Vec<(Expr, bool)> {
-        let mut all = vec![(self.q, false), (self.qd, false)];
+        let mut all: Vec<(Expr, bool)> = (self.coords.iter())
+            .flat_map(|&(q, qd)| [(q, false), (qd, false)])
+            .collect();
         for l in &self.loops {
             all.extend(l.carried.iter().map(|c| (c.0, false)));
             all.extend(l.stored.iter().map(|s| (s.0, true)));
@@ -660,7 +664,7 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
             .map(|i| (v_in[i], rest.out[parent].v[i], o.v[i]))
             .collect(),
         stored: stored1,
-        qdd: None,
+        qdd: Vec::new(),
     };
 
     // Loop 2, tips to root: the articulated inertia from the link's own and the child's
@@ -700,7 +704,7 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
         reverse: true,
         carried: carried2,
         stored: stored2,
-        qdd: None,
+        qdd: Vec::new(),
     };
 
     // The rest of the tree, passes 2 and 3, with the run's hand-on (the values carried out
@@ -714,13 +718,13 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
         reverse: false,
         carried: (0..3).map(|i| (a_in[i], a[parent][i], a_link[i])).collect(),
         stored: Vec::new(),
-        qdd: acc,
+        qdd: acc.into_iter().collect(),
     };
     Some(Rolled {
         first_coord,
         len,
-        q,
-        qd,
+        per: 1,
+        coords: vec![(q, qd)],
         loops: [loop1, loop2, loop3],
         qdd,
     })

@@ -288,7 +288,10 @@ fn accelerations(
     inputs: &spatial::Inputs<'_>,
 ) -> (Vec<Option<Expr>>, Option<tree::Rolled>) {
     if dim == Dim::Spatial {
-        return (spatial::articulated_body(g, steps, inputs), None);
+        return match spatial::rolled(g, steps, inputs) {
+            Some(r) => (r.qdd.clone(), Some(r)),
+            None => (spatial::articulated_body(g, steps, inputs), None),
+        };
     }
     let inputs = tree::Inputs {
         velocity: inputs.velocity,

@@ -201,7 +201,7 @@ fn roll(
     }
     let first = free_idx.iter().position(|&i| i == r.first_coord);
     let consecutive = first
-        .is_some_and(|f| (0..r.len).all(|k| free_idx.get(f + k) == Some(&(r.first_coord + k))));
+        .is_some_and(|f| (0..r.len * r.per).all(|k| free_idx.get(f + k) == Some(&(r.first_coord + k))));
     match (first, consecutive) {
         (Some(f), true) => (r, f),
         _ => unreachable!("a rolled run's joints are free, consecutive coordinates"),
