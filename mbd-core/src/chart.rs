@@ -32,7 +32,11 @@ pub fn parameters(r: &Matrix<3, 3>) -> Vector<3> {
     let tr = r.trace();
     let q = if tr > 0.0 {
         let s = 2.0 * (1.0 + tr).sqrt();
-        let v = Vector::<3>::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+        let v = Vector::<3>::new(
+            r[(2, 1)] - r[(1, 2)],
+            r[(0, 2)] - r[(2, 0)],
+            r[(1, 0)] - r[(0, 1)],
+        );
         (0.25 * s, v / s)
     } else {
         let i = (0..3)
@@ -102,7 +106,12 @@ mod tests {
 
     #[test]
     fn parameters_invert_rotation_at_every_angle() {
-        for (axis, angle) in [([0.3, -0.5, 0.8], 0.7), ([1.0, 0.0, 0.0], 3.1), ([0.0, 0.6, -0.8], -2.9), ([0.2, 0.2, 0.96], 0.0)] {
+        for (axis, angle) in [
+            ([0.3, -0.5, 0.8], 0.7),
+            ([1.0, 0.0, 0.0], 3.1),
+            ([0.0, 0.6, -0.8], -2.9),
+            ([0.2, 0.2, 0.96], 0.0),
+        ] {
             let n = Vector::<3>::from(axis).normalize();
             let sigma = n * (angle / 4.0_f64).tan();
             let r = super::rotation(&sigma);
@@ -111,21 +120,28 @@ mod tests {
             assert!((back - sigma).norm() < 1e-14, "{back:?} {sigma:?}");
             // Independently: the rotation by `angle` about `n` (Rodrigues' formula).
             let x = skew(&n);
-            let rodrigues = Matrix::<3, 3>::identity() + angle.sin() * x + (1.0 - angle.cos()) * x * x;
+            let rodrigues =
+                Matrix::<3, 3>::identity() + angle.sin() * x + (1.0 - angle.cos()) * x * x;
             assert!((rodrigues - r).norm() < 1e-14);
         }
         // Rates: R' = R [w]x, checked by a central difference along sigma'.
-        let (sigma, w) = (Vector::<3>::new(0.3, -0.2, 0.6), Vector::<3>::new(1.0, -2.0, 0.5));
+        let (sigma, w) = (
+            Vector::<3>::new(0.3, -0.2, 0.6),
+            Vector::<3>::new(1.0, -2.0, 0.5),
+        );
         let sd = rates(&sigma, &w);
         let h = 1e-6;
-        let dr = (super::rotation(&(sigma + h * sd)) - super::rotation(&(sigma - h * sd))) / (2.0 * h);
+        let dr =
+            (super::rotation(&(sigma + h * sd)) - super::rotation(&(sigma - h * sd))) / (2.0 * h);
         assert!((dr - super::rotation(&sigma) * skew(&w)).norm() < 1e-9);
     }
 
     #[test]
     fn the_shadow_set_is_the_same_rotation_and_motion() {
         let (sigma, rate) = ([0.9, -0.6, 0.3], [0.4, 0.7, -1.1]);
-        let mut y = Vector::<6>::from_column_slice(&[sigma[0], sigma[1], sigma[2], rate[0], rate[1], rate[2]]);
+        let mut y = Vector::<6>::from_column_slice(&[
+            sigma[0], sigma[1], sigma[2], rate[0], rate[1], rate[2],
+        ]);
         shadow(&mut y, 3, &[[0, 1, 2]]);
         let s2: f64 = sigma.iter().map(|s| s * s).sum();
         assert!(s2 > 1.0);
@@ -143,7 +159,10 @@ mod tests {
             for k in 0..3 {
                 assert!((r0[i][k] - r1[i][k]).abs() < 1e-14);
                 // The two rotations' rates agree to the first-order step's O(dt^2).
-                assert!(((q0[i][k] - r0[i][k]) - (q1[i][k] - r1[i][k])).abs() < 1e-10 * dt.sqrt() + 1e-11);
+                assert!(
+                    ((q0[i][k] - r0[i][k]) - (q1[i][k] - r1[i][k])).abs()
+                        < 1e-10 * dt.sqrt() + 1e-11
+                );
             }
         }
         // Inside the unit ball nothing changes.

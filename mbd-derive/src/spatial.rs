@@ -551,7 +551,12 @@ fn articulate(
 /// A free ball joint in its angular velocity (`S = (1, 0)`, `D = a`): `I^a` keeps only
 /// `m - b^T D^-1 b` (its `a` and `b` blocks are exactly zero), and `p^a` the moment `n` and
 /// the force `p^A_l + (m - b^T D^-1 b) c_l + b^T D^-1 u`.
-fn articulate_ball(g: &mut Graph, o: &Outward, moment: V3, (i_a, p_a): (Si, Sv)) -> (Si, Sv, Articulated) {
+fn articulate_ball(
+    g: &mut Graph,
+    o: &Outward,
+    moment: V3,
+    (i_a, p_a): (Si, Sv),
+) -> (Si, Sv, Articulated) {
     let d_inv = inverse_sym(g, &i_a.a);
     let u = sub3(g, moment, p_a.a);
     // b^T D^-1, then the reduced mass block.
@@ -587,11 +592,17 @@ fn articulate_ball(g: &mut Graph, o: &Outward, moment: V3, (i_a, p_a): (Si, Sv))
 
 /// How a step's coordinates enter the recursion.
 enum Joint {
-    Free { tau: Expr },
+    Free {
+        tau: Expr,
+    },
     /// A ball joint's three free coordinates, by the moment of their generalised forces.
-    Ball { moment: V3 },
+    Ball {
+        moment: V3,
+    },
     /// Every coordinate driven: the known accelerations, per full coordinate.
-    Driven { qdd: Vec<Expr> },
+    Driven {
+        qdd: Vec<Expr>,
+    },
     Locked,
 }
 

@@ -126,17 +126,41 @@ const BODY: BallBody = BallBody {
 
 fn recursive() -> BallBodyRecursive {
     let p = &BODY;
-    BallBodyRecursive { m: p.m, e: p.e, h: p.h, ia: p.ia, ib: p.ib, ic: p.ic, g: p.g }
+    BallBodyRecursive {
+        m: p.m,
+        e: p.e,
+        h: p.h,
+        ia: p.ia,
+        ib: p.ib,
+        ic: p.ic,
+        g: p.g,
+    }
 }
 
 fn by_hand() -> BallBodyByHand {
     let p = &BODY;
-    BallBodyByHand { m: p.m, e: p.e, h: p.h, ia: p.ia, ib: p.ib, ic: p.ic, g: p.g }
+    BallBodyByHand {
+        m: p.m,
+        e: p.e,
+        h: p.h,
+        ia: p.ia,
+        ib: p.ib,
+        ic: p.ic,
+        g: p.g,
+    }
 }
 
 fn euler() -> EulerBody {
     let p = &BODY;
-    EulerBody { m: p.m, e: p.e, h: p.h, ia: p.ia, ib: p.ib, ic: p.ic, g: p.g }
+    EulerBody {
+        m: p.m,
+        e: p.e,
+        h: p.h,
+        ia: p.ia,
+        ib: p.ib,
+        ic: p.ic,
+        g: p.g,
+    }
 }
 
 fn inertia() -> Matrix<3, 3> {
@@ -167,9 +191,16 @@ fn mrp_of(r: &Matrix<3, 3>) -> Vector<3> {
     let tr = r.trace();
     let q = if tr > 0.0 {
         let s = 2.0 * (1.0 + tr).sqrt();
-        [0.25 * s, (r[(2, 1)] - r[(1, 2)]) / s, (r[(0, 2)] - r[(2, 0)]) / s, (r[(1, 0)] - r[(0, 1)]) / s]
+        [
+            0.25 * s,
+            (r[(2, 1)] - r[(1, 2)]) / s,
+            (r[(0, 2)] - r[(2, 0)]) / s,
+            (r[(1, 0)] - r[(0, 1)]) / s,
+        ]
     } else {
-        let i = (0..3).max_by(|&a, &b| r[(a, a)].total_cmp(&r[(b, b)])).unwrap();
+        let i = (0..3)
+            .max_by(|&a, &b| r[(a, a)].total_cmp(&r[(b, b)]))
+            .unwrap();
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
         let s = 2.0 * (1.0 + r[(i, i)] - r[(j, j)] - r[(k, k)]).sqrt();
         let mut q = [(r[(k, j)] - r[(j, k)]) / s, 0.0, 0.0, 0.0];
@@ -201,7 +232,10 @@ fn zyx(psi: f64, theta: f64, phi: f64) -> Matrix<3, 3> {
 }
 
 fn split(y: &Vector<6>) -> (Vector<3>, Vector<3>) {
-    (y.fixed_rows::<3>(0).into_owned(), y.fixed_rows::<3>(3).into_owned())
+    (
+        y.fixed_rows::<3>(0).into_owned(),
+        y.fixed_rows::<3>(3).into_owned(),
+    )
 }
 
 /// Energy and angular momentum about the vertical through the joint, from the state by
@@ -229,34 +263,67 @@ fn ball_joint_equals_its_rotation_typed_in() {
     let (p, hand) = (&BODY, by_hand());
     for (q, qd) in STATES {
         let (q, qd) = (Vector::<3>::from(q), Vector::<3>::from(qd));
-        let (m, m_hand): (Matrix<3, 3>, Matrix<3, 3>) = (p.mass_matrix(0.0, &q), hand.mass_matrix(0.0, &q));
+        let (m, m_hand): (Matrix<3, 3>, Matrix<3, 3>) =
+            (p.mass_matrix(0.0, &q), hand.mass_matrix(0.0, &q));
         assert_relative_eq!(m, m_hand, epsilon = 1e-14, max_relative = 1e-12);
-        assert_relative_eq!(p.forces(0.0, &q, &qd), hand.forces(0.0, &q, &qd), epsilon = 1e-13, max_relative = 1e-12);
-        assert_relative_eq!(p.energy(0.0, &q, &qd), hand.energy(0.0, &q, &qd), max_relative = 1e-13);
+        assert_relative_eq!(
+            p.forces(0.0, &q, &qd),
+            hand.forces(0.0, &q, &qd),
+            epsilon = 1e-13,
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            p.energy(0.0, &q, &qd),
+            hand.energy(0.0, &q, &qd),
+            max_relative = 1e-13
+        );
     }
     // The generated angular velocity is the body-frame `w` of `sigma' = B w / 4`, in world axes.
-    let (q, qd) = (Vector::<3>::new(0.6, -0.3, 0.5), Vector::<3>::new(0.2, 0.9, -1.3));
+    let (q, qd) = (
+        Vector::<3>::new(0.6, -0.3, 0.5),
+        Vector::<3>::new(0.2, 0.9, -1.3),
+    );
     let y = Vector::<6>::new(q[0], q[1], q[2], qd[0], qd[1], qd[2]);
     let o = p.outputs(0.0, &y).unwrap();
     let w_body = mrp_b(&q).try_inverse().unwrap() * qd * 4.0;
     let w = mrp_rotation(&q) * w_body;
-    assert_relative_eq!(Vector::<3>::new(o.omega_x, o.omega_y, o.omega_z), w, max_relative = 1e-13);
+    assert_relative_eq!(
+        Vector::<3>::new(o.omega_x, o.omega_y, o.omega_z),
+        w,
+        max_relative = 1e-13
+    );
 }
 
 #[test]
 fn ball_joint_recursions_equal_the_mass_matrix_form() {
     let (p, rec) = (&BODY, recursive());
-    assert!(BallBodyRecursive::GENERATED.parts.contains(&"articulated_body"));
+    assert!(
+        BallBodyRecursive::GENERATED
+            .parts
+            .contains(&"articulated_body")
+    );
     assert!(!BallBody::GENERATED.parts.contains(&"articulated_body"));
     for (q, qd) in STATES {
         let (q, qd) = (Vector::<3>::from(q), Vector::<3>::from(qd));
         // Composite rigid bodies and Newton-Euler against Kane.
-        let (m, m_rec): (Matrix<3, 3>, Matrix<3, 3>) = (p.mass_matrix(0.0, &q), rec.mass_matrix(0.0, &q));
+        let (m, m_rec): (Matrix<3, 3>, Matrix<3, 3>) =
+            (p.mass_matrix(0.0, &q), rec.mass_matrix(0.0, &q));
         assert_relative_eq!(m, m_rec, epsilon = 1e-14, max_relative = 1e-12);
-        assert_relative_eq!(p.forces(0.0, &q, &qd), rec.forces(0.0, &q, &qd), epsilon = 1e-13, max_relative = 1e-12);
+        assert_relative_eq!(
+            p.forces(0.0, &q, &qd),
+            rec.forces(0.0, &q, &qd),
+            epsilon = 1e-13,
+            max_relative = 1e-12
+        );
         // The articulated body (3x3 D in the angular velocity) against M^-1 f.
-        let (a, a_rec) = (p.acceleration(0.0, &q, &qd).unwrap(), rec.acceleration(0.0, &q, &qd).unwrap());
-        assert!((a - a_rec).norm() <= 1e-12 * a.norm().max(1.0), "{a:?} {a_rec:?}");
+        let (a, a_rec) = (
+            p.acceleration(0.0, &q, &qd).unwrap(),
+            rec.acceleration(0.0, &q, &qd).unwrap(),
+        );
+        assert!(
+            (a - a_rec).norm() <= 1e-12 * a.norm().max(1.0),
+            "{a:?} {a_rec:?}"
+        );
     }
 }
 
@@ -281,7 +348,9 @@ fn ball_joint_moves_as_the_euler_angle_joint_away_from_its_singularity() {
     let rot = zyx(y_euler[0], y_euler[1], y_euler[2]);
     let y_ball = ball_state(&rot, &w);
     let t1 = 1.5;
-    let a = Dopri5::new(tight()).solve(&e, 0.0, y_euler, t1, &[]).unwrap();
+    let a = Dopri5::new(tight())
+        .solve(&e, 0.0, y_euler, t1, &[])
+        .unwrap();
     let b = Dopri5::new(tight()).solve(p, 0.0, y_ball, t1, &[]).unwrap();
     let ((ta, ya), (tb, yb)) = (a.last(), b.last());
     assert_eq!((ta, tb), (t1, t1));
@@ -291,7 +360,10 @@ fn ball_joint_moves_as_the_euler_angle_joint_away_from_its_singularity() {
     assert!((ra - rb).norm() < 1e-10, "rotation {}", (ra - rb).norm());
     let com = |x: f64, y: f64, z: f64| Vector::<3>::new(x, y, z);
     assert!((com(oa.x, oa.y, oa.z) - com(ob.x, ob.y, ob.z)).norm() < 1e-10);
-    let (wa, wb) = (com(oa.omega_x, oa.omega_y, oa.omega_z), com(ob.omega_x, ob.omega_y, ob.omega_z));
+    let (wa, wb) = (
+        com(oa.omega_x, oa.omega_y, oa.omega_z),
+        com(ob.omega_x, ob.omega_y, ob.omega_z),
+    );
     assert!((wa - wb).norm() < 1e-10 * wa.norm(), "{wa:?} {wb:?}");
     // The motion is not trivial: the body turned by more than a radian.
     assert!((ra - rot).norm() > 1.0);
@@ -350,7 +422,9 @@ fn heavy_top_precesses_steadily_as_in_closed_form() {
         atol: 1e-12,
         ..Default::default()
     };
-    let sol = Dopri5::new(opts.clone()).solve(&p, 0.0, y0, period, &[]).unwrap();
+    let sol = Dopri5::new(opts.clone())
+        .solve(&p, 0.0, y0, period, &[])
+        .unwrap();
     let mut worst: f64 = 0.0;
     for k in 0..=40 {
         let t = period * k as f64 / 40.0;
@@ -363,7 +437,10 @@ fn heavy_top_precesses_steadily_as_in_closed_form() {
     // shadow set once per turn of the spin (it turns about 38 times).
     let sigma: Vec<Vector<3>> = sol.y.iter().map(|y| split(y).0).collect();
     assert!(sigma.iter().all(|s| s.norm() <= 1.0));
-    let switches = sigma.windows(2).filter(|w| (w[1] - w[0]).norm() > 1.0).count();
+    let switches = sigma
+        .windows(2)
+        .filter(|w| (w[1] - w[0]).norm() > 1.0)
+        .count();
     assert!((35..=45).contains(&switches), "{switches} switches");
     assert!(worst < 1e-9, "axis off the closed form by {worst:e}");
 }
@@ -387,13 +464,21 @@ fn ball_joint_passes_gimbal_lock_conserving_energy_and_vertical_momentum() {
         dense: false,
         ..Default::default()
     };
-    let sol = Dopri5::new(opts.clone()).solve(p, 0.0, y0, 4.0, &[]).unwrap();
+    let sol = Dopri5::new(opts.clone())
+        .solve(p, 0.0, y0, 4.0, &[])
+        .unwrap();
     let (e0, l0) = invariants(&y0);
-    assert!(l0.abs() > 0.5, "a zero momentum would make a weak test: {l0}");
+    assert!(
+        l0.abs() > 0.5,
+        "a zero momentum would make a weak test: {l0}"
+    );
     for y in &sol.y {
         let (e, l) = invariants(y);
         assert!((e - e0).abs() < 1e-10 * e0.abs(), "energy {e} against {e0}");
-        assert!((l - l0).abs() < 1e-10 * l0.abs(), "momentum {l} against {l0}");
+        assert!(
+            (l - l0).abs() < 1e-10 * l0.abs(),
+            "momentum {l} against {l0}"
+        );
     }
     // The motion is not trivial: the body turned by more than a radian.
     let (_, y1) = sol.last();
@@ -402,19 +487,34 @@ fn ball_joint_passes_gimbal_lock_conserving_energy_and_vertical_momentum() {
 
     // The Euler form: singular at the lock, ever slower beside it.
     let e = euler();
-    let at_lock = e.acceleration(0.0, &Vector::<3>::new(psi, lock, phi), &Vector::<3>::new(1.0, 0.5, -1.0));
-    assert!(matches!(at_lock, Err(mbd::Error::SingularMassMatrix { .. })), "{at_lock:?}");
+    let at_lock = e.acceleration(
+        0.0,
+        &Vector::<3>::new(psi, lock, phi),
+        &Vector::<3>::new(1.0, 0.5, -1.0),
+    );
+    assert!(
+        matches!(at_lock, Err(mbd::Error::SingularMassMatrix { .. })),
+        "{at_lock:?}"
+    );
     let beside = |d: f64| {
         let theta = lock - d;
         // The Euler rates of w (world axes): w = e_z psi' + R_z e_y theta' + R_z R_y e_x phi'.
         let (rz, ry) = (rot_z(psi), rot_y(theta));
-        let axes = [Vector::<3>::z(), rz * Vector::<3>::y(), rz * ry * Vector::<3>::x()];
+        let axes = [
+            Vector::<3>::z(),
+            rz * Vector::<3>::y(),
+            rz * ry * Vector::<3>::x(),
+        ];
         let qd = Matrix::<3, 3>::from_columns(&axes).try_inverse().unwrap() * w;
         let y = Vector::<6>::new(psi, theta, phi, qd[0], qd[1], qd[2]);
         Dopri5::new(opts.clone()).solve(&e, 0.0, y, 4.0, &[])
     };
     let near = beside(1e-4).unwrap();
-    assert!(near.stats.n_steps > 10 * ball_steps, "{} against {ball_steps}", near.stats.n_steps);
+    assert!(
+        near.stats.n_steps > 10 * ball_steps,
+        "{} against {ball_steps}",
+        near.stats.n_steps
+    );
     assert!(beside(1e-6).is_err());
 }
 
@@ -464,22 +564,52 @@ pub struct BallChainKane {
 
 #[test]
 fn ball_chain_recursions_equal_kanes_form() {
-    let p = BallChain { m1: 1.2, m2: 0.8, m3: 0.3, l: 0.7, g: 9.81 };
-    let k = BallChainKane { m1: 1.2, m2: 0.8, m3: 0.3, l: 0.7, g: 9.81 };
+    let p = BallChain {
+        m1: 1.2,
+        m2: 0.8,
+        m3: 0.3,
+        l: 0.7,
+        g: 9.81,
+    };
+    let k = BallChainKane {
+        m1: 1.2,
+        m2: 0.8,
+        m3: 0.3,
+        l: 0.7,
+        g: 9.81,
+    };
     assert!(BallChain::GENERATED.parts.contains(&"articulated_body"));
     let states: [([f64; 7], [f64; 7]); 3] = [
-        ([0.3, -0.2, 0.5, -0.6, 0.4, 0.1, 1.0], [0.4, 1.1, -0.7, 0.9, -0.3, 1.2, 5.0]),
-        ([-0.9, 0.1, 0.35, 0.99, -0.05, 0.02, -2.0], [-2.0, 0.3, 1.5, 0.1, 2.2, -0.8, -3.0]),
+        (
+            [0.3, -0.2, 0.5, -0.6, 0.4, 0.1, 1.0],
+            [0.4, 1.1, -0.7, 0.9, -0.3, 1.2, 5.0],
+        ),
+        (
+            [-0.9, 0.1, 0.35, 0.99, -0.05, 0.02, -2.0],
+            [-2.0, 0.3, 1.5, 0.1, 2.2, -0.8, -3.0],
+        ),
         ([0.0; 7], [0.0; 7]),
     ];
     for (q, qd) in states {
         let (q, qd) = (Vector::<7>::from(q), Vector::<7>::from(qd));
-        let (m, m_kane): (Matrix<7, 7>, Matrix<7, 7>) = (p.mass_matrix(0.0, &q), k.mass_matrix(0.0, &q));
+        let (m, m_kane): (Matrix<7, 7>, Matrix<7, 7>) =
+            (p.mass_matrix(0.0, &q), k.mass_matrix(0.0, &q));
         assert_relative_eq!(m, m_kane, epsilon = 1e-13, max_relative = 1e-12);
         let f = p.forces(0.0, &q, &qd);
-        assert_relative_eq!(f, k.forces(0.0, &q, &qd), epsilon = 1e-12, max_relative = 1e-12);
-        let (a, a_kane) = (p.acceleration(0.0, &q, &qd).unwrap(), k.acceleration(0.0, &q, &qd).unwrap());
-        assert!((a - a_kane).norm() <= 1e-12 * a.norm().max(1.0), "{a:?}\n{a_kane:?}");
+        assert_relative_eq!(
+            f,
+            k.forces(0.0, &q, &qd),
+            epsilon = 1e-12,
+            max_relative = 1e-12
+        );
+        let (a, a_kane) = (
+            p.acceleration(0.0, &q, &qd).unwrap(),
+            k.acceleration(0.0, &q, &qd).unwrap(),
+        );
+        assert!(
+            (a - a_kane).norm() <= 1e-12 * a.norm().max(1.0),
+            "{a:?}\n{a_kane:?}"
+        );
         // Inverse dynamics by Newton-Euler: M qdd - f, zero at the motion's own qdd.
         let probe = Vector::<7>::from_fn(|i, _| 0.3 * i as f64 - 1.0);
         let id = p.inverse_dynamics(0.0, &q, &qd, &probe);

@@ -190,16 +190,24 @@ pub struct Hinges8Kane {
 
 /// `|M qdd - f| <= 1e-12 (|M| |qdd| + |f|)` (backward error: the forward one would add
 /// `M`'s condition number), with `M`, `f` from the Kane twin, at fixed irregular states.
-fn rolled_equals_kane<const N: usize>(rolled: &impl MechanismModel<N>, kane: &impl MechanismModel<N>) {
+fn rolled_equals_kane<const N: usize>(
+    rolled: &impl MechanismModel<N>,
+    kane: &impl MechanismModel<N>,
+) {
     for seed in [3usize, 7, 11] {
-        let q = Vector::<N>::from_fn(|i, _| 1.2 * ((((i + 1) * seed * 37) % 17) as f64 / 8.0 - 1.0));
-        let qd = Vector::<N>::from_fn(|i, _| 2.0 * ((((i + 2) * seed * 11) % 13) as f64 / 6.0 - 1.0));
+        let q =
+            Vector::<N>::from_fn(|i, _| 1.2 * ((((i + 1) * seed * 37) % 17) as f64 / 8.0 - 1.0));
+        let qd =
+            Vector::<N>::from_fn(|i, _| 2.0 * ((((i + 2) * seed * 11) % 13) as f64 / 6.0 - 1.0));
         let qdd = rolled.acceleration(0.0, &q, &qd).unwrap();
         let mass: Matrix<N, N> = kane.mass_matrix(0.0, &q);
         let f = kane.forces(0.0, &q, &qd);
         let residual = (mass * qdd - f).amax();
         let size = mass.norm() * qdd.norm() + f.norm();
-        assert!(residual <= 1e-12 * size, "|M qdd - f| = {residual:e}, scale {size:e}");
+        assert!(
+            residual <= 1e-12 * size,
+            "|M qdd - f| = {residual:e}, scale {size:e}"
+        );
         assert!(qdd.norm() > 1.0, "a trivial state");
     }
 }
@@ -213,24 +221,60 @@ const G: f64 = 9.81;
 #[test]
 fn universal_chain_rolled_equals_kanes_form() {
     assert!(Universal10::GENERATED.parts.contains(&"rolled_chain"));
-    let p = Universal10 { m: M, l: L, i: I, j: J, g: G };
-    let k = Universal10Kane { m: M, l: L, i: I, j: J, g: G };
+    let p = Universal10 {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
+    let k = Universal10Kane {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
     rolled_equals_kane::<20>(&p, &k);
 }
 
 #[test]
 fn spherical_chain_rolled_equals_kanes_form() {
     assert!(Spherical7::GENERATED.parts.contains(&"rolled_chain"));
-    let p = Spherical7 { m: M, l: L, i: I, j: J, g: G };
-    let k = Spherical7Kane { m: M, l: L, i: I, j: J, g: G };
+    let p = Spherical7 {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
+    let k = Spherical7Kane {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
     rolled_equals_kane::<21>(&p, &k);
 }
 
 #[test]
 fn hinge_chain_with_a_branch_rolled_equals_kanes_form() {
     assert!(Hinges8::GENERATED.parts.contains(&"rolled_chain"));
-    let p = Hinges8 { m: M, l: L, i: I, j: J, g: G };
-    let k = Hinges8Kane { m: M, l: L, i: I, j: J, g: G };
+    let p = Hinges8 {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
+    let k = Hinges8Kane {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
     rolled_equals_kane::<9>(&p, &k);
 }
 
@@ -238,12 +282,39 @@ fn hinge_chain_with_a_branch_rolled_equals_kanes_form() {
 /// (DOPRI5 at 1e-11).
 #[test]
 fn rolled_universal_chain_conserves_energy() {
-    let p = Universal10 { m: M, l: L, i: I, j: J, g: G };
-    let y0 = Vector::<40>::from_fn(|i, _| if i < 20 { 0.3 * (((i * 7) % 5) as f64 - 2.0) } else { 0.0 });
-    let opts = Options { rtol: 1e-11, atol: 1e-11, dense: false, ..Default::default() };
+    let p = Universal10 {
+        m: M,
+        l: L,
+        i: I,
+        j: J,
+        g: G,
+    };
+    let y0 = Vector::<40>::from_fn(|i, _| {
+        if i < 20 {
+            0.3 * (((i * 7) % 5) as f64 - 2.0)
+        } else {
+            0.0
+        }
+    });
+    let opts = Options {
+        rtol: 1e-11,
+        atol: 1e-11,
+        dense: false,
+        ..Default::default()
+    };
     let sol = Dopri5::new(opts).solve(&p, 0.0, y0, 1.0, &[]).unwrap();
-    let energy = |y: &Vector<40>| p.energy(0.0, &y.fixed_rows::<20>(0).into_owned(), &y.fixed_rows::<20>(20).into_owned());
+    let energy = |y: &Vector<40>| {
+        p.energy(
+            0.0,
+            &y.fixed_rows::<20>(0).into_owned(),
+            &y.fixed_rows::<20>(20).into_owned(),
+        )
+    };
     let (e0, (_, y1)) = (energy(&y0), sol.last());
-    assert!((energy(y1) - e0).abs() <= 1e-9 * e0.abs(), "{} against {e0}", energy(y1));
+    assert!(
+        (energy(y1) - e0).abs() <= 1e-9 * e0.abs(),
+        "{} against {e0}",
+        energy(y1)
+    );
     assert!((y1 - y0).norm() > 1.0, "it moved");
 }

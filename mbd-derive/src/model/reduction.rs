@@ -200,8 +200,9 @@ fn roll(
         scope.role(e, Role::RunLocal { per_link });
     }
     let first = free_idx.iter().position(|&i| i == r.first_coord);
-    let consecutive = first
-        .is_some_and(|f| (0..r.len * r.per).all(|k| free_idx.get(f + k) == Some(&(r.first_coord + k))));
+    let consecutive = first.is_some_and(|f| {
+        (0..r.len * r.per).all(|k| free_idx.get(f + k) == Some(&(r.first_coord + k)))
+    });
     match (first, consecutive) {
         (Some(f), true) => (r, f),
         _ => unreachable!("a rolled run's joints are free, consecutive coordinates"),
