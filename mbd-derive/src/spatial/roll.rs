@@ -120,18 +120,19 @@ fn carry_sv(held: Sv, start: Sv, next: Sv) -> Vec<(Expr, Expr, Expr)> {
         .collect()
 }
 
+/// The upper triangle of a 3x3 matrix, row by row.
+const UPPER: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+
 /// A symmetric inertia's 21 independent entries (`a`, `m` upper triangles, all of `b`) as
 /// placeholders, and the inertia they stand for.
 fn placeholder_si(g: &mut Graph) -> (Vec<Expr>, Si) {
     let mut held = Vec::with_capacity(21);
     let sym = |g: &mut Graph, name: &str, held: &mut Vec<Expr>| {
         let mut m = [[g.zero(); 3]; 3];
-        for r in 0..3 {
-            for k in r..3 {
-                m[r][k] = g.symbol(&format!("__mbd_run_k{name}{r}{k}"));
-                m[k][r] = m[r][k];
-                held.push(m[r][k]);
-            }
+        for (r, k) in UPPER {
+            m[r][k] = g.symbol(&format!("__mbd_run_k{name}{r}{k}"));
+            m[k][r] = m[r][k];
+            held.push(m[r][k]);
         }
         m
     };
@@ -151,9 +152,7 @@ fn placeholder_si(g: &mut Graph) -> (Vec<Expr>, Si) {
 fn si_entries(i: &Si) -> Vec<Expr> {
     let mut out = Vec::with_capacity(21);
     for m in [&i.a, &i.m] {
-        for r in 0..3 {
-            out.extend((r..3).map(|k| m[r][k]));
-        }
+        out.extend(UPPER.iter().map(|&(r, k)| m[r][k]));
     }
     out.extend(i.b.iter().flatten().copied());
     out
@@ -205,9 +204,7 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     let mut v = v_in;
     for k in 0..per {
         let src = &nodes[start + k];
-        let Some((axis, _)) = src.turn else {
-            return None;
-        };
+        let (axis, _) = src.turn?;
         let node = Node {
             parent: Some(0),
             step: src.step,
