@@ -355,8 +355,8 @@ fn ball_joint_moves_as_the_euler_angle_joint_away_from_its_singularity() {
     let ((ta, ya), (tb, yb)) = (a.last(), b.last());
     assert_eq!((ta, tb), (t1, t1));
     assert!(ya[1].abs() < 1.3, "pitch reached {}", ya[1]);
-    let (oa, ob) = (e.outputs(t1, &ya).unwrap(), p.outputs(t1, &yb).unwrap());
-    let (ra, rb) = (zyx(ya[0], ya[1], ya[2]), mrp_rotation(&split(&yb).0));
+    let (oa, ob) = (e.outputs(t1, ya).unwrap(), p.outputs(t1, yb).unwrap());
+    let (ra, rb) = (zyx(ya[0], ya[1], ya[2]), mrp_rotation(&split(yb).0));
     assert!((ra - rb).norm() < 1e-10, "rotation {}", (ra - rb).norm());
     let com = |x: f64, y: f64, z: f64| Vector::<3>::new(x, y, z);
     assert!((com(oa.x, oa.y, oa.z) - com(ob.x, ob.y, ob.z)).norm() < 1e-10);
