@@ -420,7 +420,11 @@ fn push_steps(
 
 /// A ball joint's coordinates move together (its rates are one angular velocity): none of
 /// them may be driven. `false` after a spanned error.
-fn ball_coordinates_free(tb: &parse::TreeBody<Term>, coords: &[Coord], errors: &mut Errors) -> bool {
+fn ball_coordinates_free(
+    tb: &parse::TreeBody<Term>,
+    coords: &[Coord],
+    errors: &mut Errors,
+) -> bool {
     if !matches!(tb.joint, parse::Joint::Ball(..)) {
         return true;
     }
