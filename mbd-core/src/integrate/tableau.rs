@@ -393,4 +393,113 @@ mod tests {
             assert!(d.iter().sum::<f64>().abs() < 1e-12);
         }
     }
+
+    /// Verner's 9(8) pair: rows sum to the nodes, `b` satisfies all 486 order conditions
+    /// of orders 1..=9 and fails one of order 10, `b - e` (the eighth-order estimate)
+    /// those of order 8 and fails one of order 9.
+    #[test]
+    fn vern9_tableau_has_orders_9_8() {
+        use super::super::vern9_tableau::VERN9;
+        for i in 0..16 {
+            let row: f64 = VERN9.a[i].iter().sum();
+            let size: f64 = VERN9.a[i].iter().map(|a| a.abs()).sum();
+            assert!(
+                (row - VERN9.c[i]).abs() < 2.0 * f64::EPSILON * size.max(1.0),
+                "row {i}"
+            );
+            assert!(VERN9.a[i][i..].iter().all(|&a| a == 0.0));
+        }
+        assert_eq!(trees(9).len(), 286);
+        check_order_to(&VERN9.a, &VERN9.b, 9, 1e-13);
+        let fails_order_10 = trees(10).iter().any(|t| {
+            let phi: f64 = t
+                .weights(&VERN9.a)
+                .iter()
+                .zip(&VERN9.b)
+                .map(|(g, b)| g * b)
+                .sum();
+            (phi - 1.0 / t.density()).abs() > 1e-9
+        });
+        assert!(fails_order_10);
+        let b8: [f64; 16] = std::array::from_fn(|i| VERN9.b[i] - VERN9.e[i]);
+        check_order_to(&VERN9.a, &b8, 8, 1e-13);
+        let fails_order_9 = trees(9).iter().any(|t| {
+            let phi: f64 = t
+                .weights(&VERN9.a)
+                .iter()
+                .zip(&b8)
+                .map(|(g, b)| g * b)
+                .sum();
+            (phi - 1.0 / t.density()).abs() > 1e-9
+        });
+        assert!(fails_order_9);
+    }
+
+    /// Verner's interpolant is of order 9 at every theta: over the extended tableau of 26
+    /// stages, the weights `b_i(theta)` satisfy `sum_i b_i(theta) Phi_i(t) =
+    /// theta^|t| / gamma(t)` for every tree of order 1..=9 (Hairer–Nørsett–Wanner I,
+    /// Sect. II.6, Theorem 6.1), and it ends on the step's solution, `b_i(1) = b_i`.
+    #[test]
+    fn vern9_interpolant_has_order_9() {
+        use super::super::vern9_tableau::{VERN9, VERN9_DENSE_A, VERN9_DENSE_C, VERN9_DENSE_R};
+        let mut a = [[0.0; 26]; 26];
+        for i in 0..16 {
+            a[i][..16].copy_from_slice(&VERN9.a[i]);
+        }
+        for (j, row) in VERN9_DENSE_A.iter().enumerate() {
+            a[17 + j] = *row;
+            a[17 + j][17 + j..].iter().for_each(|x| assert_eq!(*x, 0.0));
+            let c = VERN9_DENSE_C[j];
+            let sum: f64 = row.iter().sum();
+            assert!((sum - c).abs() < 1e-14, "dense row {j}: {sum} != {c}");
+        }
+        a[16][..16].copy_from_slice(&VERN9.b);
+        for theta in [0.1f64, 0.37, 0.5, 0.81, 1.0] {
+            let b: [f64; 26] = std::array::from_fn(|i| {
+                VERN9_DENSE_R
+                    .iter()
+                    .enumerate()
+                    .map(|(m, r)| r[i] * theta.powi(m as i32 + 1))
+                    .sum()
+            });
+            for n in 1..=9 {
+                for t in trees(n) {
+                    let phi: f64 = t.weights(&a).iter().zip(&b).map(|(g, b)| g * b).sum();
+                    let want = theta.powi(n as i32) / t.density();
+                    assert!(
+                        (phi - want).abs() < 1e-12,
+                        "theta {theta}, {t:?}: {phi} != {want}"
+                    );
+                }
+            }
+            if theta == 1.0 {
+                for i in 0..16 {
+                    assert!((b[i] - VERN9.b[i]).abs() < 1e-12, "b_{i}(1)");
+                }
+            }
+        }
+    }
+
+    /// The stability function `R(z) = 1 + z b^T (I - z A)^-1 1` of Vern9's ninth-order
+    /// solution keeps `|R(-x)| <= 1` on `0 < x <= 4.47` and exceeds it at 4.48: the
+    /// stiffness limit `Vern9::STIFF_HLAMBDA` = 4.4 sits just inside.
+    #[test]
+    fn vern9_real_stability_interval() {
+        use super::super::vern9::Vern9;
+        use super::super::vern9_tableau::VERN9;
+        // R(z) = sum_j z^j b^T A^(j-1) 1 (explicit: a polynomial of degree 16).
+        let mut coef = vec![1.0];
+        let mut v = [1.0; 16];
+        for _ in 0..16 {
+            coef.push(VERN9.b.iter().zip(&v).map(|(b, v)| b * v).sum::<f64>());
+            v = std::array::from_fn(|i| (0..16).map(|j| VERN9.a[i][j] * v[j]).sum());
+        }
+        let r = |x: f64| coef.iter().rev().fold(0.0, |acc, c| acc * -x + c);
+        for i in 1..=447 {
+            let x = f64::from(i) / 100.0;
+            assert!(r(x).abs() <= 1.0, "|R(-{x})| = {}", r(x).abs());
+        }
+        assert!(r(4.48).abs() > 1.0);
+        assert!(Vern9::STIFF_HLAMBDA < 4.47);
+    }
 }
