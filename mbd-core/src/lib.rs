@@ -20,6 +20,7 @@ pub mod model;
 pub mod partition;
 pub mod passage;
 pub mod solve;
+pub mod trig;
 
 pub use error::{Error, Result};
 pub use geometry::{Drawable, Shape, ShapeKind};

@@ -155,6 +155,16 @@ impl<'a> Block<'a> {
                 let (a, b) = (l(a), l(b));
                 quote!(#a.powf(#b))
             }
+            // sin and cos share one inlined range reduction (`mbd_core::trig`) where both
+            // of one argument appear, as a joint's do.
+            Node::Call(Func::Sin, a) => {
+                let a = l(a);
+                quote!(::mbd::__private::trig::sin(#a))
+            }
+            Node::Call(Func::Cos, a) => {
+                let a = l(a);
+                quote!(::mbd::__private::trig::cos(#a))
+            }
             Node::Call(f, a) => {
                 let a = l(a);
                 let m = format_ident!("{}", method(f));

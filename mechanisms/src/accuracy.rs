@@ -23,7 +23,7 @@
 
 use crate::chain_by_hand::ChainByHand;
 use crate::handwritten::{self, FreeSliderCrank, Pendulum, SliderCrank, SliderCrankClosedByHand};
-use mbd::integrate::{Dop853, Dopri5, Integrator, Record};
+use mbd::integrate::{Dop853, Dopri5, Integrator, Record, Vern9};
 use mbd::prelude::*;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -58,7 +58,7 @@ const LINK: (f64, f64, f64) = (1.0, 0.5, 9.81);
 pub const GRID: usize = 101;
 
 /// The adaptive methods compared.
-pub const METHODS: [&str; 2] = ["DOPRI5", "DOP853"];
+pub const METHODS: [&str; 3] = ["DOPRI5", "DOP853", "VERN9"];
 
 /// One run of the sweep: its tolerance, largest error, `rhs` calls and time.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,10 +141,10 @@ pub fn states<S: OdeSystem<D>, const D: usize>(
         record: Record::Times(grid(t1)),
         ..Options::default()
     };
-    let sol = if method == "DOP853" {
-        Dop853::new(opts).solve(sys, 0.0, y0, t1, &[])?
-    } else {
-        Dopri5::new(opts).solve(sys, 0.0, y0, t1, &[])?
+    let sol = match method {
+        "DOP853" => Dop853::new(opts).solve(sys, 0.0, y0, t1, &[])?,
+        "VERN9" => Vern9::new(opts).solve(sys, 0.0, y0, t1, &[])?,
+        _ => Dopri5::new(opts).solve(sys, 0.0, y0, t1, &[])?,
     };
     // t0, the 100 grid times after it (the last is t1 itself).
     Ok((sol.y, sol.stats.n_rhs))
