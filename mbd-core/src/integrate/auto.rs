@@ -1,13 +1,15 @@
-//! The default explicit method: DOP853 for tight tolerances, DOPRI5 for loose ones.
+//! The default explicit method: Vern9 for the tightest tolerances, DOP853 for tight ones,
+//! DOPRI5 for loose ones.
 
-use super::{Dop853, Dopri5, Event, Integrator, Observer, Options, Solution};
+use super::{Dop853, Dopri5, Event, Integrator, Observer, Options, Solution, Vern9};
 use crate::error::Result;
 use crate::model::{OdeSystem, Vector};
 
-/// Picks the explicit pair for a non-stiff problem from the tolerance: DOP853 when
-/// `rtol <= Auto::DOP853_AT_OR_BELOW`, DOPRI5 above. Overridable by using [`Dop853`] or
-/// [`Dopri5`] directly; a stiff problem wants [`Radau5`](super::Radau5) (both explicit
-/// methods stop with `Error::Stiff` when their stiffness test finds it).
+/// Picks the explicit pair for a non-stiff problem from the tolerance: [`Vern9`] when
+/// `rtol <= Auto::VERN9_AT_OR_BELOW`, DOP853 when `rtol <= Auto::DOP853_AT_OR_BELOW`,
+/// DOPRI5 above. Overridable by using [`Vern9`], [`Dop853`] or [`Dopri5`] directly; a stiff
+/// problem wants [`Radau5`](super::Radau5) (the explicit methods stop with `Error::Stiff`
+/// when their stiffness test finds it).
 ///
 /// Why there: on the pendulum from 60 deg over 10 s (the `overhead` bench's problem), at
 /// rtol = atol = 1e-3 DOPRI5 takes 194 calls to an end error of 4e-2 and DOP853 228 calls
@@ -24,21 +26,30 @@ pub struct Auto {
 impl Auto {
     /// The largest relative tolerance given to DOP853.
     pub const DOP853_AT_OR_BELOW: f64 = 1e-4;
+    /// The largest relative tolerance given to Vern9.
+    pub const VERN9_AT_OR_BELOW: f64 = 1e-9;
 
     /// The automatic choice with the given options.
     pub fn new(opts: Options) -> Self {
         Auto { opts }
     }
 
-    /// Whether DOP853 is the method picked (else DOPRI5).
+    /// Whether DOP853 is the method picked.
     pub fn picks_dop853(&self) -> bool {
-        self.opts.rtol <= Self::DOP853_AT_OR_BELOW
+        self.opts.rtol <= Self::DOP853_AT_OR_BELOW && !self.picks_vern9()
+    }
+
+    /// Whether Vern9 is the method picked.
+    pub fn picks_vern9(&self) -> bool {
+        self.opts.rtol <= Self::VERN9_AT_OR_BELOW
     }
 }
 
 impl Integrator for Auto {
     fn name(&self) -> &'static str {
-        if self.picks_dop853() {
+        if self.picks_vern9() {
+            "VERN9"
+        } else if self.picks_dop853() {
             "DOP853"
         } else {
             "DOPRI5"
@@ -55,7 +66,9 @@ impl Integrator for Auto {
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
         let opts = self.opts.clone();
-        if self.picks_dop853() {
+        if self.picks_vern9() {
+            Vern9::new(opts).solve_observed(sys, t0, y0, t1, events, observer)
+        } else if self.picks_dop853() {
             Dop853::new(opts).solve_observed(sys, t0, y0, t1, events, observer)
         } else {
             Dopri5::new(opts).solve_observed(sys, t0, y0, t1, events, observer)

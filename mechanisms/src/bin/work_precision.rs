@@ -257,10 +257,11 @@ struct Figures {
 }
 
 /// Every method, in the order of the plots' colours.
-const ALL_METHODS: [Method; 7] = [
+const ALL_METHODS: [Method; 8] = [
     Method::Rk4,
     Method::Dopri5,
     Method::Dop853,
+    Method::Vern9,
     Method::Radau5,
     Method::GeneralizedAlpha,
     Method::Dopri5NoProjection,
