@@ -11,6 +11,11 @@
 //! `within_one_ulp`): at most one unit in the last place apart. Arguments beyond
 //! [`REDUCED_BELOW`] (and non-finite ones) go to the platform's functions.
 
+#![allow(
+    clippy::excessive_precision,
+    reason = "the published digits of the kernels and of pi/2's parts, rounded by the compiler"
+)]
+
 /// `|x|` below which the three-part reduction is exact enough (`|k| < 2^19`).
 pub const REDUCED_BELOW: f64 = 4.0e5;
 
@@ -19,7 +24,7 @@ const P1: f64 = 1.570_796_326_734_125_614_17e+00;
 const P2: f64 = 6.077_100_506_303_965_976_60e-11;
 const P3: f64 = 2.022_266_248_711_166_455_80e-21;
 const P3_TAIL: f64 = 8.478_427_660_368_899_569_97e-32;
-const TWO_OVER_PI: f64 = 6.366_197_723_675_813_824_33e-01;
+const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
 /// `1.5 * 2^52`: adding it rounds to an integer, kept in the low bits of the sum.
 const ROUND: f64 = 6_755_399_441_055_744.0;
 
@@ -40,7 +45,8 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 /// `(sin x, cos x)`.
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if !(x.abs() < REDUCED_BELOW) {
+    // NaN fails the comparison too.
+    if x.abs() >= REDUCED_BELOW || x.is_nan() {
         return (x.sin(), x.cos());
     }
     let shifted = x * TWO_OVER_PI + ROUND;
