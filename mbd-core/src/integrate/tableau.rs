@@ -131,9 +131,13 @@ impl<const S: usize> Erk<S> {
     /// fixed arrays, so a step does not allocate.
     ///
     /// The stages form a dependent chain (each argument needs the stage before), so the
-    /// argument is summed as `(y + h sum_{j<i-1} a_ij k_j) + (h a_{i,i-1}) k_{i-1}`: every
-    /// term but the newest is ready while `rhs` runs, and only one product and one sum stand
-    /// between one call's result and the next call (four, as `y + h (sum_j a_ij k_j)`).
+    /// argument is summed as `(y + h sum_{j<i-1} a_ij k_j) + (h a_{i,i-1}) k_{i-1}`: only one
+    /// product and one sum stand between one call's result and the next call (four, as
+    /// `y + h (sum_j a_ij k_j)`). From `D = 3` the older part of the next stage's argument is
+    /// summed just before each call, so that it runs beside the call rather than after it
+    /// (8-link chain, Vern9 at 1.8e-9: 204 -> 187-192 ns per call, the loop's share 41 -> 28
+    /// ns); for `D <= 2` after the call, where it delayed the small call's start (pendulum:
+    /// 15.7 -> 16.2 ns). The same operations in the same order: results are bit for bit.
     #[inline]
     pub fn stages<F: OdeSystem<D>, const D: usize>(
         &self,
@@ -147,30 +151,49 @@ impl<const S: usize> Erk<S> {
         z[0] = *y;
         // The newest stage kept as a value (not re-read from `k`), so it stays in registers.
         let mut newest = k[0];
+        let mut base = *y;
         for i in 1..S {
-            let row = &self.a[i];
-            let mut acc = Vector::<D>::zeros();
-            for j in 0..i - 1 {
-                if row[j] != 0.0 {
-                    acc += k[j] * row[j];
-                }
-            }
-            let base = if i == 1 { *y } else { y + acc * h };
-            let coef = h * row[i - 1];
+            let coef = h * self.a[i][i - 1];
             let zi = if D <= SCALAR_STAGES {
                 newest.zip_map(&base, |n, b| n.mul_add(coef, b))
             } else {
                 base + newest * coef
             };
             z[i] = zi;
+            let next = i + 1 < S;
+            if next && D > SCALAR_STAGES {
+                base = self.older_terms(i + 1, y, k, h);
+            }
             let ti = t + self.c[i] * h;
             newest = sys.rhs(ti, &zi)?;
             k[i] = newest;
+            if next && D <= SCALAR_STAGES {
+                base = self.older_terms(i + 1, y, k, h);
+            }
             if !newest.iter().all(|v| v.is_finite()) {
                 return Err(Error::NonFinite { t: ti });
             }
         }
         Ok(())
+    }
+
+    /// `y + h sum_{j<i-1} a_ij k_j`: stage `i`'s argument without its newest term.
+    #[inline]
+    fn older_terms<const D: usize>(
+        &self,
+        i: usize,
+        y: &Vector<D>,
+        k: &[Vector<D>; S],
+        h: f64,
+    ) -> Vector<D> {
+        let row = &self.a[i];
+        let mut acc = Vector::<D>::zeros();
+        for j in 0..i - 1 {
+            if row[j] != 0.0 {
+                acc += k[j] * row[j];
+            }
+        }
+        y + acc * h
     }
 
     /// The propagated solution `y + h sum_i b_i k_i`, summed as the stage arguments are
