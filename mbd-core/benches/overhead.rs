@@ -3,11 +3,11 @@
 //! (the pendulum `theta'' = -(g/l) sin theta` as the derive generates it: one `sin`, one
 //! product). Pendulum from rest at 60 deg over 10 s at rtol = atol = 1e-10.
 //!
-//! Prints, for DOPRI5 and DOP853 keeping the final state only, every step, every step
+//! Prints, for DOPRI5, DOP853 and Vern9 keeping the final state only, every step, every step
 //! with dense output, and 101 output times (from the dense output, segments not kept), `ns/eval` and the ratios to the bare call (independent calls) and to
 //! a dependent chain of calls (each input the last output, as in the stages). Timings are the minimum over interleaved batches (the machine is shared).
 
-use mbd_core::integrate::{Dop853, Dopri5, Integrator, Options, Record};
+use mbd_core::integrate::{Dop853, Dopri5, Integrator, Options, Record, Vern9};
 use mbd_core::{OdeSystem, Result, Vector};
 use std::hint::black_box;
 use std::time::Instant;
@@ -78,6 +78,15 @@ fn main() {
                 .n_rhs
         }
     };
+    let v9 = |o: Options| {
+        let s = Vern9::new(o);
+        move || {
+            s.solve(sys, 0.0, black_box(y0), 10.0, &[])
+                .unwrap()
+                .stats
+                .n_rhs
+        }
+    };
     // Bare calls in a dependent chain (each call's input is the last one's output, as a
     // stage's is): the call's latency, which bounds a step more than its throughput.
     let chain = move || {
@@ -123,6 +132,11 @@ fn main() {
             "DOP853 101 output times",
             Box::new(d8(opts(times(), false))),
         ),
+        (
+            "VERN9 final state",
+            Box::new(v9(opts(Record::Final, false))),
+        ),
+        ("VERN9 101 output times", Box::new(v9(opts(times(), false)))),
     ];
     let mut best = vec![f64::INFINITY; cases.len()];
     let mut calls = vec![0usize; cases.len()];

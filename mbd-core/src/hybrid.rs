@@ -553,11 +553,7 @@ mod tests {
     #[test]
     fn hidden_crossings_are_found_inside_a_long_step() {
         let z = Vector::<1>::zeros();
-        let seg = Segment {
-            t0: 0.0,
-            h: 100.0,
-            coeffs: [z; 8],
-        };
+        let seg = Segment::polynomial(0.0, 100.0, &[z]);
         let g = |t: f64, _y: &Vector<1>| 0.5 - (10.0 * t).sin();
         let (a, b) = hidden(&g, &seg).expect("a crossing");
         let t = bracketed(&g, &seg, a, b);
@@ -575,11 +571,7 @@ mod tests {
     #[test]
     fn refine_reaches_adjacent_doubles() {
         let z = Vector::<1>::zeros();
-        let seg = Segment {
-            t0: 0.0,
-            h: 1.0,
-            coeffs: [z, Vector::<1>::new(1.0), z, z, z, z, z, z],
-        };
+        let seg = Segment::polynomial(0.0, 1.0, &[z, Vector::<1>::new(1.0)]);
         let g = |_t: f64, y: &Vector<1>| 1.0 / 3.0 - y[0];
         let t = refine(&g, &seg);
         assert!(g(t, &seg.eval(t)) <= 0.0);

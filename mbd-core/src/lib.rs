@@ -21,12 +21,13 @@ pub mod model;
 pub mod partition;
 pub mod passage;
 pub mod solve;
+pub mod trig;
 
 pub use error::{Error, Result};
 pub use geometry::{Drawable, Shape, ShapeKind};
 pub use integrate::{
     Auto, Direction, Dop853, Dopri5, Event, EventHit, Integrator, Options, Record, Rk4, Segment,
-    Solution, Stats,
+    Solution, Stats, Vern9,
 };
 pub use model::{
     Constrained, Contacts, Frictional, Generated, Hybrid, Matrix, Mechanism, Normals, OdeSystem,

@@ -354,7 +354,7 @@ fn dop853_stiffness_detection_is_an_option() {
 // ---------------------------------------------------------------------------------------
 // The automatic choice
 
-/// `Auto` runs DOP853 at rtol <= 1e-4 and DOPRI5 above, with the options given: its
+/// `Auto` runs DOP853 at 1e-11 < rtol <= 1e-4 and DOPRI5 above, with the options given: its
 /// solution equals the chosen method's, step for step.
 #[test]
 fn auto_picks_dop853_for_tight_tolerances() {

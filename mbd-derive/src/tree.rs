@@ -140,6 +140,24 @@ impl Transform {
         [g.neg(a), b]
     }
 
+    /// `X v + extra`: a motion vector of the parent frame seen in the child frame, plus one
+    /// of the child's. Summed as `R^T v_lin + (extra_lin + w R^T (-r_y, r_x))`, the parent's
+    /// angular rate `w` (the last value of the parent's step in pass 3) entering through one
+    /// product and two sums, and the linear part through one rotation and one sum (as
+    /// `R^T (v_lin + w x r)` it waited for a product, three sums and a rotation).
+    fn motion_plus(&self, g: &mut Graph, v: V3, extra: V3) -> V3 {
+        let rot = self.to_child(g, [v[1], v[2]]);
+        let one = g.one();
+        let arm = self.arm(g, one);
+        let rho = self.to_child(g, arm);
+        let lin = [0, 1].map(|i| {
+            let w_term = g.mul(v[0], rho[i]);
+            let late = g.add(extra[1 + i], w_term);
+            g.add(rot[i], late)
+        });
+        [g.add(v[0], extra[0]), lin[0], lin[1]]
+    }
+
     /// A motion vector of the parent frame seen in the child frame.
     fn motion(&self, g: &mut Graph, v: V3) -> V3 {
         let arm = self.arm(g, v[0]);
@@ -289,14 +307,14 @@ fn outward(
     }
 }
 
-/// What pass 3 needs of a free joint, in the parent's frame: `1 / D`, `X^T U` (`U = I^A S`)
-/// and `e = u - U . c` (`u = tau - S . p^A`), so that `qdd = (e - (X^T U) . a_parent) / D`
-/// waits on the parent's acceleration for one dot product only.
+/// What pass 3 needs of a free joint, in the parent's frame: `w = X^T U / D`
+/// (`U = I^A S`) and `ed = e / D`, `e = u - U . c` (`u = tau - S . p^A`), so that
+/// `qdd = ed - w . a_parent` waits on the parent's acceleration for one product and one
+/// sum per component (the division and the scaling done in pass 2, off pass 3's chain).
 #[derive(Clone, Copy)]
 struct Articulated {
-    v: V3,
-    e: Expr,
-    inv_d: Expr,
+    w: V3,
+    ed: Expr,
 }
 
 /// Pass 2 of one body: from its articulated inertia and bias force `(i_a, p_a)` (its own
@@ -365,10 +383,10 @@ fn inward(
             let p_up = add3(g, p_base, v_ed);
             // Pass 3 uses the whole U (its first entry is D for a revolute joint); `e` is the
             // same with it, `c`'s angular entry being zero.
+            let xu = x.force(g, u);
             let art = Articulated {
-                v: x.force(g, u),
-                e,
-                inv_d,
+                w: scale3(g, xu, inv_d),
+                ed,
             };
             ((i_up, p_up), Some(art))
         }
@@ -394,17 +412,20 @@ fn accelerate(
     c: V3,
     art: Option<Articulated>,
 ) -> (V3, Option<Expr>) {
-    let ap = x.motion(g, parent);
-    let a_prime = add3(g, ap, c);
+    let a_prime = x.motion_plus(g, parent, c);
     let Some(si) = s else {
         return (a_prime, None);
     };
     let (acc, free) = match (joint, art) {
         (JointInput::Free { .. }, Some(art)) => {
-            // U . a' = (X^T U) . a_parent + U . c.
-            let va = g.dot(&art.v, &parent);
-            let num = g.sub(art.e, va);
-            (g.mul(num, art.inv_d), true)
+            // U . a' = (X^T U) . a_parent + U . c; the parent's angular acceleration, the
+            // last value of its step, is taken last.
+            let mut acc = art.ed;
+            for i in [1, 2, 0] {
+                let term = g.mul(art.w[i], parent[i]);
+                acc = g.sub(acc, term);
+            }
+            (acc, true)
         }
         (JointInput::Driven { qdd }, _) => (qdd, false),
         _ => return (a_prime, None),
@@ -691,9 +712,8 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     let ((i_up, p_up), art) = inward(g, &link, &xt, s_link, tau, (i_a, p_a), c_k);
     let art = art?;
     let mut stored2 = Vec::new();
-    let v = [0, 1, 2].map(|i| keep(g, &format!("v{i}"), art.v[i], &mut stored2));
-    let e = keep(g, "e", art.e, &mut stored2);
-    let inv_d = keep(g, "inv_d", art.inv_d, &mut stored2);
+    let w = [0, 1, 2].map(|i| keep(g, &format!("w{i}"), art.w[i], &mut stored2));
+    let ed = keep(g, "ed", art.ed, &mut stored2);
     let up_entries = [
         i_up[0][0], i_up[0][1], i_up[0][2], i_up[1][1], i_up[1][2], i_up[2][2],
     ];
@@ -712,7 +732,7 @@ pub fn rolled(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Option<Rolled>
     let (a, qdd) = rest.finish(g, inp, Some((parent, (k_full, f_in))));
 
     // Loop 3: accelerations.
-    let art = Articulated { v, e, inv_d };
+    let art = Articulated { w, ed };
     let (a_link, acc) = accelerate(g, &xt, s_link, tau, a_in, c_k, Some(art));
     let loop3 = Loop {
         reverse: false,

@@ -16,13 +16,23 @@ pub fn problems() -> Vec<Problem> {
         Problem {
             name: "fourbar_assembly",
             title: "IFToMM A02, 40 four-bar loops: crank 0's tip at 1 s (a singular position bridged)",
-            methods: &[Method::Dopri5, Method::Dop853, Method::GeneralizedAlpha],
+            methods: &[
+                Method::Dopri5,
+                Method::Dop853,
+                Method::Vern9,
+                Method::GeneralizedAlpha,
+            ],
             run: assembly,
         },
         Problem {
             name: "bricard",
             title: "IFToMM A04 Bricard linkage (a redundant constraint): energy after 10 s",
-            methods: &[Method::Dopri5, Method::Dop853, Method::Radau5],
+            methods: &[
+                Method::Dopri5,
+                Method::Dop853,
+                Method::Vern9,
+                Method::Radau5,
+            ],
             run: bricard,
         },
     ]
@@ -57,6 +67,15 @@ fn assembly(s: &Setting) -> Result<Measured, Failure> {
         )?,
         Method::Dop853 => passage::solve(
             &mbd::Dop853::new(options(s)),
+            &a,
+            0.0,
+            y0,
+            T_ASSEMBLY,
+            &[],
+            &Settings::new(s.value),
+        )?,
+        Method::Vern9 => passage::solve(
+            &mbd::Vern9::new(options(s)),
             &a,
             0.0,
             y0,
@@ -111,6 +130,7 @@ fn bricard(s: &Setting) -> Result<Measured, Failure> {
     let sol = match s.method {
         Method::Dopri5 => mbd::Dopri5::new(options(s)).solve(&b, 0.0, y0, 10.0, &[])?,
         Method::Dop853 => mbd::Dop853::new(options(s)).solve(&b, 0.0, y0, 10.0, &[])?,
+        Method::Vern9 => mbd::Vern9::new(options(s)).solve(&b, 0.0, y0, 10.0, &[])?,
         Method::Radau5 => mbd::integrate::Radau5::new(options(s)).solve(&b, 0.0, y0, 10.0, &[])?,
         other => return Err(Failure::Unsupported(format!("{other} is not swept here"))),
     };

@@ -186,6 +186,7 @@ fn wp_friction(s: &Setting) -> Result<Measured, Failure> {
         Method::Rk4 => cycle(&Rk4::new(s.value), &b, t1),
         Method::Dopri5 => cycle(&Dopri5::new(opts), &b, t1),
         Method::Dop853 => cycle(&Dop853::new(opts), &b, t1),
+        Method::Vern9 => cycle(&mbd::integrate::Vern9::new(opts), &b, t1),
         Method::Radau5 => cycle(&Radau5::new(opts), &b, t1),
         Method::GeneralizedAlpha => cycle(&GeneralizedAlpha::new(RHO_INF, s.value), &b, t1),
         _ => return Err(Failure::Unsupported("mbd's methods only".into())),

@@ -35,7 +35,7 @@ use crate::{
 use differential_equations::prelude::{ExplicitRungeKutta, IVP, ODE};
 use mbd::analysis::{NewtonOptions, kinematics};
 use mbd::integrate::{
-    Dop853, Dopri5, Event, EventHit, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution,
+    Dop853, Dopri5, Event, EventHit, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution, Vern9,
 };
 use mbd::{Constrained, OdeSystem, Options, Stats, Vector};
 use std::cell::Cell;
@@ -53,6 +53,8 @@ pub enum Method {
     Dopri5,
     /// mbd's Dormand–Prince 8(5,3), swept over `rtol = atol`.
     Dop853,
+    /// mbd's Verner 9(8), swept over `rtol = atol`.
+    Vern9,
     /// mbd's Dormand–Prince 5(4) without the projection onto the constraint manifolds
     /// (the same algorithm as the peer's, for the comparison on the slider-crank).
     Dopri5NoProjection,
@@ -69,10 +71,11 @@ pub const RHO_INF: f64 = 0.9;
 
 impl Method {
     /// The mbd methods every case is swept with.
-    pub const MBD: [Method; 5] = [
+    pub const MBD: [Method; 6] = [
         Method::Rk4,
         Method::Dopri5,
         Method::Dop853,
+        Method::Vern9,
         Method::Radau5,
         Method::GeneralizedAlpha,
     ];
@@ -83,6 +86,7 @@ impl Method {
             Method::Rk4 => "RK4",
             Method::Dopri5 => "DOPRI5",
             Method::Dop853 => "DOP853",
+            Method::Vern9 => "VERN9",
             Method::Dopri5NoProjection => "DOPRI5 (no projection)",
             Method::Radau5 => "Radau5",
             Method::GeneralizedAlpha => "generalized-alpha",
@@ -256,6 +260,7 @@ pub fn solve_ode<S: OdeSystem<D>, const D: usize>(
         Method::Rk4 => Rk4::new(s.value).solve(sys, t0, y0, t1, events),
         Method::Dopri5 => Dopri5::new(s.adaptive_options(true)).solve(sys, t0, y0, t1, events),
         Method::Dop853 => Dop853::new(s.adaptive_options(true)).solve(sys, t0, y0, t1, events),
+        Method::Vern9 => Vern9::new(s.adaptive_options(true)).solve(sys, t0, y0, t1, events),
         Method::Dopri5NoProjection => {
             Dopri5::new(s.adaptive_options(false)).solve(sys, t0, y0, t1, events)
         }
@@ -352,18 +357,20 @@ pub struct Problem {
     pub run: fn(&Setting) -> Result<Measured, Failure>,
 }
 
-const PEER_METHODS: [Method; 6] = [
+const PEER_METHODS: [Method; 7] = [
     Method::Rk4,
     Method::Dopri5,
     Method::Dop853,
+    Method::Vern9,
     Method::Radau5,
     Method::GeneralizedAlpha,
     Method::PeerDopri5,
 ];
-const PEER_METHODS_LOOP: [Method; 7] = [
+const PEER_METHODS_LOOP: [Method; 8] = [
     Method::Rk4,
     Method::Dopri5,
     Method::Dop853,
+    Method::Vern9,
     Method::Dopri5NoProjection,
     Method::Radau5,
     Method::GeneralizedAlpha,

@@ -2,12 +2,15 @@
 
 use crate::model::Vector;
 
+/// Coefficients of a [`Segment`]: degree 9, Verner's interpolant (the highest of any method).
+pub const TERMS: usize = 10;
+
 /// The continuous solution over one accepted step `[t0, t0 + h]`:
 /// `y(t0 + theta h) = sum_k coeffs[k] theta^k`, `theta` in `[0, 1]` (monomial basis,
-/// degree at most 7, unused coefficients zero).
+/// degree at most 9, unused coefficients zero).
 ///
 /// Every method converts its own interpolant (Hermite, Hairer's DOPRI5 continuous
-/// extension, DOP853's seventh-order one, Radau's collocation polynomial) into this one basis, so event location and
+/// extension, DOP853's seventh-order one, Verner's ninth-order one, Radau's collocation polynomial) into this one basis, so event location and
 /// `Solution::at` need to know nothing about the method.
 #[derive(Debug, Clone)]
 pub struct Segment<const D: usize> {
@@ -16,7 +19,7 @@ pub struct Segment<const D: usize> {
     /// Step size (positive).
     pub h: f64,
     /// Monomial coefficients in `theta = (t - t0) / h`, lowest degree first.
-    pub coeffs: [Vector<D>; 8],
+    pub coeffs: [Vector<D>; TERMS],
 }
 
 impl<const D: usize> Segment<D> {
@@ -33,8 +36,8 @@ impl<const D: usize> Segment<D> {
 
     /// `y(t0 + theta h)` by Horner's rule.
     pub fn eval_theta(&self, theta: f64) -> Vector<D> {
-        let mut y = self.coeffs[7];
-        for c in self.coeffs[..7].iter().rev() {
+        let mut y = self.coeffs[TERMS - 1];
+        for c in self.coeffs[..TERMS - 1].iter().rev() {
             y = y * theta + c;
         }
         y
@@ -55,30 +58,28 @@ impl<const D: usize> Segment<D> {
         let d = y1 - y0;
         let hf0 = f0 * h;
         let hf1 = f1 * h;
-        let zero = Vector::<D>::zeros();
-        Segment {
+        Self::polynomial(
             t0,
             h,
-            coeffs: [
-                *y0,
-                hf0,
-                d * 3.0 - hf0 * 2.0 - hf1,
-                hf0 + hf1 - d * 2.0,
-                zero,
-                zero,
-                zero,
-                zero,
-            ],
-        }
+            &[*y0, hf0, d * 3.0 - hf0 * 2.0 - hf1, hf0 + hf1 - d * 2.0],
+        )
+    }
+
+    /// The polynomial `sum_k c[k] theta^k` over `[t0, t0 + h]` (higher coefficients zero).
+    pub fn polynomial<const N: usize>(t0: f64, h: f64, c: &[Vector<D>; N]) -> Self {
+        const { assert!(N <= TERMS) };
+        let mut coeffs = [Vector::<D>::zeros(); TERMS];
+        coeffs[..N].copy_from_slice(c);
+        Segment { t0, h, coeffs }
     }
 
     /// The polynomial `r[0] + s (r[1] + s1 (r[2] + s (r[3] + s1 (...))))`, `s = theta`,
     /// `s1 = 1 - theta`, factors alternating from `s` (Hairer's form of the DOPRI5 and
     /// DOP853 continuous extensions), expanded into monomials.
     pub fn from_nested<const N: usize>(t0: f64, h: f64, r: &[Vector<D>; N]) -> Self {
-        const { assert!(N >= 1 && N <= 8) };
+        const { assert!(N >= 1 && N <= TERMS) };
         let zero = Vector::<D>::zeros();
-        let mut c = [zero; 8];
+        let mut c = [zero; TERMS];
         c[0] = r[N - 1];
         for j in (0..N - 1).rev() {
             // c <- r[j] + factor * c, factor = s when j is even, 1 - s when odd.
@@ -86,7 +87,7 @@ impl<const D: usize> Segment<D> {
                 c.rotate_right(1);
                 c[0] = zero;
             } else {
-                for k in (1..8).rev() {
+                for k in (1..TERMS).rev() {
                     c[k] -= c[k - 1];
                 }
             }
@@ -134,21 +135,7 @@ mod tests {
     /// Truncation keeps the values: the truncated segment agrees with the original inside.
     #[test]
     fn truncation_keeps_values() {
-        let z = Vector::<1>::zeros();
-        let seg = Segment {
-            t0: 1.0,
-            h: 2.0,
-            coeffs: [
-                Vector::<1>::new(1.0),
-                Vector::<1>::new(-2.0),
-                Vector::<1>::new(0.5),
-                Vector::<1>::new(3.0),
-                Vector::<1>::new(-1.0),
-                z,
-                z,
-                z,
-            ],
-        };
+        let seg = Segment::polynomial(1.0, 2.0, &[1.0, -2.0, 0.5, 3.0, -1.0].map(Vector::<1>::new));
         let cut = seg.truncated(2.2);
         for t in [1.0, 1.5, 2.0, 2.2] {
             assert!((cut.eval(t)[0] - seg.eval(t)[0]).abs() < 1e-13);

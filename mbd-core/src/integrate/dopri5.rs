@@ -146,20 +146,7 @@ fn dense_segment<const D: usize>(
     let r3 = k[0] * h - r2;
     let r4 = r2 - k[6] * h - r3;
     let r5 = Erk::<7>::combine(&DOPRI5_DENSE, k, h);
-    Segment {
-        t0,
-        h,
-        coeffs: [
-            *y0,
-            r2 + r3,
-            r4 + r5 - r3,
-            -(r4 + r5 * 2.0),
-            r5,
-            Vector::<D>::zeros(),
-            Vector::<D>::zeros(),
-            Vector::<D>::zeros(),
-        ],
-    }
+    Segment::polynomial(t0, h, &[*y0, r2 + r3, r4 + r5 - r3, -(r4 + r5 * 2.0), r5])
 }
 
 impl Integrator for Dopri5 {

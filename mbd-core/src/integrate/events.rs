@@ -194,11 +194,7 @@ mod tests {
     #[test]
     fn locates_a_cubic_root() {
         let z = Vector::<1>::zeros();
-        let seg = Segment {
-            t0: 0.0,
-            h: 2.0,
-            coeffs: [z, Vector::<1>::new(2.0), z, z, z, z, z, z],
-        };
+        let seg = Segment::polynomial(0.0, 2.0, &[z, Vector::<1>::new(2.0)]);
         let g = |_t: f64, y: &Vector<1>| Ok(y[0].powi(3) - 2.0);
         let t = locate(&g, &seg, -2.0, 6.0).unwrap();
         let exact = 2f64.cbrt();

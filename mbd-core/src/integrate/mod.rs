@@ -23,6 +23,8 @@ pub mod radau5;
 pub mod rk4;
 pub mod solution;
 pub mod tableau;
+pub mod vern9;
+pub mod vern9_tableau;
 
 pub use ali3::Ali3;
 pub use auto::Auto;
@@ -35,6 +37,7 @@ pub use generalized_alpha::GeneralizedAlpha;
 pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use solution::{Flow, Observer, Record, Recorder, Solution, Step};
+pub use vern9::Vern9;
 
 use crate::error::{Error, Num, Result};
 use crate::model::{OdeSystem, Vector};

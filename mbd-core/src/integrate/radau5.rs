@@ -678,15 +678,10 @@ fn collocation_segment<const D: usize>(
     a: [Vector<D>; 3],
     y1: &Vector<D>,
 ) -> Segment<D> {
-    let zero = Vector::<D>::zeros();
     // Horner's order at θ = 1, as `Segment::eval` evaluates it.
     let end = ((a[2] + a[1]) + a[0]) + y0;
     let shift = y1 - end;
-    Segment {
-        t0,
-        h,
-        coeffs: [*y0, a[0] + shift, a[1], a[2], zero, zero, zero, zero],
-    }
+    Segment::polynomial(t0, h, &[*y0, a[0] + shift, a[1], a[2]])
 }
 
 #[cfg(test)]

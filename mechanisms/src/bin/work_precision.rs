@@ -35,7 +35,7 @@ struct Args {
     #[arg(long)]
     only: Option<String>,
     /// Print only the time-to-accuracy table (pendulum, chains of 8 and 32 links,
-    /// slider-crank; DOPRI5 and DOP853 to 1e-6 and 1e-10 over a sample grid), with the step
+    /// slider-crank; DOPRI5, DOP853 and Vern9 to 1e-6 and 1e-10 over a sample grid), with the step
     /// loop's cost per evaluation; also written to `time_to_accuracy.md` with `--out`.
     #[arg(long)]
     time_to_accuracy: bool,
@@ -257,10 +257,11 @@ struct Figures {
 }
 
 /// Every method, in the order of the plots' colours.
-const ALL_METHODS: [Method; 7] = [
+const ALL_METHODS: [Method; 8] = [
     Method::Rk4,
     Method::Dopri5,
     Method::Dop853,
+    Method::Vern9,
     Method::Radau5,
     Method::GeneralizedAlpha,
     Method::Dopri5NoProjection,
