@@ -31,6 +31,7 @@ pub fn check(input: &DeriveInput, ast: &Mechanism) -> syn::Result<()> {
     reserved_names(input, ast, &mut errors);
     let env = defaults(ast, &mut errors);
     constants(ast, &generated(input), &env, &mut errors);
+    chain_lengths(input, &env, &mut errors);
     driven_loads(ast, &mut errors);
     for (name, a, b) in ast
         .springs
@@ -440,6 +441,22 @@ fn constants(
                 env,
                 errors,
             );
+        }
+    }
+}
+
+/// A chain's `length`: positive, as the meaning of its angles needs (zero hangs straight
+/// down; a negative length would point the links up and put every link at one point when
+/// zero). Read from the raw attribute: the chain is already expanded into tree bodies.
+fn chain_lengths(input: &DeriveInput, env: &HashMap<String, f64>, errors: &mut Errors) {
+    for attr in input.attrs.iter().filter(|a| a.path().is_ident("chain")) {
+        let args = list(attr);
+        let Some(name) = args.first().and_then(flag) else {
+            continue;
+        };
+        if let Some((_, length)) = args.iter().filter_map(key).find(|(k, _)| *k == "length") {
+            let what = format!("the length of chain `{name}`");
+            constant(length, &what, Sign::Positive, false, env, errors);
         }
     }
 }

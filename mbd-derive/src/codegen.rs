@@ -255,7 +255,8 @@ impl<'a> Block<'a> {
 }
 
 /// Minimal coordinates of a closed loop: every `asin`/`acos` argument of the closed forms
-/// checked to lie strictly inside `(-1, 1)` (`q` in scope), else `SingularPosition`.
+/// checked to lie strictly inside `(-1, 1)` (`q` in scope), else `SingularPosition`, or the
+/// failed parameter check that explains it (a NaN length is not a toggle position).
 fn closure_check(eq: &Equations, n: usize) -> Option<TokenStream> {
     let domain = eq.closure_domain.as_ref().filter(|d| !d.is_empty())?;
     let args: Vec<Expr> = domain.iter().map(|d| d.arg).collect();
@@ -265,7 +266,8 @@ fn closure_check(eq: &Equations, n: usize) -> Option<TokenStream> {
         let (arg, coord) = (b.leaf(d.arg), &d.coord);
         quote! {
             ::mbd::__private::closure::check_domain(t, #arg, #coord,
-                &<Self as ::mbd::__private::Mechanism<#n>>::COORDINATES, q.as_slice())?;
+                &<Self as ::mbd::__private::Mechanism<#n>>::COORDINATES, q.as_slice())
+                .map_err(|e| self.diagnose(e))?;
         }
     });
     Some(quote!({ #s #(#checks)* }))
