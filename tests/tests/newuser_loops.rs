@@ -1,0 +1,510 @@
+//! Closed loops as a new user writes them, each against a reference derived here.
+//!
+//! Four-bar `(a, b, c, d)`: crank `th` about the origin, coupler `be`, rocker `ga` about
+//! `(d, 0)`, all absolute angles. Position: the crank tip `A = a (cos th, sin th)` and the
+//! rocker tip `C` at distances `b` from `A` and `c` from `D = (d, 0)` (the two-circle
+//! intersection; `+` the elbow above `AD`). Velocities: the loop's rate equations
+//! `-b sin(be) be' + c sin(ga) ga' = a sin(th) th'`, `b cos(be) be' - c cos(ga) ga' = -a cos(th) th'`
+//! solved by Cramer's rule give `be' = kb th'`, `ga' = kg th'`. With one coordinate,
+//! Lagrange's equation is `J th'' + J'(th) th'^2 / 2 + V'(th) = Q`, `J = sum m |dp/dth|^2 + I (dphi/dth)^2`
+//! over the bodies (mass centres `p`, angles `phi`), `V` gravity's potential; `J'` by a
+//! central difference of the analytic `J` (step 1e-5: error ~1e-10 relative).
+
+use mbd::integrate::{Dop853, Dopri5, GeneralizedAlpha, Integrator, Options, Radau5, Rk4};
+use mbd::prelude::*;
+use std::f64::consts::PI;
+
+/// A crank-rocker written with coordinates and loop equations (reduced by the derive to the
+/// crank angle, on the branch of the `init`).
+#[derive(Debug, Clone, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(th, be, ga)]
+#[constraint(a * cos(th) + b * cos(be) == d + c * cos(ga))]
+#[constraint(a * sin(th) + b * sin(be) == c * sin(ga))]
+#[rigid(crank, mass = m, inertia = m * a * a / 12.0,
+        at = [a / 2.0 * cos(th), a / 2.0 * sin(th)], angle = th)]
+#[rigid(coupler, mass = m, inertia = m * b * b / 12.0,
+        at = [a * cos(th) + b / 2.0 * cos(be), a * sin(th) + b / 2.0 * sin(be)], angle = be)]
+#[rigid(rocker, mass = m, inertia = m * c * c / 12.0,
+        at = [d + c / 2.0 * cos(ga), c / 2.0 * sin(ga)], angle = ga)]
+#[init(th = 0.5, be = 0.7260165921021776, ga = 1.7229599395818342)]
+pub struct CoordFourBar {
+    #[default(1.0)]
+    pub a: f64,
+    #[default(3.0)]
+    pub b: f64,
+    #[default(2.5)]
+    pub c: f64,
+    #[default(3.5)]
+    pub d: f64,
+    #[default(1.0)]
+    pub m: f64,
+    #[default(9.81)]
+    pub g: f64,
+}
+
+/// The same crank-rocker as a joint tree: crank and rocker on the ground, the coupler on
+/// the crank (relative angle `ph`), the loop closed by a pin (kept in the augmented form).
+#[derive(Debug, Clone, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(crank, joint = revolute(th), com = [a / 2.0, 0.0], mass = m, inertia = m * a * a / 12.0)]
+#[body(coupler, parent = crank, joint = revolute(ph), at = [a, 0.0], com = [b / 2.0, 0.0],
+       mass = m, inertia = m * b * b / 12.0)]
+#[body(rocker, joint = revolute(ps), at = [d, 0.0], com = [c / 2.0, 0.0], mass = m,
+       inertia = m * c * c / 12.0)]
+#[close(pin, a = coupler, at_a = [b, 0.0], b = rocker, at_b = [c, 0.0])]
+pub struct TreeFourBar {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub d: f64,
+    pub m: f64,
+    pub g: f64,
+}
+
+#[derive(Clone, Copy)]
+struct Bar4 {
+    a: f64,
+    b: f64,
+    c: f64,
+    d: f64,
+    m: f64,
+    g: f64,
+}
+
+impl Bar4 {
+    /// `(be, ga)` at crank angle `th`, elbow `sign` (+1 above `AD`).
+    fn close(&self, th: f64, sign: f64) -> (f64, f64) {
+        let (ax, ay) = (self.a * th.cos(), self.a * th.sin());
+        let (dx, dy) = (self.d - ax, -ay);
+        let l = dx.hypot(dy);
+        let alpha = ((self.b * self.b + l * l - self.c * self.c) / (2.0 * self.b * l)).acos();
+        let be = dy.atan2(dx) + sign * alpha;
+        let (cx, cy) = (ax + self.b * be.cos(), ay + self.b * be.sin());
+        (be, cy.atan2(cx - self.d))
+    }
+
+    /// `(kb, kg)`: `be' / th'` and `ga' / th'` by Cramer's rule on the rate equations.
+    fn rates(&self, th: f64, be: f64, ga: f64) -> (f64, f64) {
+        let (j11, j12, j21, j22) = (
+            -self.b * be.sin(),
+            self.c * ga.sin(),
+            self.b * be.cos(),
+            -self.c * ga.cos(),
+        );
+        let (r1, r2) = (self.a * th.sin(), -self.a * th.cos());
+        let det = j11 * j22 - j12 * j21;
+        ((r1 * j22 - j12 * r2) / det, (j11 * r2 - j21 * r1) / det)
+    }
+
+    /// The generalised inertia `J(th)` and gravity's `dV/dth`.
+    fn inertia_and_gravity(&self, th: f64, sign: f64) -> (f64, f64) {
+        let (a, b, c, m) = (self.a, self.b, self.c, self.m);
+        let (be, ga) = self.close(th, sign);
+        let (kb, kg) = self.rates(th, be, ga);
+        // Mass-centre velocity coefficients dp/dth.
+        let crank = (-a / 2.0 * th.sin(), a / 2.0 * th.cos());
+        let coupler = (
+            -a * th.sin() - b / 2.0 * be.sin() * kb,
+            a * th.cos() + b / 2.0 * be.cos() * kb,
+        );
+        let rocker = (-c / 2.0 * ga.sin() * kg, c / 2.0 * ga.cos() * kg);
+        let sq = |v: (f64, f64)| v.0 * v.0 + v.1 * v.1;
+        let j = m * (sq(crank) + sq(coupler) + sq(rocker))
+            + m * a * a / 12.0
+            + m * b * b / 12.0 * kb * kb
+            + m * c * c / 12.0 * kg * kg;
+        (j, m * self.g * (crank.1 + coupler.1 + rocker.1))
+    }
+
+    /// `th''` by Lagrange's equation in the crank angle.
+    fn crank_acceleration(&self, th: f64, thd: f64, sign: f64) -> f64 {
+        let h = 1e-5;
+        let (j, dv) = self.inertia_and_gravity(th, sign);
+        let dj = (self.inertia_and_gravity(th + h, sign).0
+            - self.inertia_and_gravity(th - h, sign).0)
+            / (2.0 * h);
+        -(0.5 * dj * thd * thd + dv) / j
+    }
+}
+
+const BAR: Bar4 = Bar4 {
+    a: 1.0,
+    b: 3.0,
+    c: 2.5,
+    d: 3.5,
+    m: 1.0,
+    g: 9.81,
+};
+
+#[test]
+fn four_bar_written_two_ways_matches_lagrange_in_the_crank_angle() {
+    let k = CoordFourBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: 9.81,
+    };
+    let t = TreeFourBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: 9.81,
+    };
+    assert_eq!(CoordFourBar::COORDINATES, ["th"]);
+    // The init's elbow is the upper one.
+    let (be0, ga0) = BAR.close(0.5, 1.0);
+    assert!((be0 - 0.7260165921021776).abs() < 1e-12 && (ga0 - 1.7229599395818342).abs() < 1e-12);
+    for (th, thd) in [(0.5, 1.3), (2.0, -0.7), (-2.5, 4.0), (PI, 0.0)] {
+        let want = BAR.crank_acceleration(th, thd, 1.0);
+        let scale = want.abs().max(1.0);
+        let minimal = k
+            .acceleration(0.0, &Vector::<1>::new(th), &Vector::<1>::new(thd))
+            .unwrap()[0];
+        assert!((minimal - want).abs() < 1e-8 * scale, "th = {th}: {minimal} vs {want}");
+        // The tree: relative coupler angle, assembled on the same elbow.
+        let (be, ga) = BAR.close(th, 1.0);
+        let (kb, kg) = BAR.rates(th, be, ga);
+        let q = Vector::<3>::new(th, be - th, ga);
+        let qd = Vector::<3>::new(thd, (kb - 1.0) * thd, kg * thd);
+        assert!(Constrained::<3, 2>::phi(&t, 0.0, &q).amax() < 1e-14);
+        let tree = t.acceleration(0.0, &q, &qd).unwrap()[0];
+        assert!((tree - want).abs() < 1e-8 * scale, "th = {th}: {tree} vs {want}");
+    }
+}
+
+/// An offset slider-crank (crank `r`, rod `l`, the slider's line `e` above the crank's
+/// pivot) turned from rest by a constant torque `tau`: it passes its dead centres (crank and
+/// rod in line) as ordinary positions, and its kinetic energy equals the work done,
+/// `T(th, th') = tau (th - th0)`. `T` by hand: `sin(be) = (r sin th - e) / l`,
+/// `be' = r cos(th) th' / (l cos be)`, `x' = -r sin(th) th' - l sin(be) be'`; the rod's
+/// mass centre `(r cos th + l/2 cos be, r sin th - l/2 sin be)`, its angle `-be`.
+#[derive(Debug, Clone, Mechanism)]
+#[coords(th, be, x)]
+#[constraint(x == r * cos(th) + l * cos(be))]
+#[constraint(r * sin(th) - l * sin(be) == e)]
+#[rigid(crank, mass = mc, inertia = jc, at = [0.0, 0.0], angle = th)]
+#[rigid(rod, mass = mr, inertia = mr * l * l / 12.0,
+        at = [r * cos(th) + l / 2.0 * cos(be), r * sin(th) - l / 2.0 * sin(be)], angle = -be)]
+#[particle(piston, mass = mp, at = [x, e])]
+#[torque(motor, on = crank, value = tau)]
+pub struct OffsetSliderCrank {
+    pub r: f64,
+    pub l: f64,
+    pub e: f64,
+    pub mc: f64,
+    pub jc: f64,
+    pub mr: f64,
+    pub mp: f64,
+    pub tau: f64,
+}
+
+fn slider_crank_energy(p: &OffsetSliderCrank, th: f64, thd: f64) -> f64 {
+    let be = ((p.r * th.sin() - p.e) / p.l).asin();
+    let bed = p.r * th.cos() * thd / (p.l * be.cos());
+    let xd = -p.r * th.sin() * thd - p.l * be.sin() * bed;
+    let vx = -p.r * th.sin() * thd - p.l / 2.0 * be.sin() * bed;
+    let vy = p.r * th.cos() * thd - p.l / 2.0 * be.cos() * bed;
+    0.5 * p.jc * thd * thd
+        + 0.5 * p.mr * (vx * vx + vy * vy)
+        + 0.5 * p.mr * p.l * p.l / 12.0 * bed * bed
+        + 0.5 * p.mp * xd * xd
+}
+
+#[test]
+fn offset_slider_crank_under_torque_passes_dead_centre_with_the_work_done() {
+    let p = OffsetSliderCrank {
+        r: 0.1,
+        l: 0.4,
+        e: 0.05,
+        mc: 1.0,
+        jc: 0.01,
+        mr: 0.5,
+        mp: 0.3,
+        tau: 0.5,
+    };
+    assert_eq!(OffsetSliderCrank::COORDINATES, ["th"]);
+    let opts = Options {
+        rtol: 1e-11,
+        atol: 1e-11,
+        ..Options::default()
+    };
+    let sol = Dopri5::new(opts)
+        .solve(&p, 0.0, Vector::<2>::zeros(), 3.0, &[])
+        .unwrap();
+    // Many turns, so many dead centres passed, always turning forward.
+    let y = *sol.y.last().unwrap();
+    assert!(y[0] > 20.0 * 2.0 * PI, "{y:?}");
+    assert!(sol.y.iter().skip(1).all(|y| y[1] > 0.0));
+    let (energy, work) = (slider_crank_energy(&p, y[0], y[1]), p.tau * y[0]);
+    assert!((energy - work).abs() < 1e-8 * work, "{energy} vs {work}");
+}
+
+/// A four-bar that is not Grashof (`a = 2`, `b = 2.6`, `c = 1.5`, `d = 1`: `s + l = 3.6 >
+/// p + q = 3.5`): the input link `th` cannot turn round. Its limits are where coupler and
+/// rocker fold, `|A - D| = b - c`: `cos(th_lim) = (a^2 + d^2 - (b - c)^2) / (2 a d)`. Free of
+/// gravity, started at `th = pi` with `th' = -2`, it reaches `th_lim` with `th' = 0` at the
+/// time `int_{th_lim}^{pi} sqrt(J / (2 E)) dth` (`E = J(pi) th'(0)^2 / 2`, energy conserved),
+/// computed with `th = th_lim + u^2` (which removes the `1 / sqrt` of `J` at the limit) by
+/// the composite midpoint rule. There the two assembly branches meet: the physical motion
+/// continues on the other branch with `th` turning back; staying on the state's branch would
+/// reverse the rocker without a cause. The minimal form cannot follow the switch, so every
+/// method must stop there with a typed error naming the position, never return `Ok`.
+#[derive(Debug, Clone, Mechanism)]
+#[coords(th, be, ga)]
+#[constraint(a * cos(th) + b * cos(be) == d + c * cos(ga))]
+#[constraint(a * sin(th) + b * sin(be) == c * sin(ga))]
+#[rigid(crank, mass = m, inertia = m * a * a / 12.0,
+        at = [a / 2.0 * cos(th), a / 2.0 * sin(th)], angle = th)]
+#[rigid(coupler, mass = m, inertia = m * b * b / 12.0,
+        at = [a * cos(th) + b / 2.0 * cos(be), a * sin(th) + b / 2.0 * sin(be)], angle = be)]
+#[rigid(rocker, mass = m, inertia = m * c * c / 12.0,
+        at = [d + c / 2.0 * cos(ga), c / 2.0 * sin(ga)], angle = ga)]
+#[init(th = 3.141592653589793, be = 0.5235983011156989, ga = 2.0931125762773357,
+       der(th) = -2.0)]
+pub struct TripleRocker {
+    #[default(2.0)]
+    pub a: f64,
+    #[default(2.6)]
+    pub b: f64,
+    #[default(1.5)]
+    pub c: f64,
+    #[default(1.0)]
+    pub d: f64,
+    #[default(1.0)]
+    pub m: f64,
+}
+
+const ROCKER: Bar4 = Bar4 {
+    a: 2.0,
+    b: 2.6,
+    c: 1.5,
+    d: 1.0,
+    m: 1.0,
+    g: 0.0,
+};
+const TRIPLE: TripleRocker = TripleRocker {
+    a: 2.0,
+    b: 2.6,
+    c: 1.5,
+    d: 1.0,
+    m: 1.0,
+};
+
+fn limit_angle() -> f64 {
+    let (a, b, c, d) = (ROCKER.a, ROCKER.b, ROCKER.c, ROCKER.d);
+    ((a * a + d * d - (b - c) * (b - c)) / (2.0 * a * d)).acos()
+}
+
+/// The time to reach the limit from `th = pi`, `th' = -2`.
+fn time_to_limit() -> f64 {
+    let lim = limit_angle();
+    let energy = 0.5 * ROCKER.inertia_and_gravity(PI, 1.0).0 * 4.0;
+    let (u1, n) = ((PI - lim).sqrt(), 200_000);
+    let du = u1 / n as f64;
+    (0..n)
+        .map(|i| {
+            let u = (i as f64 + 0.5) * du;
+            let j = ROCKER.inertia_and_gravity(lim + u * u, 1.0).0;
+            (j / (2.0 * energy)).sqrt() * 2.0 * u * du
+        })
+        .sum()
+}
+
+fn assert_stops_at_the_limit<T>(run: Result<T, Error>, method: &str, t_tol: f64) {
+    let th_tol = t_tol / 3.0;
+    let (lim, t_lim) = (limit_angle(), time_to_limit());
+    match run {
+        Err(Error::SingularPosition { t, detail }) => {
+            assert!((t - t_lim).abs() < t_tol, "{method}: t = {t}, want {t_lim}");
+            let th: f64 = detail
+                .split("th = ")
+                .nth(1)
+                .and_then(|s| s.split(':').next())
+                .and_then(|s| s.trim().parse().ok())
+                .unwrap_or_else(|| panic!("{method}: {detail}"));
+            // The configuration named is at or just past the limit (a trial stage's).
+            assert!(
+                th <= lim + 1e-9 && th > lim - th_tol,
+                "{method}: th = {th}, want {lim}"
+            );
+        }
+        Err(other) => panic!("{method}: {other}"),
+        Ok(_) => panic!("{method}: Ok past the limit position at t = {t_lim}"),
+    }
+}
+
+#[test]
+fn non_grashof_four_bar_stops_at_its_limit_position_with_a_typed_error() {
+    assert_eq!(TripleRocker::COORDINATES, ["th"]);
+    let (be, ga) = ROCKER.close(PI, 1.0);
+    assert!((be - 0.5235983011156989).abs() < 1e-12 && (ga - 2.0931125762773357).abs() < 1e-12);
+    let y0 = TRIPLE.initial_state();
+    for tol in [1e-6, 1e-10] {
+        let opts = Options {
+            rtol: tol,
+            atol: tol,
+            ..Options::default()
+        };
+        let t_tol = if tol > 1e-8 { 1e-2 } else { 1e-4 };
+        let dopri = Dopri5::new(opts.clone()).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(dopri, "DOPRI5", t_tol);
+        let dop853 = Dop853::new(opts.clone()).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(dop853, "DOP853", t_tol);
+        let radau = Radau5::new(opts).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(radau, "Radau5", t_tol);
+    }
+    for h in [1e-4, 5e-3] {
+        let rk4 = Rk4::new(h).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(rk4, "RK4", 1e-2);
+    }
+}
+
+/// Defect left for the lead: with RK4 at steps whose stages happen not to land past the
+/// limit, the state's crank angle turns back on the same branch (the rocker reverses with
+/// no cause) and the run returns `Ok` (h = 2e-2 ends at the limit, h = 1e-3 and 2e-3 run on
+/// to the opposite limit at t = 3.3 .. 6.3 s); generalized-alpha ends with `NewtonFailed`,
+/// which does not name the position.
+#[test]
+#[ignore = "defect: fixed-step methods reflect silently at a minimal loop's limit position"]
+fn non_grashof_four_bar_fixed_step_methods_stop_at_the_limit_too() {
+    let y0 = TRIPLE.initial_state();
+    for h in [2e-2, 2e-3, 1e-3] {
+        let rk4 = Rk4::new(h).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(rk4, "RK4", 1e-2);
+    }
+    let q0 = Vector::<1>::new(y0[0]);
+    let qd0 = Vector::<1>::new(y0[1]);
+    let alpha: Result<Solution<2>, Error> =
+        GeneralizedAlpha::new(0.9, 1e-3).solve(&TRIPLE, 0.0, q0, qd0, 5.0, &[]);
+    assert_stops_at_the_limit(alpha, "generalized-alpha", 1e-2);
+}
+
+/// The crank-rocker driven at a constant rate `w`: no free coordinate is left (the rocker
+/// follows the closure), so the motion is kinematic: `ga(t)` is the closed form at `th = w t`.
+/// The drive's effort `reaction(th)` supplies the power that changes the kinetic energy
+/// (no gravity): `tau w = dT/dt`, `T = J_d(th) w^2 / 2` with `J_d` the inertia of coupler
+/// and rocker alone, so `tau = J_d'(th) w^2 / 2`.
+#[derive(Debug, Clone, Mechanism)]
+#[drive(th = w * t)]
+#[coords(be, ga)]
+#[constraint(a * cos(th) + b * cos(be) == d + c * cos(ga))]
+#[constraint(a * sin(th) + b * sin(be) == c * sin(ga))]
+#[rigid(coupler, mass = m, inertia = m * b * b / 12.0,
+        at = [a * cos(th) + b / 2.0 * cos(be), a * sin(th) + b / 2.0 * sin(be)], angle = be)]
+#[rigid(rocker, mass = m, inertia = m * c * c / 12.0,
+        at = [d + c / 2.0 * cos(ga), c / 2.0 * sin(ga)], angle = ga)]
+#[output(motor = reaction(th))]
+pub struct DrivenFourBar {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub d: f64,
+    pub m: f64,
+    pub w: f64,
+}
+
+#[test]
+fn driven_four_bar_follows_the_closure_and_its_drive_supplies_the_power() {
+    let p = DrivenFourBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        w: 2.0,
+    };
+    // The crank's own inertia is not in this model: J of the full four-bar minus the crank's.
+    let crank = BAR.m * BAR.a * BAR.a / 4.0 + BAR.m * BAR.a * BAR.a / 12.0;
+    let driven_inertia = |th: f64| BAR.inertia_and_gravity(th, 1.0).0 - crank;
+    let state = |th: f64| {
+        let (be, ga) = BAR.close(th, 1.0);
+        let (kb, kg) = BAR.rates(th, be, ga);
+        Vector::<4>::new(be, ga, kb * p.w, kg * p.w)
+    };
+    let opts = Options {
+        rtol: 1e-11,
+        atol: 1e-11,
+        ..Options::default()
+    };
+    let sol = Dopri5::new(opts).solve(&p, 0.0, state(0.0), 4.0, &[]).unwrap();
+    for (&t, y) in sol.t.iter().zip(&sol.y).step_by(7) {
+        let want = state(p.w * t);
+        let wrap = |x: f64| (x + PI).rem_euclid(2.0 * PI) - PI;
+        assert!(wrap(y[0] - want[0]).abs() < 1e-8 && wrap(y[1] - want[1]).abs() < 1e-8, "t = {t}");
+        let h = 1e-5;
+        let th = p.w * t;
+        let dj = (driven_inertia(th + h) - driven_inertia(th - h)) / (2.0 * h);
+        let tau = 0.5 * dj * p.w * p.w;
+        let motor = p.outputs(t, y).unwrap().motor;
+        assert!((motor - tau).abs() < 1e-6 * tau.abs().max(1.0), "t = {t}: {motor} vs {tau}");
+    }
+}
+
+/// A parallelogram four-bar (crank and rocker `a`, coupler and ground `b`) hanging down:
+/// the coupler translates, so `T = (2 m a^2 / 3 + mc a^2) th'^2 / 2` and
+/// `V = -(m a + mc a) g cos(th + pi/2)`: `w^2 = g (m + mc) / (a (2 m / 3 + mc))` exactly,
+/// and `th'' = -w^2 sin(th + pi/2)` at any angle.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(th, be, ga)]
+#[constraint(a * cos(th) + b * cos(be) == b + a * cos(ga))]
+#[constraint(a * sin(th) + b * sin(be) == a * sin(ga))]
+#[rigid(crank, mass = m, inertia = m * a * a / 12.0,
+        at = [a / 2.0 * cos(th), a / 2.0 * sin(th)], angle = th)]
+#[rigid(coupler, mass = mc, inertia = mc * b * b / 12.0,
+        at = [a * cos(th) + b / 2.0 * cos(be), a * sin(th) + b / 2.0 * sin(be)], angle = be)]
+#[rigid(rocker, mass = m, inertia = m * a * a / 12.0,
+        at = [b + a / 2.0 * cos(ga), a / 2.0 * sin(ga)], angle = ga)]
+#[init(th = -1.5707963267948966, be = 0.0, ga = -1.5707963267948966)]
+pub struct Parallelogram {
+    #[default(1.0)]
+    pub a: f64,
+    #[default(2.0)]
+    pub b: f64,
+    #[default(1.0)]
+    pub m: f64,
+    #[default(3.0)]
+    pub mc: f64,
+    #[default(9.81)]
+    pub g: f64,
+}
+
+#[test]
+fn hanging_parallelogram_has_the_pendulum_frequency_of_its_closed_form() {
+    let p = Parallelogram {
+        a: 1.0,
+        b: 2.0,
+        m: 1.0,
+        mc: 3.0,
+        g: 9.81,
+    };
+    let w2 = p.g * (p.m + p.mc) / (p.a * (2.0 * p.m / 3.0 + p.mc));
+    let down = Vector::<1>::new(-PI / 2.0);
+    let modes = mbd::analysis::linear::undamped_modes(&p, 0.0, &down).unwrap();
+    assert_eq!(modes.len(), 1);
+    assert!((modes[0].omega_squared - w2).abs() < 1e-12 * w2);
+    // On the init's side of the change points th = 0 and th = -pi (all four joints in line).
+    for th in [-1.0, -0.3, -2.8] {
+        let y = Vector::<2>::new(th, 0.7);
+        let thdd = p.rhs(0.0, &y).unwrap()[1];
+        assert!((thdd + w2 * (th + PI / 2.0).sin()).abs() < 1e-12 * w2, "th = {th}");
+    }
+    // Away from equilibrium the modes are refused, not computed from a wrong linearisation.
+    let off = Vector::<1>::new(-1.0);
+    assert!(matches!(
+        mbd::analysis::linear::undamped_modes(&p, 0.0, &off),
+        Err(Error::InvalidInput { .. })
+    ));
+    // A NaN length is named as such, not reported as a toggle position of the loop.
+    let nan = Parallelogram { a: f64::NAN, ..p };
+    match nan.rhs(0.0, &Vector::<2>::new(-1.0, 0.0)) {
+        Err(Error::InvalidParameter { what, .. }) => assert_eq!(what, "parameter `a`"),
+        other => panic!("{other:?}"),
+    }
+}
