@@ -9,6 +9,7 @@
 //! The language itself is documented on the facade crate `mbd`.
 
 mod ball;
+mod branch;
 mod check;
 mod close;
 mod closure;

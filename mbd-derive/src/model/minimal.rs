@@ -68,6 +68,7 @@ pub(super) fn minimal_coordinates(
         return None;
     };
     check_closure_defaults(g, loops, &env, ast, &mut scope.errors);
+    crate::branch::check_inits(g, &solution, &kin.coords, &env, ast, &mut scope.errors);
     let forms = keep_symbols(scope, kin, &loops.phi, &solution);
     loops.phi.clear();
     loops.tokens.clear();
