@@ -5,6 +5,8 @@
 //! configuration. When that configuration cannot be evaluated (a parameter in the closure
 //! has no `#[default]`), the principal branch is taken whatever `init` says, so a numeric
 //! `init` of a dependent coordinate would be silently ignored: it is refused here instead.
+//! So is a non-zero `init` rate of a dependent coordinate: the state holds only the
+//! independent coordinates' rates, and the dependent ones follow from them.
 
 use crate::closure::Solution;
 use crate::model::Coord;
@@ -22,6 +24,7 @@ pub fn check_inits(
     ast: &Mechanism,
     errors: &mut Errors,
 ) {
+    rates(solution, coords, ast, errors);
     let value = |s: Sym| env.get(&s).copied().unwrap_or(f64::NAN);
     let Some(open) = solution
         .domain
@@ -57,6 +60,32 @@ pub fn check_inits(
                 "this `init` cannot choose the closure's branch: the closed form of `{}` (an asin/acos) takes the branch of the default configuration, and parameters {} have no `#[default]`, so the principal branch would be taken whatever `init` says; give them `#[default]`s, or write `#[mechanism(augmented)]` and start from an assembled state",
                 open.coord,
                 missing.join(", ")
+            ),
+        );
+    }
+}
+
+/// An error at each `init(der(x) = v)` of a coordinate `x` the closure solves, unless `v` is
+/// the constant zero (at rest): `x`'s rate is not in the state, so it would be dropped.
+fn rates(solution: &Solution, coords: &[Coord], ast: &Mechanism, errors: &mut Errors) {
+    let independent: Vec<String> = coords
+        .iter()
+        .enumerate()
+        .filter(|(i, c)| {
+            matches!(c.kind, crate::model::CoordKind::Free)
+                && !solution.solved.iter().any(|(j, _)| j == i)
+        })
+        .map(|(_, c)| format!("`der({})`", c.name))
+        .collect();
+    let solved = |c: &syn::Ident| solution.solved.iter().any(|(i, _)| coords[*i].name == *c);
+    let zero = |e: &syn::Expr| crate::check::fold(e, &HashMap::new()) == Some(0.0);
+    for init in ast.inits.iter().filter(|i| i.velocity && solved(&i.coord) && !zero(&i.value)) {
+        errors.at(
+            init.coord.span(),
+            format!(
+                "the rate of `{}` follows from the closure (the state holds {}): this `init` would be dropped; give the independent rates instead",
+                init.coord,
+                independent.join(", ")
             ),
         );
     }
