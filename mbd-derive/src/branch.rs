@@ -39,7 +39,11 @@ pub fn check_inits(
         read.borrow_mut().push(s);
         value(s)
     });
-    let in_arg: Vec<&str> = read.into_inner().into_iter().map(|s| g.sym_name(s)).collect();
+    let in_arg: Vec<&str> = read
+        .into_inner()
+        .into_iter()
+        .map(|s| g.sym_name(s))
+        .collect();
     let missing: Vec<String> = ast
         .params
         .iter()
@@ -53,7 +57,11 @@ pub fn check_inits(
             coords[*i].name == *c && g.as_sym(coords[*i].z).is_some_and(|s| env.contains_key(&s))
         })
     };
-    for init in ast.inits.iter().filter(|i| !i.velocity && numeric(&i.coord)) {
+    for init in ast
+        .inits
+        .iter()
+        .filter(|i| !i.velocity && numeric(&i.coord))
+    {
         errors.at(
             init.coord.span(),
             format!(
@@ -79,7 +87,11 @@ fn rates(solution: &Solution, coords: &[Coord], ast: &Mechanism, errors: &mut Er
         .collect();
     let solved = |c: &syn::Ident| solution.solved.iter().any(|(i, _)| coords[*i].name == *c);
     let zero = |e: &syn::Expr| crate::check::fold(e, &HashMap::new()) == Some(0.0);
-    for init in ast.inits.iter().filter(|i| i.velocity && solved(&i.coord) && !zero(&i.value)) {
+    for init in ast
+        .inits
+        .iter()
+        .filter(|i| i.velocity && solved(&i.coord) && !zero(&i.value))
+    {
         errors.at(
             init.coord.span(),
             format!(

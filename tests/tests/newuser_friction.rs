@@ -2,7 +2,7 @@
 //! angle of repose, and a pendulum whose pin friction holds a motor torque below breakaway
 //! and lets a larger one through. References derived beside each test.
 
-use mbd::integrate::{Dop853, Dopri5, Integrator, Options, Radau5, Rk4};
+use mbd::integrate::{Dop853, Dopri5, Options, Radau5, Rk4};
 use mbd::prelude::*;
 
 /// A block on an incline of angle `a`; `n` normal to it, relaxed, so that `reaction(n)` is
@@ -47,11 +47,21 @@ fn block_at_its_angle_of_repose_holds() {
         let bound = 2.0 * f64::EPSILON * p.g;
         let acc = p.acceleration(0.0, &zero, &zero).unwrap()[0];
         assert!(acc.abs() <= bound, "{deg} deg: {acc}");
-        let run = mbd::hybrid::solve(&Dopri5::new(tight()), &p, 0.0, Vector::<2>::zeros(), 5.0, &[])
-            .unwrap();
+        let run = mbd::hybrid::solve(
+            &Dopri5::new(tight()),
+            &p,
+            0.0,
+            Vector::<2>::zeros(),
+            5.0,
+            &[],
+        )
+        .unwrap();
         let y = run.solution.last().1;
         // Five seconds at that acceleration at most: s <= bound * 25 / 2.
-        assert!(y[0].abs() <= 12.5 * bound && y[1].abs() <= 5.0 * bound, "{deg} deg: {y:?}");
+        assert!(
+            y[0].abs() <= 12.5 * bound && y[1].abs() <= 5.0 * bound,
+            "{deg} deg: {y:?}"
+        );
     }
 }
 
@@ -78,7 +88,11 @@ pub struct PinHold {
 fn breakaway_acceleration(p: &PinHold) -> f64 {
     let io = p.m * p.l * p.l * (1.0 + 1.0 / 12.0);
     let (mm, mg) = (p.mu * p.m * p.l, p.mu * p.m * p.g);
-    let (qa, qb, qc) = (io * io - mm * mm, -2.0 * p.tau * io, p.tau * p.tau - mg * mg);
+    let (qa, qb, qc) = (
+        io * io - mm * mm,
+        -2.0 * p.tau * io,
+        p.tau * p.tau - mg * mg,
+    );
     (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa)
 }
 
@@ -96,9 +110,12 @@ fn pin_friction_holds_a_torque_below_breakaway_exactly() {
     assert_eq!(p.acceleration(0.0, &zero, &zero).unwrap()[0], 0.0);
     let y0 = Vector::<2>::zeros();
     let ends = [
-        mbd::hybrid::solve(&Dopri5::new(tight()), &p, 0.0, y0, 3.0, &[]).map(|r| *r.solution.last().1),
-        mbd::hybrid::solve(&Dop853::new(tight()), &p, 0.0, y0, 3.0, &[]).map(|r| *r.solution.last().1),
-        mbd::hybrid::solve(&Radau5::new(tight()), &p, 0.0, y0, 3.0, &[]).map(|r| *r.solution.last().1),
+        mbd::hybrid::solve(&Dopri5::new(tight()), &p, 0.0, y0, 3.0, &[])
+            .map(|r| *r.solution.last().1),
+        mbd::hybrid::solve(&Dop853::new(tight()), &p, 0.0, y0, 3.0, &[])
+            .map(|r| *r.solution.last().1),
+        mbd::hybrid::solve(&Radau5::new(tight()), &p, 0.0, y0, 3.0, &[])
+            .map(|r| *r.solution.last().1),
         mbd::hybrid::solve(&Rk4::new(1e-2), &p, 0.0, y0, 3.0, &[]).map(|r| *r.solution.last().1),
     ];
     for end in ends {
@@ -119,7 +136,14 @@ fn pin_friction_lets_a_torque_above_breakaway_through_at_the_closed_form_rate() 
         let zero = Vector::<1>::zeros();
         let acc = p.acceleration(0.0, &zero, &zero).unwrap()[0];
         // The backward case is the mirror image of the forward one.
-        let want = tau.signum() * breakaway_acceleration(&PinHold { tau: tau.abs(), ..p });
-        assert!((acc - want).abs() < 1e-12 * want.abs(), "tau = {tau}: {acc} vs {want}");
+        let want = tau.signum()
+            * breakaway_acceleration(&PinHold {
+                tau: tau.abs(),
+                ..p
+            });
+        assert!(
+            (acc - want).abs() < 1e-12 * want.abs(),
+            "tau = {tau}: {acc} vs {want}"
+        );
     }
 }

@@ -165,7 +165,10 @@ fn four_bar_written_two_ways_matches_lagrange_in_the_crank_angle() {
         let minimal = k
             .acceleration(0.0, &Vector::<1>::new(th), &Vector::<1>::new(thd))
             .unwrap()[0];
-        assert!((minimal - want).abs() < 1e-8 * scale, "th = {th}: {minimal} vs {want}");
+        assert!(
+            (minimal - want).abs() < 1e-8 * scale,
+            "th = {th}: {minimal} vs {want}"
+        );
         // The tree: relative coupler angle, assembled on the same elbow.
         let (be, ga) = BAR.close(th, 1.0);
         let (kb, kg) = BAR.rates(th, be, ga);
@@ -173,7 +176,10 @@ fn four_bar_written_two_ways_matches_lagrange_in_the_crank_angle() {
         let qd = Vector::<3>::new(thd, (kb - 1.0) * thd, kg * thd);
         assert!(Constrained::<3, 2>::phi(&t, 0.0, &q).amax() < 1e-14);
         let tree = t.acceleration(0.0, &q, &qd).unwrap()[0];
-        assert!((tree - want).abs() < 1e-8 * scale, "th = {th}: {tree} vs {want}");
+        assert!(
+            (tree - want).abs() < 1e-8 * scale,
+            "th = {th}: {tree} vs {want}"
+        );
     }
 }
 
@@ -431,17 +437,25 @@ fn driven_four_bar_follows_the_closure_and_its_drive_supplies_the_power() {
         atol: 1e-11,
         ..Options::default()
     };
-    let sol = Dopri5::new(opts).solve(&p, 0.0, state(0.0), 4.0, &[]).unwrap();
+    let sol = Dopri5::new(opts)
+        .solve(&p, 0.0, state(0.0), 4.0, &[])
+        .unwrap();
     for (&t, y) in sol.t.iter().zip(&sol.y).step_by(7) {
         let want = state(p.w * t);
         let wrap = |x: f64| (x + PI).rem_euclid(2.0 * PI) - PI;
-        assert!(wrap(y[0] - want[0]).abs() < 1e-8 && wrap(y[1] - want[1]).abs() < 1e-8, "t = {t}");
+        assert!(
+            wrap(y[0] - want[0]).abs() < 1e-8 && wrap(y[1] - want[1]).abs() < 1e-8,
+            "t = {t}"
+        );
         let h = 1e-5;
         let th = p.w * t;
         let dj = (driven_inertia(th + h) - driven_inertia(th - h)) / (2.0 * h);
         let tau = 0.5 * dj * p.w * p.w;
         let motor = p.outputs(t, y).unwrap().motor;
-        assert!((motor - tau).abs() < 1e-6 * tau.abs().max(1.0), "t = {t}: {motor} vs {tau}");
+        assert!(
+            (motor - tau).abs() < 1e-6 * tau.abs().max(1.0),
+            "t = {t}: {motor} vs {tau}"
+        );
     }
 }
 
@@ -493,7 +507,10 @@ fn hanging_parallelogram_has_the_pendulum_frequency_of_its_closed_form() {
     for th in [-1.0, -0.3, -2.8] {
         let y = Vector::<2>::new(th, 0.7);
         let thdd = p.rhs(0.0, &y).unwrap()[1];
-        assert!((thdd + w2 * (th + PI / 2.0).sin()).abs() < 1e-12 * w2, "th = {th}");
+        assert!(
+            (thdd + w2 * (th + PI / 2.0).sin()).abs() < 1e-12 * w2,
+            "th = {th}"
+        );
     }
     // Away from equilibrium the modes are refused, not computed from a wrong linearisation.
     let off = Vector::<1>::new(-1.0);

@@ -2,7 +2,9 @@
 //! length or backwards, an event whose function starts at zero, outputs at the start, and
 //! a closed loop started off its constraint. References beside each test.
 
-use mbd::integrate::{Auto, Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4};
+use mbd::integrate::{
+    Auto, Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4,
+};
 use mbd::prelude::*;
 
 /// `#[chain]` of one link is a compound pendulum: a uniform bar `l`, `m` about its end,
@@ -58,8 +60,14 @@ fn every_method(b: &Ball, t0: f64, t1: f64) -> Vec<(&'static str, Result<Solutio
     let (q0, qd0) = (Vector::<1>::new(y0[0]), Vector::<1>::new(y0[1]));
     let opts = Options::default();
     vec![
-        ("DOPRI5", Dopri5::new(opts.clone()).solve(b, t0, y0, t1, &[])),
-        ("DOP853", Dop853::new(opts.clone()).solve(b, t0, y0, t1, &[])),
+        (
+            "DOPRI5",
+            Dopri5::new(opts.clone()).solve(b, t0, y0, t1, &[]),
+        ),
+        (
+            "DOP853",
+            Dop853::new(opts.clone()).solve(b, t0, y0, t1, &[]),
+        ),
         ("Auto", Auto::new(opts.clone()).solve(b, t0, y0, t1, &[])),
         ("Radau5", Radau5::new(opts).solve(b, t0, y0, t1, &[])),
         ("RK4", Rk4::new(0.01).solve(b, t0, y0, t1, &[])),
@@ -149,8 +157,14 @@ fn a_loop_started_off_its_constraint_is_assembled_or_refused() {
     match run {
         Ok(sol) => {
             let r0 = sol.y[0].fixed_rows::<2>(0).norm();
-            assert!((r0 - p.l).abs() < 1e-12, "recorded start off the circle: r = {r0}");
+            assert!(
+                (r0 - p.l).abs() < 1e-12,
+                "recorded start off the circle: r = {r0}"
+            );
         }
-        Err(e) => assert!(matches!(e, Error::InvalidInput { .. } | Error::AssemblyFailed { .. })),
+        Err(e) => assert!(matches!(
+            e,
+            Error::InvalidInput { .. } | Error::AssemblyFailed { .. }
+        )),
     }
 }
