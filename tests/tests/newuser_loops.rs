@@ -28,6 +28,7 @@ use std::f64::consts::PI;
 #[rigid(rocker, mass = m, inertia = m * c * c / 12.0,
         at = [d + c / 2.0 * cos(ga), c / 2.0 * sin(ga)], angle = ga)]
 #[init(th = 0.5, be = 0.7260165921021776, ga = 1.7229599395818342)]
+#[output(rocker_rate = der(ga), rocker_angle = ga)]
 pub struct CoordFourBar {
     #[default(1.0)]
     pub a: f64,
@@ -524,4 +525,42 @@ fn hanging_parallelogram_has_the_pendulum_frequency_of_its_closed_form() {
         Err(Error::InvalidParameter { what, .. }) => assert_eq!(what, "parameter `a`"),
         other => panic!("{other:?}"),
     }
+}
+
+/// The crank-rocker hanging under gravity comes to rest where `V'(th) = 0` (found here by
+/// bisection on the analytic `dV/dth` of [`Bar4`]); `static_equilibrium` on the minimal
+/// model finds it, and the outputs of the dependent rocker (its angle, and `der(ga)` =
+/// `kg th'`) follow the closure.
+#[test]
+fn crank_rocker_rests_where_gravity_has_no_moment_and_its_rocker_follows() {
+    let k = CoordFourBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: 9.81,
+    };
+    let dv = |th: f64| BAR.inertia_and_gravity(th, 1.0).1;
+    // The stable rest: V' goes from negative to positive; bracketed by a scan.
+    let mut lo = -PI;
+    while !(dv(lo) < 0.0 && dv(lo + 0.01) >= 0.0) {
+        lo += 0.01;
+        assert!(lo < PI, "no rest found");
+    }
+    let mut hi = lo + 0.01;
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if dv(mid) < 0.0 { lo = mid } else { hi = mid }
+    }
+    let opts = mbd::analysis::NewtonOptions::default();
+    let q = mbd::analysis::statics::static_equilibrium(&k, 0.0, &Vector::<1>::new(lo + 0.2), &opts)
+        .unwrap();
+    assert!((q[0] - lo).abs() < 1e-10, "{} vs {lo}", q[0]);
+    let (th, thd) = (0.9, -1.7);
+    let (be, ga) = BAR.close(th, 1.0);
+    let (_, kg) = BAR.rates(th, be, ga);
+    let out = k.outputs(0.0, &Vector::<2>::new(th, thd)).unwrap();
+    assert!((out.rocker_angle - ga).abs() < 1e-13);
+    assert!((out.rocker_rate - kg * thd).abs() < 1e-12);
 }
