@@ -369,7 +369,15 @@ pub fn choose_in<const N: usize, const M: usize, const F: usize, const A: usize>
             if n_sliding != sliding {
                 continue;
             }
-            let s = resolve::<N, M, F, A>(t, &mut c, along, &modes, normals)?;
+            let sticks = resting.iter().any(|&k| modes[k] == Slip::Stick);
+            let s = match resolve::<N, M, F, A>(t, &mut c, along, &modes, normals) {
+                Ok(s) => s,
+                // A stuck row dependent on the constraints (a slider-crank's piston at a dead
+                // centre, where the loop moves it at second order only): that contact cannot
+                // stick there; the other combinations decide.
+                Err(Error::SingularConstraintJacobian { .. }) if sticks => continue,
+                Err(e) => return Err(e),
+            };
             if consistent(&c, along, &modes, &free, &s, strict) {
                 return Ok((modes, c, s));
             }

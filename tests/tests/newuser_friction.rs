@@ -147,3 +147,97 @@ fn pin_friction_lets_a_torque_above_breakaway_through_at_the_closed_form_rate() 
         );
     }
 }
+
+/// A slider-crank (crank `r` about the origin, rod `l`, piston on the `x` axis) turned by a
+/// motor torque, with Coulomb friction on the piston's guide whose normal force is the
+/// guide's reaction (`n`, relaxed). At each dead centre the piston stops and reverses while
+/// the crank turns on: the piston cannot stick there (the loop moves it at second order
+/// only: sticking it would need `th' = 0`), so the run passes every dead centre. Energy, by
+/// hand (`sin(be) = r sin(th) / l`, `be' = r cos(th) th' / (l cos be)`): `T` of the crank
+/// (`jc`), the rod (centre `(r cos th + l/2 cos be, r sin th - l/2 sin be)`, angle `-be`)
+/// and the piston (`x' = -r sin(th) th' - l sin(be) be'`), `V` the rod's weight. Without
+/// friction `T + V` grows by the motor's work `tau (th - th0)`; with it by less.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(th, be, x)]
+#[relaxed(n)]
+#[constraint(x == r * cos(th) + l * cos(be))]
+#[constraint(r * sin(th) - l * sin(be) == n)]
+#[rigid(crank, mass = mc, inertia = jc, at = [0.0, 0.0], angle = th)]
+#[rigid(rod, mass = mr, inertia = mr * l * l / 12.0,
+        at = [r * cos(th) + l / 2.0 * cos(be), r * sin(th) - l / 2.0 * sin(be)], angle = -be)]
+#[particle(piston, mass = mp, at = [x, n])]
+#[torque(motor, on = crank, value = tau)]
+#[friction(along = x, mu = mu, normal = reaction(n))]
+pub struct GuidedSliderCrank {
+    pub r: f64,
+    pub l: f64,
+    pub mc: f64,
+    pub jc: f64,
+    pub mr: f64,
+    pub mp: f64,
+    pub tau: f64,
+    pub mu: f64,
+    pub g: f64,
+}
+
+fn guided_energy(p: &GuidedSliderCrank, th: f64, thd: f64) -> f64 {
+    let be = (p.r * th.sin() / p.l).asin();
+    let bed = p.r * th.cos() * thd / (p.l * be.cos());
+    let xd = -p.r * th.sin() * thd - p.l * be.sin() * bed;
+    let vx = -p.r * th.sin() * thd - p.l / 2.0 * be.sin() * bed;
+    let vy = p.r * th.cos() * thd - p.l / 2.0 * be.cos() * bed;
+    let height = p.r * th.sin() - p.l / 2.0 * be.sin();
+    0.5 * p.jc * thd * thd
+        + 0.5 * p.mr * (vx * vx + vy * vy + p.l * p.l / 12.0 * bed * bed)
+        + 0.5 * p.mp * xd * xd
+        + p.mr * p.g * height
+}
+
+#[test]
+fn slider_crank_with_guide_friction_passes_its_dead_centres() {
+    let th0: f64 = 1.2;
+    let be0 = (0.1 * th0.sin() / 0.4).asin();
+    let y0 = Vector::<6>::new(th0, be0, 0.1 * th0.cos() + 0.4 * be0.cos(), 0.0, 0.0, 0.0);
+    for mu in [0.0, 0.3] {
+        let p = GuidedSliderCrank {
+            r: 0.1,
+            l: 0.4,
+            mc: 1.0,
+            jc: 0.01,
+            mr: 0.5,
+            mp: 0.3,
+            tau: 1.0,
+            mu,
+            g: 9.81,
+        };
+        let opts = Options {
+            rtol: 1e-11,
+            atol: 1e-11,
+            ..Options::default()
+        };
+        let run = mbd::hybrid::solve(&Dopri5::new(opts), &p, 0.0, y0, 1.0, &[]).unwrap();
+        let y = run.solution.last().1;
+        // Several turns: the piston reverses at every dead centre, a switch each.
+        let turns = (y[0] - th0) / (2.0 * std::f64::consts::PI);
+        assert!(turns > 3.0, "mu = {mu}: {turns} turns");
+        assert!(
+            run.switches.len() as f64 >= 2.0 * turns.floor(),
+            "mu = {mu}"
+        );
+        assert!(
+            run.solution.y.iter().skip(1).all(|y| y[3] > 0.0),
+            "the crank turns on"
+        );
+        let gained = guided_energy(&p, y[0], y[3]) - guided_energy(&p, th0, 0.0);
+        let work = p.tau * (y[0] - th0);
+        if mu == 0.0 {
+            assert!((gained - work).abs() < 1e-7 * work, "{gained} vs {work}");
+        } else {
+            assert!(
+                gained < 0.99 * work,
+                "friction dissipates: {gained} vs {work}"
+            );
+        }
+    }
+}
