@@ -241,3 +241,50 @@ fn slider_crank_with_guide_friction_passes_its_dead_centres() {
         }
     }
 }
+
+/// The guided slider-crank at rest at `th = 1.2` under gravity and a motor torque: by
+/// virtual work on the crank angle (the piston held), the guide must hold
+/// `F = -(tau - mr g dh/dth) / (dx/dth)` along `x` (`h` the rod centre's height,
+/// `dbe/dth = r cos th / (l cos be)`, `dx/dth = -r sin th - l sin be dbe/dth`,
+/// `dh/dth = r cos th - l/2 cos be dbe/dth`); by virtual work on `n` (`th`, `x` held:
+/// `dbe = -dn / (l cos be)`, `dx = tan(be) dn`, `dh = dn / 2`) the guide's normal force is
+/// `R = mp g + mr g / 2 - F tan be`. It holds while `|F| <= mu |R|`: the breakaway torque
+/// is where `F = mu R`, `F* = mu (mp + mr / 2) g / (1 + mu tan be)`.
+#[test]
+fn guided_slider_crank_holds_below_its_breakaway_torque_and_slides_above() {
+    let p = GuidedSliderCrank {
+        r: 0.1,
+        l: 0.4,
+        mc: 1.0,
+        jc: 0.01,
+        mr: 0.5,
+        mp: 0.3,
+        tau: 0.0,
+        mu: 0.3,
+        g: 9.81,
+    };
+    let th: f64 = 1.2;
+    let be = (p.r * th.sin() / p.l).asin();
+    let dbe = p.r * th.cos() / (p.l * be.cos());
+    let dx = -p.r * th.sin() - p.l * be.sin() * dbe;
+    let dh = p.r * th.cos() - p.l / 2.0 * be.cos() * dbe;
+    let hold = p.mu * (p.mp + p.mr / 2.0) * p.g / (1.0 + p.mu * be.tan());
+    let breakaway = -hold * dx + p.mr * p.g * dh;
+    assert!(breakaway > 0.0);
+    let q = Vector::<3>::new(th, be, p.r * th.cos() + p.l * be.cos());
+    let rest = Vector::<3>::zeros();
+    let below = GuidedSliderCrank {
+        tau: (1.0 - 1e-9) * breakaway,
+        ..p
+    };
+    assert_eq!(below.acceleration(0.0, &q, &rest).unwrap(), rest);
+    let above = GuidedSliderCrank {
+        tau: (1.0 + 1e-9) * breakaway,
+        ..p
+    };
+    let acc = above.acceleration(0.0, &q, &rest).unwrap();
+    assert!(
+        acc[0] > 0.0 && acc[2] < 0.0,
+        "turns forward, the piston moves in: {acc:?}"
+    );
+}
