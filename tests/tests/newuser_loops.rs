@@ -17,6 +17,7 @@ use std::f64::consts::PI;
 /// A crank-rocker written with coordinates and loop equations (reduced by the derive to the
 /// crank angle, on the branch of the `init`).
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian)]
 #[gravity(0.0, -g)]
 #[coords(th, be, ga)]
 #[constraint(a * cos(th) + b * cos(be) == d + c * cos(ga))]
@@ -47,6 +48,7 @@ pub struct CoordFourBar {
 /// The same crank-rocker as a joint tree: crank and rocker on the ground, the coupler on
 /// the crank (relative angle `ph`), the loop closed by a pin (kept in the augmented form).
 #[derive(Debug, Clone, Mechanism)]
+#[mechanism(jacobian)]
 #[gravity(0.0, -g)]
 #[body(crank, joint = revolute(th), com = [a / 2.0, 0.0], mass = m, inertia = m * a * a / 12.0)]
 #[body(coupler, parent = crank, joint = revolute(ph), at = [a, 0.0], com = [b / 2.0, 0.0],
@@ -557,6 +559,28 @@ fn crank_rocker_rests_where_gravity_has_no_moment_and_its_rocker_follows() {
     let q = mbd::analysis::statics::static_equilibrium(&k, 0.0, &Vector::<1>::new(lo + 0.2), &opts)
         .unwrap();
     assert!((q[0] - lo).abs() < 1e-10, "{} vs {lo}", q[0]);
+    // Small swings about it: w^2 = V''(th*) / J(th*) (V'' by a central difference of the
+    // analytic V'), from the minimal model and from the tree in the augmented form.
+    let h = 1e-5;
+    let w2 = (dv(lo + h) - dv(lo - h)) / (2.0 * h) / BAR.inertia_and_gravity(lo, 1.0).0;
+    let minimal = mbd::analysis::linear::undamped_modes(&k, 0.0, &q).unwrap();
+    assert!(
+        (minimal[0].omega_squared - w2).abs() < 1e-7 * w2,
+        "{minimal:?} vs {w2}"
+    );
+    let t = TreeFourBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: 9.81,
+    };
+    let (be, ga) = BAR.close(lo, 1.0);
+    let qt = Vector::<3>::new(lo, be - lo, ga);
+    let tree = mbd::analysis::linear::constrained_modes(&t, 0.0, &qt).unwrap();
+    let w = tree[0].omega_n;
+    assert!((w * w - w2).abs() < 1e-7 * w2, "{tree:?} vs {w2}");
     let (th, thd) = (0.9, -1.7);
     let (be, ga) = BAR.close(th, 1.0);
     let (_, kg) = BAR.rates(th, be, ga);
