@@ -30,6 +30,7 @@ use std::f64::consts::PI;
         at = [d + c / 2.0 * cos(ga), c / 2.0 * sin(ga)], angle = ga)]
 #[init(th = 0.5, be = 0.7260165921021776, ga = 1.7229599395818342)]
 #[output(rocker_rate = der(ga), rocker_angle = ga)]
+#[event(rocker_at = ga - 1.8, rising, terminal)]
 pub struct CoordFourBar {
     #[default(1.0)]
     pub a: f64,
@@ -587,4 +588,70 @@ fn crank_rocker_rests_where_gravity_has_no_moment_and_its_rocker_follows() {
     let out = k.outputs(0.0, &Vector::<2>::new(th, thd)).unwrap();
     assert!((out.rocker_angle - ga).abs() < 1e-13);
     assert!((out.rocker_rate - kg * thd).abs() < 1e-12);
+}
+
+/// Without gravity the crank-rocker coasts with `J(th) th'^2 / 2 = E`, so it reaches crank
+/// angle `th1` at `t = int_{th0}^{th1} sqrt(J / (2 E)) dth` (composite Gauss-Legendre, 3
+/// points on 400 panels: `J` is smooth on a Grashof crank-rocker). The terminal event on the
+/// dependent rocker angle, `ga = 1.8` rising, is located there, `th1` by bisection on the
+/// closed form `ga(th)`.
+#[test]
+fn event_on_the_dependent_rocker_is_located_at_the_quadrature_time() {
+    let k = CoordFourBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: 0.0,
+    };
+    let free = Bar4 { g: 0.0, ..BAR };
+    let (th0, thd0) = (0.5, 3.0);
+    let rocker = |th: f64| free.close(th, 1.0).1;
+    assert!(rocker(th0) < 1.8);
+    // The first crossing going forward: scan, then bisect.
+    let mut hi = th0;
+    while rocker(hi) < 1.8 {
+        hi += 1e-3;
+    }
+    let mut lo = hi - 1e-3;
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if rocker(mid) < 1.8 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let energy = 0.5 * free.inertia_and_gravity(th0, 1.0).0 * thd0 * thd0;
+    let (nodes, weights) = (
+        [-(0.6f64).sqrt(), 0.0, (0.6f64).sqrt()],
+        [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0],
+    );
+    let panels = 400;
+    let width = (lo - th0) / panels as f64;
+    let time: f64 = (0..panels)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            let th = th0 + width * (i as f64 + 0.5 + 0.5 * nodes[j]);
+            let j_th = free.inertia_and_gravity(th, 1.0).0;
+            0.5 * width * weights[j] * (j_th / (2.0 * energy)).sqrt()
+        })
+        .sum();
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    let events = k.events();
+    let sol = Dopri5::new(opts)
+        .solve(&k, 0.0, Vector::<2>::new(th0, thd0), 10.0, &events)
+        .unwrap();
+    assert_eq!(sol.events.len(), 1);
+    assert!(
+        (sol.events[0].t - time).abs() < 1e-9,
+        "{} vs {time}",
+        sol.events[0].t
+    );
+    assert!((sol.events[0].y[0] - lo).abs() < 1e-9);
 }
