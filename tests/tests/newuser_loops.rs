@@ -655,3 +655,48 @@ fn event_on_the_dependent_rocker_is_located_at_the_quadrature_time() {
     );
     assert!((sol.events[0].y[0] - lo).abs() < 1e-9);
 }
+
+/// A pendulum whose pivot is shaken along `x` by a constraint that names time,
+/// `xp = A sin(w t)`: the derive solves it for `xp` (the state is `th`), and
+/// `l th'' = -g sin th - xp'' cos th` with `xp'' = -A w^2 sin(w t)`.
+#[derive(Debug, Clone, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(th, xp)]
+#[constraint(xp == amp * sin(w * t))]
+#[particle(bob, mass = m, at = [xp + l * sin(th), -l * cos(th)])]
+#[particle(pivot, mass = mp, at = [xp, 0.0])]
+#[output(pivot_rate = der(xp))]
+pub struct ShakenPendulum {
+    pub m: f64,
+    pub mp: f64,
+    pub l: f64,
+    pub g: f64,
+    pub amp: f64,
+    pub w: f64,
+}
+
+#[test]
+fn pendulum_on_a_pivot_shaken_by_a_constraint_in_time() {
+    let p = ShakenPendulum {
+        m: 0.7,
+        mp: 2.0,
+        l: 0.9,
+        g: 9.81,
+        amp: 0.05,
+        w: 12.0,
+    };
+    assert_eq!(ShakenPendulum::COORDINATES, ["th"]);
+    for (t, th, thd) in [(0.1, 0.3, -1.0), (0.77, -2.0, 4.0), (1.3, 3.0, 0.0)] {
+        let acc = p
+            .acceleration(t, &Vector::<1>::new(th), &Vector::<1>::new(thd))
+            .unwrap()[0];
+        let xpdd = -p.amp * p.w * p.w * (p.w * t).sin();
+        let want = -(p.g * th.sin() + xpdd * th.cos()) / p.l;
+        assert!(
+            (acc - want).abs() < 1e-12 * want.abs().max(1.0),
+            "t = {t}: {acc} vs {want}"
+        );
+        let out = p.outputs(t, &Vector::<2>::new(th, thd)).unwrap();
+        assert!((out.pivot_rate - p.amp * p.w * (p.w * t).cos()).abs() < 1e-13);
+    }
+}
