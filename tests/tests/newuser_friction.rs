@@ -288,3 +288,65 @@ fn guided_slider_crank_holds_below_its_breakaway_torque_and_slides_above() {
         "turns forward, the piston moves in: {acc:?}"
     );
 }
+
+/// The incline with static and kinetic coefficients, `mu_k = 0.2 < tan(a) = 0.268 < mu_s = 0.35`
+/// (15 degrees): kicked up the slope at `v0` (`s` points down it), the block decelerates at
+/// `g (sin a + mu_k cos a)`, stops at `t1 = v0 / (g (sin a + mu_k cos a))`,
+/// `s1 = -v0 t1 / 2`, and stays: at rest the load `m g sin a` is within `mu_s m g cos a`,
+/// although sliding down would accelerate (`tan a > mu_k`).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(s)]
+#[relaxed(n)]
+#[particle(block, mass = m, at = [s * cos(a) + n * sin(a), -s * sin(a) + n * cos(a)])]
+#[friction(along = s, mu_k = mk, mu_s = ms, normal = reaction(n))]
+pub struct TwoCoefficients {
+    pub m: f64,
+    pub g: f64,
+    pub a: f64,
+    pub mk: f64,
+    pub ms: f64,
+}
+
+#[test]
+fn kicked_up_a_slope_it_stops_and_static_friction_holds_it() {
+    let p = TwoCoefficients {
+        m: 4.0,
+        g: 9.81,
+        a: 15f64.to_radians(),
+        mk: 0.2,
+        ms: 0.35,
+    };
+    let v0 = 2.5;
+    let decel = p.g * (p.a.sin() + p.mk * p.a.cos());
+    let (t1, s1) = (v0 / decel, -v0 * v0 / (2.0 * decel));
+    for run in [
+        mbd::hybrid::solve(
+            &Dopri5::new(tight()),
+            &p,
+            0.0,
+            Vector::<2>::new(0.0, -v0),
+            3.0,
+            &[],
+        ),
+        mbd::hybrid::solve(
+            &Radau5::new(tight()),
+            &p,
+            0.0,
+            Vector::<2>::new(0.0, -v0),
+            3.0,
+            &[],
+        ),
+    ] {
+        let run = run.unwrap();
+        assert_eq!(run.switches.len(), 1);
+        assert_eq!(run.switches[0].to, [mbd::Slip::Stick]);
+        assert!(
+            (run.switches[0].t - t1).abs() < 1e-12,
+            "{} vs {t1}",
+            run.switches[0].t
+        );
+        let y = run.solution.last().1;
+        assert!((y[0] - s1).abs() < 1e-9 && y[1] == 0.0, "{y:?}");
+    }
+}
