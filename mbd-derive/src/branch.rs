@@ -9,6 +9,7 @@
 //! independent coordinates' rates, and the dependent ones follow from them.
 
 use crate::closure::Solution;
+use crate::lowered::{Kind, Term};
 use crate::model::Coord;
 use crate::parse::{Errors, Mechanism};
 use crate::sym::{Graph, Sym};
@@ -21,7 +22,7 @@ pub fn check_inits(
     solution: &Solution,
     coords: &[Coord],
     env: &HashMap<Sym, f64>,
-    ast: &Mechanism,
+    ast: &Mechanism<Term>,
     errors: &mut Errors,
 ) {
     rates(solution, coords, ast, errors);
@@ -75,7 +76,7 @@ pub fn check_inits(
 
 /// An error at each `init(der(x) = v)` of a coordinate `x` the closure solves, unless `v` is
 /// the constant zero (at rest): `x`'s rate is not in the state, so it would be dropped.
-fn rates(solution: &Solution, coords: &[Coord], ast: &Mechanism, errors: &mut Errors) {
+fn rates(solution: &Solution, coords: &[Coord], ast: &Mechanism<Term>, errors: &mut Errors) {
     let independent: Vec<String> = coords
         .iter()
         .enumerate()
@@ -86,7 +87,6 @@ fn rates(solution: &Solution, coords: &[Coord], ast: &Mechanism, errors: &mut Er
         .map(|(_, c)| format!("`der({})`", c.name))
         .collect();
     let solved = |c: &syn::Ident| solution.solved.iter().any(|(i, _)| coords[*i].name == *c);
-    let zero = |e: &syn::Expr| crate::check::fold(e, &HashMap::new()) == Some(0.0);
     for init in ast
         .inits
         .iter()
@@ -100,5 +100,14 @@ fn rates(solution: &Solution, coords: &[Coord], ast: &Mechanism, errors: &mut Er
                 independent.join(", ")
             ),
         );
+    }
+}
+
+/// Whether a lowered term is the number zero (`0.0`, `-0.0`, `(0.0)`).
+fn zero(term: &Term) -> bool {
+    match &term.kind {
+        Kind::Number(v) => *v == 0.0,
+        Kind::Wrap(inner) | Kind::Neg(inner) => zero(inner),
+        _ => false,
     }
 }
