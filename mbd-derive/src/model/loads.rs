@@ -274,9 +274,13 @@ pub(super) fn generalized(
 }
 
 fn length(g: &mut Graph, a: &[Expr], b: &[Expr]) -> Expr {
-    let d: Vec<Expr> = a.iter().zip(b).map(|(x, y)| g.sub(*y, *x)).collect();
-    let s = g.dot(&d, &d);
+    let s = squared_length(g, a, b);
     g.call(Func::Sqrt, s)
+}
+
+fn squared_length(g: &mut Graph, a: &[Expr], b: &[Expr]) -> Expr {
+    let d: Vec<Expr> = a.iter().zip(b).map(|(x, y)| g.sub(*y, *x)).collect();
+    g.dot(&d, &d)
 }
 
 /// `V = sum k (l - l0)^2 / 2` over the springs plus the user's potentials.
@@ -286,9 +290,15 @@ fn springs_and_potentials(g: &mut Graph, loads: &Loads, checks: &mut Vec<ParamCh
         let (name, (a, b), k, l0) = (&s.name, &s.ends, s.k, s.l0);
         checks.push(check(format!("the stiffness of spring `{name}`"), k, false));
         checks.push(check(format!("the length of spring `{name}`"), l0, false));
-        let l = length(g, a, b);
-        let stretch = g.sub(l, l0);
-        let s2 = g.powi(stretch, 2);
+        // A spring of rest length zero is `k d.d / 2`: through `l = sqrt(d.d)` its force
+        // would be 0/0 where the ends meet, though it is zero there.
+        let s2 = if g.is_zero(l0) {
+            squared_length(g, a, b)
+        } else {
+            let l = length(g, a, b);
+            let stretch = g.sub(l, l0);
+            g.powi(stretch, 2)
+        };
         let half = g.constant(0.5);
         let half_k = g.mul(half, k);
         let v = g.mul(half_k, s2);
