@@ -8,14 +8,16 @@
 //! solutions, and near it the drift of an integrated state is divided by the vanishing
 //! singular values. The right-hand side then stops with [`Error::SingularPosition`] rather
 //! than return accelerations that are not the mechanism's; a solver's Newton iteration may
-//! fail there too. [`solve`] runs the integrator, and when it stops at a singular position
-//! it bridges the window from the last accepted step: the mechanism is integrated in the
+//! fail there too. The ordinary `solve` of every integrator on a closed loop (and
+//! [`solve`], with settings given) runs the integrator, and when it stops at a singular
+//! position bridges the window from the last accepted step: the mechanism is integrated in the
 //! independent coordinates chosen there ([`Partitioned`]: the dependent positions are
 //! re-solved on the branch from a Taylor prediction before every evaluation, which is what
-//! keeps the branch), by DOPRI5 to just before the singular instant, then by one step placed
-//! across it so that no evaluation comes nearer than a quarter of the step (the step is
-//! halved until its error estimate meets the tolerance), then on to the far side, where the
-//! integrator restarts. Every bridge is reported ([`Passage`]). Index-3 steps (the
+//! keeps the branch), by DOPRI5 at the integrator's tolerance (at most `1e-10`) to just
+//! before the singular instant, then by one step placed across it so that no evaluation
+//! comes nearer than a quarter of the step (the step is halved until its error estimate
+//! meets the tolerance), then on to the far side, where the integrator restarts. Every
+//! bridge is reported ([`Passage`]). Index-3 steps (the
 //! augmented Lagrangian of `Ali3`) were measured as the bridge first and dropped: two step
 //! sizes never agreed better than about `1e-6`.
 //!
@@ -33,9 +35,9 @@ use crate::integrate::{
     Dopri5, Event, Flow, GeneralizedAlpha, Integrator, Options, Record, Recorder, Segment,
     Solution, Stats, Step,
 };
-use std::collections::VecDeque;
 use crate::model::{Constrained, OdeSystem, Vector};
 use crate::partition::Partitioned;
+use std::collections::VecDeque;
 
 /// How singular positions are bridged ([`solve`], and the ordinary `solve` of every
 /// integrator on a closed loop: [`crate::integrate::Integrator::passages`]).
@@ -43,7 +45,7 @@ use crate::partition::Partitioned;
 pub struct Settings {
     /// Tolerance of a bridge (say the integrator's `rtol`): its DOPRI5 runs use it, and the
     /// step across the singular instant is halved until its relative error estimate meets
-    /// it (or reaches the floor of about `1e-11` that rounding leaves there).
+    /// it (or reaches the floor of about `1e-10` that rounding leaves there).
     pub tol: f64,
     /// Bridges allowed before [`Error::TooManySteps`].
     pub max_passages: usize,
@@ -320,7 +322,12 @@ where
             settings,
             rank0,
         )?;
-        let q = split::<N, D>(&bridge.at(t_star.clamp(ta, bridge.t_end)).unwrap_or(bridge.y_end)).0;
+        let q = split::<N, D>(
+            &bridge
+                .at(t_star.clamp(ta, bridge.t_end))
+                .unwrap_or(bridge.y_end),
+        )
+        .0;
         if !settings.dense {
             bridge.segments.clear();
         }
@@ -470,9 +477,10 @@ where
     S: Constrained<N, M>,
 {
     let view = Partitioned::<S, N, M>::new(sys, ta, &split::<N, D>(&ya).0, rank0)?;
+    let tol = settings.tol.max(FLOOR);
     let opts = Options {
-        rtol: settings.tol,
-        atol: settings.tol,
+        rtol: tol,
+        atol: tol,
         record: settings.record.clone(),
         ..Options::default()
     };
@@ -501,14 +509,12 @@ where
     for _ in 0..settings.max_halvings {
         let s0 = t_star - 0.55 * h;
         let part = dopri.solve(&view, ta, ya, s0, events)?;
-        if let Some((y1, seg, err)) = jump::<S, N, M, D>(&view, s0, &part.y_end, h)? {
-            if best.as_ref().is_some_and(|b| err >= b.0) {
-                // Rounding has taken over from the truncation error.
-                break;
-            }
+        if let Some((y1, seg, err)) = jump::<S, N, M, D>(&view, s0, &part.y_end, h)?
+            && best.as_ref().is_none_or(|b| err < b.0)
+        {
             best = Some((err, part, y1, seg));
         }
-        if best.as_ref().is_some_and(|b| b.0 <= settings.tol) {
+        if best.as_ref().is_some_and(|b| b.0 <= tol) || s0 <= ta {
             break;
         }
         h *= 0.5;
@@ -525,7 +531,13 @@ where
             ),
         });
     };
-    let mut record = Recorder::with(events, part.t_end, part.y_end, true, settings.record.clone());
+    let mut record = Recorder::with(
+        events,
+        part.t_end,
+        part.y_end,
+        true,
+        settings.record.clone(),
+    );
     let stopped = record.accept(seg, &y1) == Flow::Stop;
     let work = Stats {
         n_rhs: 8,
@@ -540,6 +552,16 @@ where
     }
     Ok((part, t_star, err))
 }
+
+/// The tightest tolerance a bridge is run to. Near the instant the evaluations carry
+/// rounding divided by the square of the vanishing singular value. On the 40-loop
+/// assembly the step over the instant can reach estimates below `1e-11` at some passages
+/// (at t = 0.72 they fell 31-fold a halving: 2.6e-8, 8.3e-10, 2.7e-11), but bridges run
+/// tighter than this failed at others (t = 2.687 at 1e-11 and 1e-12, where the index-1
+/// solve stopped 1e-5 s before the instant, so the guess of the instant is off by more
+/// than a quarter of the small steps): the bridge's error per passage, about this, is what
+/// limits that assembly's error at tolerances below it (docs/STABILITY.md).
+const FLOOR: f64 = 1e-10;
 
 /// The largest relative error estimate a step over a singular instant may have: past it
 /// the motion across counts as not determined (a bifurcation, or evaluations too near
@@ -570,9 +592,11 @@ fn jump<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
     let err = (0..D)
         .map(|i| e[i].abs() / (1.0 + y0[i].abs().max(y1[i].abs())))
         .fold(0.0, f64::max);
-    // The segment is the step's continuous extension, as computed (before the projection).
+    // The segment is the step's continuous extension, as computed (before the projection):
+    // a cubic Hermite one was 1e-8 off inside the step at DOPRI5 1e-12.
     let seg = crate::integrate::dopri5::dense_segment(s0, h, y0, &y1, &k);
     view.project(s0 + h, &mut y1)?;
+    view.rhs(s0 + h, &y1)?;
     Ok(Some((y1, seg, err)))
 }
 
