@@ -224,8 +224,10 @@ fn the_ordinary_solve_reports_the_change_point_on_every_method() {
         match run {
             Err(Error::SingularPosition { t, detail }) => {
                 eprintln!("{name}: t = {t}: {detail}");
+                // A right-hand side refuses the accelerations in a window around the
+                // change point, so a stop may come just before it (DOP853: 1.3e-7 s).
                 assert!(
-                    (T_CHANGE..T_CHANGE + 0.2).contains(&t),
+                    (T_CHANGE - 1e-6..T_CHANGE + 0.2).contains(&t),
                     "{name}: at t = {t}"
                 );
                 assert!(detail.contains("q = "), "{name}: {detail}");
