@@ -123,6 +123,7 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
         stopped_by: None,
         t_end: t0,
         y_end: y0,
+        passages: Vec::new(),
     };
     let mut switches = Vec::new();
     // The last full step the method took in each mode met so far.

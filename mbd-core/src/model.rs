@@ -36,6 +36,13 @@ pub trait OdeSystem<const D: usize> {
     fn project(&self, _t: f64, _y: &mut Vector<D>) -> Result<()> {
         Ok(())
     }
+
+    /// A closed loop's bridge over its singular positions ([`crate::passage`]), through
+    /// which an integrator's ordinary `solve` runs; `None` (the default) for a system
+    /// without one. Generated models with constraints return themselves.
+    fn passage(&self) -> Option<&dyn crate::passage::Bridge<D>> {
+        None
+    }
 }
 
 /// A mechanism in minimal coordinates: `M(q, t) qdd = f(q, qd, t)`, plus constraints when

@@ -152,3 +152,39 @@ fn generalized_alpha() {
     let err = check(&a, &run, 1.0, "generalized-alpha 1e-3");
     assert!(err < 1e-3, "{err:e}");
 }
+
+/// The ordinary `Dopri5::solve` of the assembly (no `passage` call written) bridges its
+/// flat positions and reports them in `Solution::passages`, with the same truth as above;
+/// with `Options::passages` off it is one raw run, which stops with the typed error at
+/// the first flat position its index-1 accelerations refuse.
+#[test]
+fn the_ordinary_solve_bridges_and_the_opt_out_stops() {
+    use mbd::integrate::Integrator;
+    let a = FourBarAssembly::benchmark();
+    let y0 = a.benchmark_state(1.0);
+    let tol = 1e-10;
+    let solution = Dopri5::new(options(tol))
+        .solve(&a, 0.0, y0, T1, &[])
+        .unwrap();
+    let run = Passed {
+        passages: solution.passages.clone(),
+        solution,
+    };
+    assert!(!run.passages.is_empty(), "no passage bridged");
+    let err = check(&a, &run, T1, "DOPRI5 1e-10, ordinary solve");
+    assert!(err < 1e-7, "{err:e}");
+    let raw = Options {
+        passages: false,
+        ..options(tol)
+    };
+    match Dopri5::new(raw).solve(&a, 0.0, y0, T1, &[]) {
+        Err(mbd::Error::SingularPosition { t, .. }) => {
+            let th = fa::reference(&a, 1.0, T1).unwrap().at(t).unwrap()[0];
+            assert!(th.sin().abs() < 1e-2, "stopped at t = {t}, th = {th}");
+        }
+        other => panic!(
+            "expected SingularPosition, got {:?}",
+            other.map(|s| s.t_end)
+        ),
+    }
+}

@@ -57,6 +57,10 @@ impl Auto {
 }
 
 impl Integrator for Auto {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        crate::passage::Settings::of(&self.opts)
+    }
+
     fn name(&self) -> &'static str {
         if self.picks_vern9() {
             "VERN9"

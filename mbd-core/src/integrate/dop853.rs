@@ -121,6 +121,10 @@ fn dense_segment<S: OdeSystem<D>, const D: usize>(
 }
 
 impl Integrator for Dop853 {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        crate::passage::Settings::of(&self.opts)
+    }
+
     fn name(&self) -> &'static str {
         "DOP853"
     }

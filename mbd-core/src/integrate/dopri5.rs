@@ -135,7 +135,7 @@ pub(super) fn first_stage<S: OdeSystem<D>, const D: usize>(
 /// `y0 + theta (r2 + (1-theta) (r3 + theta (r4 + (1-theta) r5)))` with `r2 = y1 - y0`,
 /// `r3 = h k1 - r2`, `r4 = r2 - h k7 - r3`, `r5 = h sum d_i k_i`, expanded into monomials:
 /// `[y0, r2 + r3, r4 + r5 - r3, -r4 - 2 r5, r5, 0]`.
-fn dense_segment<const D: usize>(
+pub(crate) fn dense_segment<const D: usize>(
     t0: f64,
     h: f64,
     y0: &Vector<D>,
@@ -150,6 +150,10 @@ fn dense_segment<const D: usize>(
 }
 
 impl Integrator for Dopri5 {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        crate::passage::Settings::of(&self.opts)
+    }
+
     fn name(&self) -> &'static str {
         "DOPRI5"
     }

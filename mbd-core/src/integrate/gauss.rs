@@ -227,6 +227,15 @@ impl Gauss {
 }
 
 impl Integrator for Gauss {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        Some(crate::passage::Settings::fixed(
+            self.h,
+            4,
+            self.dense,
+            &self.record,
+        ))
+    }
+
     fn name(&self) -> &'static str {
         "Gauss4"
     }

@@ -196,7 +196,14 @@ impl GeneralizedAlpha {
         t1: f64,
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
-        self.solve_constrained_observed::<S, N, M, A, D>(sys, t0, q0, qd0, t1, events, None)
+        // Through the bridge over singular positions (`crate::passage`), to `h^2`;
+        // `solve_constrained_observed` is one raw run.
+        let settings = crate::passage::Settings::fixed(self.h, 2, self.dense, &self.record);
+        let y0 = super::stack::<N, D>(&q0, &qd0);
+        crate::passage::solve_generalized_alpha::<S, N, M, A, D>(
+            self, sys, t0, y0, t1, events, &settings,
+        )
+        .map(|run| run.solution)
     }
 
     /// [`Self::solve_constrained`], calling `observer` after every step.
@@ -623,6 +630,15 @@ impl<const K: usize, F> Newton<K, F> {
 /// decoupled in the Newton matrix). Refused with [`Error::InvalidInput`] unless `D` is even
 /// and the upper half of `f(t0, y0)` is the lower half of `y0`. No projection is applied.
 impl Integrator for GeneralizedAlpha {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        Some(crate::passage::Settings::fixed(
+            self.h,
+            2,
+            self.dense,
+            &self.record,
+        ))
+    }
+
     fn name(&self) -> &'static str {
         "generalized-alpha"
     }

@@ -48,7 +48,9 @@ pub trait Integrator {
     fn name(&self) -> &'static str;
 
     /// Integrate `y' = f(t, y)` from `t0` to `t1 >= t0`. The solution ends at `t1`, or at
-    /// the first terminal event.
+    /// the first terminal event. A closed loop ([`OdeSystem::passage`]) is integrated
+    /// through its bridge over singular positions as [`Self::passages`] asks
+    /// ([`crate::passage`]; the passages are in `Solution::passages`).
     fn solve<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
@@ -57,11 +59,26 @@ pub trait Integrator {
         t1: f64,
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
-        self.solve_observed(sys, t0, y0, t1, events, None)
+        match (sys.passage(), self.passages()) {
+            (Some(bridge), Some(settings)) => {
+                bridge.pass((t0, y0, t1), events, &settings, &mut |t, y, observer| {
+                    self.solve_observed(sys, t, y, t1, events, Some(observer))
+                })
+            }
+            _ => self.solve_observed(sys, t0, y0, t1, events, None),
+        }
     }
 
-    /// [`Self::solve`], calling `observer` after every accepted step (after its events
-    /// are located); the run ends where the observer returns [`Flow::Stop`].
+    /// How [`Self::solve`] bridges the singular positions of a closed loop; `None` runs
+    /// it as one raw run. The default bridges to `1e-8`, every step kept; the adaptive
+    /// methods use their `rtol` and recording ([`crate::passage::Settings::of`]).
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        Some(crate::passage::Settings::new(1e-8))
+    }
+
+    /// One raw run of [`Self::solve`] (no bridge over singular positions), calling
+    /// `observer` after every accepted step (after its events are located); the run ends
+    /// where the observer returns [`Flow::Stop`].
     fn solve_observed<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
@@ -110,6 +127,10 @@ pub struct Options {
     /// 15 tests in a row find it; `None` never tests, so a stiff problem runs on (slowly,
     /// with the step held at the stability limit) to whatever accuracy it reaches.
     pub stiffness_check: Option<usize>,
+    /// A closed loop's ordinary `solve` bridges its singular positions
+    /// ([`crate::passage`]; default `true`); `false` runs it raw, stopping with the typed
+    /// error where the index-1 accelerations are refused.
+    pub passages: bool,
 }
 
 impl Default for Options {
@@ -124,6 +145,7 @@ impl Default for Options {
             record: Record::Steps,
             project: true,
             stiffness_check: Some(1000),
+            passages: true,
         }
     }
 }

@@ -166,6 +166,10 @@ impl Radau5 {
 }
 
 impl Integrator for Radau5 {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        crate::passage::Settings::of(&self.opts)
+    }
+
     fn name(&self) -> &'static str {
         "Radau5"
     }

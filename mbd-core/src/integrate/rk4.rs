@@ -46,6 +46,15 @@ impl Rk4 {
 }
 
 impl Integrator for Rk4 {
+    fn passages(&self) -> Option<crate::passage::Settings> {
+        Some(crate::passage::Settings::fixed(
+            self.h,
+            4,
+            self.dense,
+            &self.record,
+        ))
+    }
+
     fn name(&self) -> &'static str {
         "RK4"
     }

@@ -86,6 +86,8 @@ pub struct Solution<const D: usize> {
     pub t_end: f64,
     /// The final state.
     pub y_end: Vector<D>,
+    /// The singular positions of a closed loop bridged on the way ([`crate::passage`]).
+    pub passages: Vec<crate::passage::Passage>,
 }
 
 impl<const D: usize> Solution<D> {
@@ -201,6 +203,7 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
                 stopped_by: None,
                 t_end: t0,
                 y_end: y0,
+                passages: Vec::new(),
             },
         }
     }

@@ -424,6 +424,25 @@ fn ode_impl(
                 #onto_constraints
                 Ok(())
             }
+            fn passage(&self) -> ::core::option::Option<&dyn ::mbd::__private::passage::Bridge<#d>> {
+                ::core::option::Option::Some(self)
+            }
+        }
+    });
+    // A closed loop's ordinary solve bridges its singular positions (mbd::passage).
+    let bridge = constrained.then(|| {
+        quote! {
+            impl ::mbd::__private::passage::Bridge<#d> for #ident {
+                fn pass(
+                    &self,
+                    start: (f64, ::mbd::__private::Vector<#d>, f64),
+                    events: &[::mbd::__private::integrate::Event<'_, #d>],
+                    settings: &::mbd::__private::passage::Settings,
+                    run: &mut ::mbd::__private::passage::Run<'_, #d>,
+                ) -> ::mbd::__private::Result<::mbd::__private::integrate::Solution<#d>> {
+                    ::mbd::__private::passage::pass::<Self, #n, #m, #d>(self, start, events, settings, run)
+                }
+            }
         }
     });
     let rhs_body = match &recursion {
@@ -452,6 +471,7 @@ fn ode_impl(
             #jacobian
             #project
         }
+        #bridge
     }
 }
 
