@@ -39,7 +39,7 @@
 //! 52.97°). mbd is judged against the exact 9.02638731168.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::integrate::{Integrator, Options, Radau5, Solution};
 use mbd::prelude::*;
 
@@ -151,33 +151,49 @@ pub fn run() -> mbd::Result<Outcome> {
         .ok_or_else(|| none_found("maximum"))?;
     let min = model.outputs(t_min_found, &none)?;
     let t0 = sol.t[0];
-    let points = (0..=200)
+    let samples = (0..=200)
         .map(|i| {
             let t = t0 + period() * f64::from(i) / 200.0;
-            Ok((t, model.outputs(t, &none)?.a))
+            Ok((t, model.outputs(t, &none)?))
         })
         .collect::<mbd::Result<Vec<_>>>()?;
+    let a = || series(&samples, |o| o.a);
+    const A: &str = "acceleration of A |a| [m/s²]";
     let [a_min, t_min, theta_min, a_max, t_max] = references();
-    let row = |quantity, value, reference| Row {
+    let row = |quantity, value, reference, curve| Row {
         quantity,
         value,
         reference,
         method: METHOD,
+        curve,
     };
     Ok(Outcome {
         rows: vec![
-            row("a_min", a_min_found, a_min),
-            row("t_at_a_min", t_min_found, t_min),
-            row("theta_at_a_min", min.theta_deg, theta_min),
-            row("a_max", a_hi, a_max),
-            row("t_at_a_max", t_hi, t_max),
+            row(
+                "a_min",
+                a_min_found,
+                a_min,
+                Curve::at_instant(A, a(), t_min_found),
+            ),
+            row(
+                "t_at_a_min",
+                t_min_found,
+                t_min,
+                Curve::instant_of(A, a(), a_min_found),
+            ),
+            row(
+                "theta_at_a_min",
+                min.theta_deg,
+                theta_min,
+                Curve::at_instant(
+                    "angle of OA θ [deg]",
+                    series(&samples, |o| o.theta_deg),
+                    t_min_found,
+                ),
+            ),
+            row("a_max", a_hi, a_max, Curve::at_instant(A, a(), t_hi)),
+            row("t_at_a_max", t_hi, t_max, Curve::instant_of(A, a(), a_hi)),
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "acceleration of A |a| [m/s²]",
-            points,
-            mark: Some((t_min_found, a_min_found)),
-        },
     })
 }
 

@@ -28,7 +28,7 @@
 //! 30.6372157°. Its `t = 1.07 s` is right to its digits.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A particle at distance r from O in a smooth tube of length `length` turned downward from
@@ -109,20 +109,24 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: exit.t,
                 reference: t_exit,
                 method: sim::METHOD,
+                curve: Curve::instant_of(
+                    "distance from O along the tube r [m]",
+                    sim::sample(&sol, 200, |t, y| (t, y[0])),
+                    exit.y[0],
+                ),
             },
             Row {
                 quantity: "theta_exit",
                 value: theta_deg,
                 reference: theta_exit,
                 method: sim::METHOD,
+                curve: Curve::at_instant(
+                    "tube angle θ [deg]",
+                    sim::curve(&sol, 200, |t, y| Ok(model.outputs(t, y)?.theta_deg))?,
+                    exit.t,
+                ),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "distance from O along the tube r [m]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[0])),
-            mark: Some((exit.t, exit.y[0])),
-        },
     })
 }
 

@@ -30,7 +30,7 @@
 //! answer **19.24** (RecurDyn agrees): the corrected value. Its `ω_AB = 29.5` is right (the
 //! worked 29.49 is 29.496 truncated); RecurDyn's 29.53 is 0.1 % off.
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
 
@@ -115,12 +115,12 @@ pub fn run() -> mbd::Result<Outcome> {
     let opts = NewtonOptions::default();
     let guess = model.initial_state().fixed_rows::<2>(0).into_owned();
     let now = model.outputs(0.0, &state(&kinematics(&model, 0.0, &guess, &opts)?))?;
-    // The manual's plot: the speed of G over one turn of the crank.
+    // Each compared quantity over the same span (the manual's plot and more).
     let turn = 2.0 * std::f64::consts::PI / model.omega;
     let times: Vec<f64> = (0..=200).map(|i| turn * f64::from(i) / 200.0).collect();
-    let points = kinematic_sweep(&model, &times, &guess, &opts)?
+    let samples = kinematic_sweep(&model, &times, &guess, &opts)?
         .iter()
-        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?.v_g)))
+        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?)))
         .collect::<mbd::Result<Vec<_>>>()?;
     let [v_g, omega_ab] = references();
     Ok(Outcome {
@@ -130,20 +130,24 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: now.v_g,
                 reference: v_g,
                 method: METHOD,
+                curve: Curve::at_instant(
+                    "speed of the rod's mass centre v_G [m/s]",
+                    series(&samples, |o| o.v_g),
+                    0.0,
+                ),
             },
             Row {
                 quantity: "omega_AB",
                 value: now.omega_ab,
                 reference: omega_ab,
                 method: METHOD,
+                curve: Curve::at_instant(
+                    "angular velocity of the rod ω_AB [rad/s]",
+                    series(&samples, |o| o.omega_ab),
+                    0.0,
+                ),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "speed of the rod's mass centre v_G [m/s]",
-            points,
-            mark: Some((0.0, now.v_g)),
-        },
     })
 }
 

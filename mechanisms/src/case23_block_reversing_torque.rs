@@ -31,7 +31,7 @@
 //! its rounded α = 1.018e-3 the time would be 78.5626). RecurDyn's 78.6 agrees.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::integrate::Solution;
 use mbd::prelude::*;
 
@@ -120,13 +120,8 @@ pub fn run() -> mbd::Result<Outcome> {
             value: t_90,
             reference,
             method: sim::METHOD,
+            curve: Curve::instant_of("turn θ [deg]", points, stop.y[0].to_degrees()),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "turn θ [deg]",
-            points,
-            mark: Some((t_90, stop.y[0].to_degrees())),
-        },
     })
 }
 

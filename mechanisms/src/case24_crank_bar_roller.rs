@@ -36,7 +36,7 @@
 //! **Discrepancies in the manual.** None in the result (36.38); its "6 rad/s^2" for
 //! `(a_G/A)_t` is a unit slip (m/s^2).
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
 
@@ -140,13 +140,8 @@ pub fn run() -> mbd::Result<Outcome> {
             value: at_instant.n_b,
             reference: n_b,
             method: "kinematic analysis, generated outputs",
+            curve: Curve::at_instant("normal force N_B [N]", points, 0.0),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "normal force N_B [N]",
-            points,
-            mark: Some((0.0, at_instant.n_b)),
-        },
     })
 }
 

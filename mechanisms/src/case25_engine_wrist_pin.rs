@@ -45,7 +45,7 @@
 //! above it). Its piston equation "`A_x = 0`" also ignores the cylinder wall: the pin force
 //! has a horizontal part, −355.57 N, balanced by the wall.
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, MILLISECONDS, Outcome, Read, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
 
@@ -158,13 +158,13 @@ pub fn run() -> mbd::Result<Outcome> {
             value: at_instant.r_a,
             reference: r_a,
             method: "kinematic analysis, generated outputs",
+            curve: Curve {
+                x_label: MILLISECONDS,
+                y_label: "wrist pin force R_A [N]",
+                points,
+                read: Read::Ordinate { at: 0.0 },
+            },
         }],
-        plot: Plot {
-            x_label: "t [ms]",
-            y_label: "wrist pin force R_A [N]",
-            points,
-            mark: Some((0.0, at_instant.r_a)),
-        },
     })
 }
 

@@ -33,7 +33,7 @@
 //! **Discrepancies in the manual.** None: −394.78, −47.37, 78.96, −98.70 and 134.98 are the
 //! exact values rounded.
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
 /// A disk of radius `radius` on a frame turning at `big_omega` about z, spinning at `p`
@@ -91,33 +91,40 @@ pub fn run() -> mbd::Result<Outcome> {
     let o = model.outputs(0.0, &state)?;
     let [alpha_x, a_x, a_y, a_z] = references();
     let method = "generated outputs (fully driven, t = 0)";
-    let row = |quantity, value, reference| Row {
+    // Each quantity over one turn of the frame.
+    let turn = 2.0 * std::f64::consts::PI / model.big_omega;
+    let samples = (0..=200)
+        .map(|i| {
+            let t = turn * f64::from(i) / 200.0;
+            Ok((t, model.outputs(t, &state)?))
+        })
+        .collect::<mbd::Result<Vec<_>>>()?;
+    let row = |quantity, value, reference, label, f: fn(&SpinningDiskOutputs) -> f64| Row {
         quantity,
         value,
         reference,
         method,
+        curve: Curve::at_instant(label, series(&samples, f), 0.0),
     };
-    // α_x over one turn of the frame.
-    let turn = 2.0 * std::f64::consts::PI / model.big_omega;
-    let points = (0..=200)
-        .map(|i| {
-            let t = turn * f64::from(i) / 200.0;
-            Ok((t, model.outputs(t, &state)?.alpha_x))
-        })
-        .collect::<mbd::Result<Vec<_>>>()?;
     Ok(Outcome {
         rows: vec![
-            row("alpha_x", o.alpha_x, alpha_x),
-            row("a_Ax", o.a_a_x, a_x),
-            row("a_Ay", o.a_a_y, a_y),
-            row("a_Az", o.a_a_z, a_z),
+            row(
+                "alpha_x",
+                o.alpha_x,
+                alpha_x,
+                "disk angular acceleration α_x [rad/s²]",
+                |o| o.alpha_x,
+            ),
+            row("a_Ax", o.a_a_x, a_x, "acceleration of A, x [m/s²]", |o| {
+                o.a_a_x
+            }),
+            row("a_Ay", o.a_a_y, a_y, "acceleration of A, y [m/s²]", |o| {
+                o.a_a_y
+            }),
+            row("a_Az", o.a_a_z, a_z, "acceleration of A, z [m/s²]", |o| {
+                o.a_a_z
+            }),
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "disk angular acceleration α_x [rad/s^2]",
-            points,
-            mark: Some((0.0, o.alpha_x)),
-        },
     })
 }
 

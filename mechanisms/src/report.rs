@@ -4,7 +4,7 @@
 //! manual is wrong. Inline SVG, CSS and a few lines of JavaScript; no network.
 
 use crate::plot::{self, Mark, Series};
-use crate::validation::{Animation, Case, Outcome};
+use crate::validation::{Animation, Case, OFF_CURVE, Outcome, Read};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -93,29 +93,60 @@ fn inline(s: &str) -> String {
     out
 }
 
-/// The case's plot: its curve, and for the row whose mbd value it marks, the theory,
-/// RecurDyn and mbd values at the compared instant.
-pub fn case_plot(run: &CaseRun) -> Result<String, String> {
-    let p = &run.outcome.plot;
+/// The plot of a case's `i`-th compared quantity: its curve from the case's run, with the
+/// theory, RecurDyn and mbd values (and the exact one where the manual's theory is
+/// corrected) marked where the quantity is compared; or why there is none.
+pub fn row_plot(run: &CaseRun, i: usize) -> Result<String, String> {
+    let (Some(row), Some(r)) = (run.outcome.rows.get(i), run.rows.get(i)) else {
+        return Err(format!("no row {i}"));
+    };
+    let c = &row.curve;
+    let what = match c.read {
+        Read::Ordinate { .. } => r.quantity.clone(),
+        Read::Abscissa { .. } => format!("{} (abscissa)", r.quantity),
+    };
+    let mark = |name: &str, v: f64| {
+        let (x, y) = c.point(v);
+        (format!("{name}: {}", sig(v, 6)), x, y)
+    };
+    let mut marks: Vec<Mark> = vec![mark(&format!("mbd {what}"), r.value)];
+    marks.extend(r.theory.map(|v| mark("theory", v)));
+    marks.extend(r.recurdyn.map(|v| mark("RecurDyn", v)));
+    if corrected(r) {
+        marks.push(mark("exact", r.reference));
+    }
     let curve = Series {
         name: "mbd".into(),
-        points: p.points.clone(),
+        points: c.points.clone(),
         line: true,
         markers: false,
     };
-    let mut marks: Vec<Mark> = Vec::new();
-    if let Some((x, y)) = p.mark {
-        match run.rows.iter().find(|r| r.value == y) {
-            Some(r) => {
-                marks.push((format!("mbd {}", r.quantity), x, y));
-                marks.extend(r.theory.map(|v| ("theory".to_string(), x, v)));
-                marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), x, v)));
-            }
-            None => marks.push(("compared instant".into(), x, y)),
-        }
+    let title = format!("Case {}: {} [{}]", run.case.id, r.quantity, r.unit);
+    plot::line_plot(&title, c.x_label, c.y_label, &[curve], &marks)
+}
+
+/// Whether mbd's value of the `i`-th row lies on its curve (to [`OFF_CURVE`] of the curve's
+/// height): else the row and the run it is plotted from disagree, and the page says so.
+pub fn off_curve(run: &CaseRun, i: usize) -> Option<String> {
+    let row = run.outcome.rows.get(i)?;
+    match row.curve.offset(row.value) {
+        Some(d) if d <= OFF_CURVE => None,
+        Some(d) => Some(format!(
+            "mbd's {} lies off its curve by {} % of the curve's height",
+            row.quantity,
+            sig(100.0 * d, 2)
+        )),
+        None => Some(format!(
+            "mbd's {} is compared outside its curve",
+            row.quantity
+        )),
     }
-    let title = format!("Case {}: {}", run.case.id, p.y_label);
-    plot::line_plot(&title, p.x_label, p.y_label, &[curve], &marks)
+}
+
+/// Whether the row's reference is a corrected value (the manual's theory does not round to
+/// it).
+fn corrected(r: &ReportRow) -> bool {
+    r.theory.is_some_and(|t| !rounds_to(r.reference, t))
 }
 
 /// Whether `exact` rounds to `printed` at `printed`'s own digits (its shortest decimal form):
@@ -127,68 +158,6 @@ fn rounds_to(exact: f64, printed: f64) -> bool {
     (exact - printed).abs() <= half_unit * (1.0 + 1e-9)
 }
 
-/// Plots of the rows the case's own plot does not mark, each from the model's output of the
-/// same name over the drawing's run: the theory, RecurDyn and mbd values are marked where
-/// the curve takes mbd's value (interpolated between frames; at an extremum, its frame).
-/// A row without such an output, or whose value the curve does not reach (to 1e-3
-/// relative: another run or unit), gets none.
-pub fn row_plots(run: &CaseRun) -> Vec<(String, Result<String, String>)> {
-    let Ok(anim) = &run.animation else {
-        return Vec::new();
-    };
-    let marked = run.outcome.plot.mark.map(|m| m.1);
-    let mut out = Vec::new();
-    for r in run.rows.iter().filter(|r| Some(r.value) != marked) {
-        let curve: Vec<(f64, f64)> = anim
-            .frames
-            .iter()
-            .filter_map(|f| {
-                let v = f
-                    .outputs
-                    .iter()
-                    .find(|o| o.0.eq_ignore_ascii_case(&r.quantity))?;
-                Some((f.t, v.1))
-            })
-            .collect();
-        let Some(t) = instant(&curve, r.value) else {
-            continue;
-        };
-        let mut marks: Vec<Mark> = vec![(format!("mbd {}", r.quantity), t, r.value)];
-        marks.extend(r.theory.map(|v| ("theory".to_string(), t, v)));
-        marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), t, v)));
-        let series = Series {
-            name: "mbd".into(),
-            points: curve,
-            line: true,
-            markers: false,
-        };
-        let title = format!("Case {}: {} [{}]", run.case.id, r.quantity, r.unit);
-        let label = format!("{} [{}]", r.quantity, r.unit);
-        out.push((
-            r.quantity.clone(),
-            plot::line_plot(&title, "t [s]", &label, &[series], &marks),
-        ));
-    }
-    out
-}
-
-/// Where `curve` takes `value`: the first crossing (linear between samples), else the
-/// closest sample if within 1e-3 relative (an extremum).
-fn instant(curve: &[(f64, f64)], value: f64) -> Option<f64> {
-    let tol = 1e-3 * value.abs().max(1e-9);
-    for w in curve.windows(2) {
-        let ((t0, v0), (t1, v1)) = (w[0], w[1]);
-        if (v0 - value) * (v1 - value) <= 0.0 && v0 != v1 {
-            return Some(t0 + (t1 - t0) * (value - v0) / (v1 - v0));
-        }
-    }
-    curve
-        .iter()
-        .min_by(|a, b| (a.1 - value).abs().total_cmp(&(b.1 - value).abs()))
-        .filter(|c| (c.1 - value).abs() <= tol)
-        .map(|c| c.0)
-}
-
 fn table(rows: &[ReportRow]) -> String {
     let mut s = String::from(
         "<table><tr><th>quantity</th><th>unit</th><th>theory</th><th>RecurDyn</th>\
@@ -196,8 +165,7 @@ fn table(rows: &[ReportRow]) -> String {
     );
     let opt = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |v| format!("{v}"));
     for r in rows {
-        let corrected = r.theory.is_some_and(|t| !rounds_to(r.reference, t));
-        let reference = if corrected {
+        let reference = if corrected(r) {
             format!(
                 r#"<br><span class="corr">exact {}</span>"#,
                 sig(r.reference, 7)
@@ -281,14 +249,17 @@ fn section(run: &CaseRun) -> String {
             let _ = write!(s, "<p>Not drawn: {}</p>", esc(e));
         }
     }
-    let plots = std::iter::once(("the manual's plot".to_string(), case_plot(run)));
-    for (what, svg) in plots.chain(row_plots(run)) {
-        match svg {
+    for (i, r) in run.rows.iter().enumerate() {
+        match row_plot(run, i) {
             Ok(svg) => {
-                let _ = write!(s, "<figure class=\"plot\">{svg}</figure>");
+                let _ = write!(s, "<figure class=\"plot\">{svg}");
+                if let Some(e) = off_curve(run, i) {
+                    let _ = write!(s, "<figcaption class=\"corr\">{}</figcaption>", esc(&e));
+                }
+                s.push_str("</figure>");
             }
             Err(e) => {
-                let _ = write!(s, "<p>No plot of {}: {}</p>", esc(&what), esc(&e));
+                let _ = write!(s, "<p>No plot of {}: {}</p>", esc(&r.quantity), esc(&e));
             }
         }
     }
@@ -312,9 +283,10 @@ pub fn html(runs: &[CaseRun]) -> String {
     s.push_str("<h1>mbd validation report</h1>\n<p>Each case of the validation manual run with mbd: \
         the theory and RecurDyn columns are the manual's; errors are relative to the exact value \
         (the manual's theory where it is right, else the corrected value its case documents, shown \
-        under it). The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
-        rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares; \
-        faint copies show the compared instants.</p>\n<nav>");
+        under it). Every compared quantity is plotted from the case's own run (over time, or over the \
+        parameter its axis names) with the theory, RecurDyn and mbd values marked where it is compared. The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
+        rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares, \
+        spatial models in an oblique projection; faint copies show the compared instants.</p>\n<nav>");
     for r in runs {
         let worst = r.rows.iter().map(|x| x.error_pct).fold(0.0, f64::max);
         let _ = write!(

@@ -3,7 +3,7 @@
 //! values, the plot's marks) and from the case's documentation (the manual's errors).
 
 use mechanisms::cases;
-use mechanisms::validation::{Case, error_pct};
+use mechanisms::validation::{Case, OFF_CURVE, error_pct};
 use std::process::Command;
 
 fn case(id: &str) -> Case {
@@ -30,13 +30,14 @@ fn validate_writes_a_self_contained_html_page() {
     std::fs::remove_dir_all(&dir).ok();
     assert!(html.starts_with("<!DOCTYPE html>"));
     // Self-contained: nothing is fetched.
-    for remote in ["http://", "https://", "src=", "<link"] {
-        let allowed = remote == "http://" && html.matches(remote).count() == 2;
-        assert!(
-            !html.contains(remote) || allowed,
-            "{remote} in the page (only the SVG namespaces may name a URL)"
-        );
+    for remote in ["https://", "src=", "<link"] {
+        assert!(!html.contains(remote), "{remote} in the page");
     }
+    // Only the SVG namespace names a URL (each plot's root and the drawing's script).
+    assert!(
+        html.matches("http://").count() == html.matches("http://www.w3.org/2000/svg").count(),
+        "a URL other than the SVG namespace in the page"
+    );
     assert!(html.contains("<section id=\"case28\">"));
     assert!(html.contains("Case 28: Falling bar with a spring"));
     // The drawing: the four shapes of the model, animated frames and a still.
@@ -103,4 +104,34 @@ fn documentation_gives_the_summary_and_the_discrepancies() {
     assert!(d.contains("234.375"));
     assert!(error_pct(235.375, 234.375) > 0.4);
     assert!(case("13").discrepancies().unwrap().starts_with("None"));
+}
+
+#[test]
+fn every_compared_quantity_is_on_a_curve_of_its_run() {
+    // Each row carries its curve from the case's own run or sweep; mbd's value, marked
+    // where it is compared, must lie on it (to the sampling error, OFF_CURVE of the curve's
+    // height).
+    let mut rows = 0;
+    for c in cases() {
+        let out = (c.run)().expect("the case runs");
+        assert!(!out.rows.is_empty(), "case {}", c.id);
+        for r in &out.rows {
+            let what = format!("case {} {}", c.id, r.quantity);
+            assert!(
+                r.curve.points.len() > 50,
+                "{what}: {} points",
+                r.curve.points.len()
+            );
+            let off = r
+                .curve
+                .offset(r.value)
+                .unwrap_or_else(|| panic!("{what}: outside"));
+            assert!(
+                off <= OFF_CURVE,
+                "{what}: {off:e} of the curve's height off"
+            );
+            rows += 1;
+        }
+    }
+    assert_eq!(rows, 60, "the manual's 60 compared rows");
 }
