@@ -52,8 +52,10 @@ const METHOD: &str =
 #[drive(beta = beta_0 + beta_dot * t)]
 #[constraint(r * cos(theta) == oc - a * cos(beta))]
 #[constraint(r * sin(theta) == a * sin(beta))]
-#[rigid(crank, mass = m, inertia = m * a * a / 12.0, at = [oc, 0.0], angle = beta)]
-#[rigid(arm, mass = m, inertia = m * oc * oc / 12.0, at = [0.0, 0.0], angle = theta)]
+#[rigid(crank, mass = m, inertia = m * a * a / 12.0,
+        at = [oc - a / 2.0 * cos(beta), a / 2.0 * sin(beta)], angle = PI - beta)]
+#[rigid(arm, mass = m, inertia = m * (oc + a) * (oc + a) / 12.0,
+        at = [(oc + a) / 2.0 * cos(theta), (oc + a) / 2.0 * sin(theta)], angle = theta)]
 #[particle(pin, mass = m, at = [r * cos(theta), r * sin(theta)])]
 #[init(r = hypot(oc - a * cos(beta_0), a * sin(beta_0)),
        theta = atan2(a * sin(beta_0), oc - a * cos(beta_0)))]

@@ -22,6 +22,8 @@
 //! crossing like the others and is located, not assumed: `a_max` is the largest |a| over the
 //! located maxima and `t_at_a_max` its time. The angle at the minimum is the model's
 //! `atan2(x_A, −y_A)`, in degrees as in the table.
+//! The rod OA is a uniform bar driven with θ, there to be drawn: prescribed, it enters no
+//! equation.
 //!
 //! **Reference (exact).** `t_min = acos(1/(θ_0 sqrt 2))/ω_n = 0.236882040733337 s`,
 //! `a_min = g θ_0 sqrt(1 − 1/(4 θ_0^2)) = 9.02638731167727 m/s^2`,
@@ -49,6 +51,8 @@ use mbd::prelude::*;
 #[mechanism(geometry)]
 #[drive(theta = theta_0 * sin(sqrt(g / l) * t))]
 #[particle(bob, mass = m, at = [l * sin(theta), -l * cos(theta)])]
+#[rigid(rod, mass = m, inertia = m * l * l / 12.0,
+        at = [l / 2.0 * sin(theta), -l / 2.0 * cos(theta)], angle = theta - PI / 2.0)]
 #[output(a = norm(acceleration(bob)))]
 #[output(theta_deg = atan2(position(bob)[0], -position(bob)[1]) * 180.0 / PI)]
 #[output(a_sq_rate = der(dot(acceleration(bob), acceleration(bob))))]

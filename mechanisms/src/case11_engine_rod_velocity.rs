@@ -14,9 +14,11 @@
 //! `ω_AB = ψ' > 0` (counter-clockwise, as in the textbook).
 //!
 //! **Model.** Driven: the crank angle φ. Free: `x_A` and ψ, with the loop closure
-//! (2 equations) `x_A + l (cos ψ, sin ψ) = r (cos φ, sin φ)`. Bodies: the crank about O, the
-//! rod (G at 0.25 m from A) and the piston; their masses (1 kg; not given) play no part in the
-//! kinematics, and neither does gravity (the model has none). `|v_G|` and `ω_AB` are the
+//! (2 equations) `x_A + l (cos ψ, sin ψ) = r (cos φ, sin φ)`. Bodies: the crank OB and the
+//! rod AB as uniform bars (mass centres at their midpoints, so that the report draws them
+//! from joint to joint), and the piston; their masses (1 kg; not given) play no part in the
+//! kinematics, and neither does gravity (the model has none). G is the rod's body-fixed point
+//! 0.25 m from A (`a_g − l/2` from the midpoint towards B). `|v_G|` and `ω_AB` are the
 //! model's outputs at t = 0, from a kinematic analysis.
 //!
 //! **Reference (exact).** From `l sin ψ = r sin φ`: `ψ' = r cos φ φ'/(l cos ψ)`,
@@ -37,7 +39,7 @@ use mbd::prelude::*;
 /// How the case is measured.
 const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q qd = -Phi_t";
 
-/// A crank OB turning clockwise at `omega` from `phi_0`, the rod BA with its mass centre
+/// A crank OB turning clockwise at `omega` from `phi_0`, the rod BA with its point G
 /// `a_g` from A, and the piston A at `x_a` on the line through O; ψ is the angle of A→B.
 #[derive(Debug, Clone, Mechanism)]
 #[mechanism(geometry)]
@@ -45,13 +47,14 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 #[drive(phi = phi_0 - omega * t)]
 #[constraint(x_a + l * cos(psi) == r * cos(phi))]
 #[constraint(l * sin(psi) == r * sin(phi))]
-#[rigid(crank, mass = m, inertia = m * r * r / 12.0, at = [0.0, 0.0], angle = phi)]
+#[rigid(crank, mass = m, inertia = m * r * r / 12.0,
+        at = [r / 2.0 * cos(phi), r / 2.0 * sin(phi)], angle = phi)]
 #[rigid(rod, mass = m, inertia = m * l * l / 12.0,
-        at = [x_a + a_g * cos(psi), a_g * sin(psi)], angle = psi)]
+        at = [x_a + l / 2.0 * cos(psi), l / 2.0 * sin(psi)], angle = psi)]
 #[particle(piston, mass = m, at = [x_a, 0.0])]
 #[init(x_a = r * cos(phi_0) + sqrt(l * l - r * r * sin(phi_0) * sin(phi_0)),
        psi = PI - asin(r * sin(phi_0) / l))]
-#[output(v_g = norm(velocity(rod)))]
+#[output(v_g = norm(velocity(rod, [a_g - l / 2.0, 0.0])))]
 #[output(omega_ab = angular_velocity(rod))]
 #[output(v_a = der(x_a))]
 pub struct Engine {

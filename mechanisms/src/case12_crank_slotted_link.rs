@@ -46,8 +46,10 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 #[drive(theta = theta_0 + theta_dot * t)]
 #[constraint(l + s * cos(phi) == r * cos(theta))]
 #[constraint(s * sin(phi) == r * sin(theta))]
-#[rigid(crank, mass = m, inertia = m * r * r / 12.0, at = [0.0, 0.0], angle = theta)]
-#[rigid(link, mass = m, inertia = m * l * l / 12.0, at = [l, 0.0], angle = phi)]
+#[rigid(crank, mass = m, inertia = m * r * r / 12.0,
+        at = [r / 2.0 * cos(theta), r / 2.0 * sin(theta)], angle = theta)]
+#[rigid(link, mass = m, inertia = m * (l + r) * (l + r) / 12.0,
+        at = [l + (l + r) / 2.0 * cos(phi), (l + r) / 2.0 * sin(phi)], angle = phi)]
 #[rigid(slider, mass = m, inertia = m * r * r / 12.0,
         at = [l + s * cos(phi), s * sin(phi)], angle = phi)]
 #[init(s = hypot(r * cos(theta_0) - l, r * sin(theta_0)),

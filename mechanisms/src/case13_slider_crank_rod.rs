@@ -40,7 +40,8 @@ const METHOD: &str =
 #[drive(theta = theta_0 + omega_0 * t)]
 #[constraint(x_a == r * cos(theta) + l * cos(beta))]
 #[constraint(l * sin(beta) == r * sin(theta))]
-#[rigid(crank, mass = m, inertia = m * r * r / 12.0, at = [0.0, 0.0], angle = theta)]
+#[rigid(crank, mass = m, inertia = m * r * r / 12.0,
+        at = [r / 2.0 * cos(theta), r / 2.0 * sin(theta)], angle = theta)]
 #[rigid(rod, mass = m, inertia = m * l * l / 12.0,
         at = [x_a - l / 2.0 * cos(beta), l / 2.0 * sin(beta)], angle = PI - beta)]
 #[particle(slider, mass = m, at = [x_a, 0.0])]

@@ -48,7 +48,8 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 #[drive(phi = -omega_ob * t)]
 #[constraint(r * cos(phi) + l * cos(psi) == s * cos(incline))]
 #[constraint(r * sin(phi) + l * sin(psi) == s * sin(incline) - sqrt(l * l - r * r))]
-#[rigid(crank, mass = m, inertia = m * r * r / 12.0, at = [0.0, 0.0], angle = phi)]
+#[rigid(crank, mass = m, inertia = m * r * r / 12.0,
+        at = [r / 2.0 * cos(phi), r / 2.0 * sin(phi)], angle = phi)]
 #[rigid(link, mass = m, inertia = m * l * l / 12.0,
         at = [r * cos(phi) + l / 2.0 * cos(psi), r * sin(phi) + l / 2.0 * sin(psi)],
         angle = psi)]

@@ -31,6 +31,8 @@
 //! compression when `reaction(s) > 0`). The platform gets `I_G = 10 kg m^2` (any value: it
 //! translates; a test checks it). The states at `t = 0` and `t = 1 s` come from
 //! `kinematics`, the forces from the generated outputs there.
+//! The driven link EF is also a uniform bar, there to be drawn: prescribed, its mass enters no
+//! equation of φ or the pin forces.
 //!
 //! **Reference (exact).** `F_D(0) = m (g − 0.8 × 1.2 π^3/24) = m (g − 0.04 π^3) =
 //! 1713.94978655760143859618947946 N`;
@@ -55,6 +57,8 @@ use mbd::prelude::*;
 #[drive(theta = amplitude * (1.0 - cos(rate * t)))]
 #[relaxed(s)]
 #[point(pin_f, at = [-spacing + l * sin(theta), l * cos(theta)])]
+#[rigid(link_f, mass = m, inertia = m * l * l / 12.0,
+        at = [-spacing + l / 2.0 * sin(theta), l / 2.0 * cos(theta)], angle = PI / 2.0 - theta)]
 #[point(pin_d, at = [pin_f[0] + spacing * cos(phi), pin_f[1] + spacing * sin(phi)])]
 #[rigid(platform, mass = m, inertia = i_platform,
         at = [pin_f[0] + fg_along * cos(phi) - fg_normal * sin(phi),

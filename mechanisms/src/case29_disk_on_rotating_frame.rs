@@ -17,6 +17,8 @@
 //!
 //! **Model.** Spatial, everything driven (no free coordinate, state of dimension 0): the
 //! frame's angle `ψ = Ω t` about z and the disk's spin `φ = p t` about the frame's y axis.
+//! The frame: its shaft (0 to 0.1 m up the z axis) and its arm (from the shaft's top to the
+//! disk's centre), uniform bars turning with ψ, there to be drawn.
 //! The disk: centre `R_z(ψ) (0.3, 0, 0.1)`, rotation `R_z(ψ) R_y(φ)`; A is the body-fixed
 //! point `(0, 0, 0.1)` of the disk. Its mass and inertia play no part (kinematics): a
 //! uniform thin disk of 1 kg is given. The generated outputs at t = 0 are the disk's
@@ -43,6 +45,10 @@ use mbd::prelude::*;
 #[mechanism(spatial)]
 #[drive(psi = big_omega * t)]
 #[drive(phi = p * t)]
+#[rigid3(shaft, mass = m, inertia = diag(m * h * h / 12.0, m * h * h / 12.0, 0.0),
+         at = [0.0, 0.0, h / 2.0], rotation = rot_z(psi))]
+#[rigid3(arm, mass = m, inertia = diag(0.0, m * d * d / 12.0, m * d * d / 12.0),
+         at = rot_z(psi) * [d / 2.0, 0.0, h], rotation = rot_z(psi))]
 #[rigid3(disk, mass = m,
          inertia = diag(m * radius * radius / 4.0, m * radius * radius / 2.0,
                         m * radius * radius / 4.0),

@@ -326,6 +326,11 @@ td.m { font-size: 0.85em; color: #555; }
 nav a { display: inline-block; width: 4.2em; margin: 2px; padding: 2px; border: 1px solid #ccc; text-align: center; text-decoration: none; }
 nav small { display: block; font-size: 0.7em; color: #555; }
 .small { font-size: 0.85em; color: #555; }
+body.drawings { max-width: none; }
+body.drawings > :not(section):not(script), body.drawings section > :not(h2):not(.figs),
+body.drawings figure.plot, body.drawings .figs > p { display: none; }
+body.drawings section { display: inline-block; width: 330px; margin: 4px; border: none; vertical-align: top; }
+body.drawings h2 { font-size: 0.8em; height: 2.4em; overflow: hidden; margin: 0; }
 </style></head><body>
 "##;
 
@@ -334,10 +339,12 @@ nav small { display: block; font-size: 0.7em; color: #555; }
 const SCRIPT: &str = r##"<script>
 (function () {
   // `report.html?case=28` shows case 28 alone (for links and screenshots).
-  const only = new URLSearchParams(location.search).get("case");
+  const query = new URLSearchParams(location.search), only = query.get("case");
   if (only) document.querySelectorAll("body > *:not(script)").forEach(e => {
     e.hidden = e.id !== "case" + only;
   });
+  // `report.html?drawings`: every case's drawing alone, in a grid (to check them at a glance).
+  if (query.has("drawings")) document.body.classList.add("drawings");
   const NS = "http://www.w3.org/2000/svg";
   function el(svg, tag, attrs) {
     const e = document.createElementNS(NS, tag);
@@ -359,17 +366,48 @@ const SCRIPT: &str = r##"<script>
   document.querySelectorAll("figure.mech").forEach(fig => {
     const data = JSON.parse(fig.querySelector("script").textContent);
     const svg = fig.querySelector("svg"), label = fig.querySelector(".t");
-    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
-    for (const f of data.frames.concat(data.stills)) for (const s of f.p) for (const p of s) {
-      x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+    // A spatial model (any z) is drawn in an isometric projection, z up.
+    const all = data.frames.concat(data.stills);
+    const spatial = all.some(f => f.p.some(s => s.some(p => Math.abs(p[2]) > 1e-12)));
+    const c30 = Math.cos(Math.PI / 6), s30 = 0.5;
+    const view = spatial ? p => [(p[1] - p[0]) * c30, p[2] - (p[0] + p[1]) * s30] : p => [p[0], p[1]];
+    // A spatial body given by its axes' ends: a plate (two axes) as the disk they span
+    // (its box half-lengths times 2/sqrt(3): a uniform disk's radius), with a spoke to show
+    // its spin and its normal as an axle; a bar (one axis) as the bar.
+    function body3(p) {
+      const c = p[0], ax = p.slice(1).map(e => [e[0] - c[0], e[1] - c[1], e[2] - c[2]]);
+      const len = a => Math.hypot(a[0], a[1], a[2]);
+      const order = [0, 1, 2].sort((i, j) => len(ax[j]) - len(ax[i]));
+      const [u, v] = [ax[order[0]], ax[order[1]]];
+      const at = (a, k) => [c[0] + k * a[0], c[1] + k * a[1], c[2] + k * a[2]];
+      if (len(v) <= 1e-6 * len(u)) return { rim: [at(u, -1), at(u, 1)], spoke: null, axle: null, c: c };
+      const k = 2 / Math.sqrt(3), rim = [];
+      for (let i = 0; i <= 36; i++) {
+        const a = 2 * Math.PI * i / 36, cs = k * Math.cos(a), sn = k * Math.sin(a);
+        rim.push([c[0] + cs * u[0] + sn * v[0], c[1] + cs * u[1] + sn * v[1], c[2] + cs * u[2] + sn * v[2]]);
+      }
+      const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+      const w = 0.5 * k * len(u) / (len(n) || 1);
+      return { rim: rim, spoke: [c, at(u, k)], axle: [at(n, -w), at(n, w)], c: c };
     }
+    const is3 = (kind, p) => spatial && kind === "rigid" && p.length === 4;
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (const f of all) f.p.forEach((s, i) => {
+      const pts = is3(data.kinds[i], s) ? body3(s).rim.concat([s[0]]) : s;
+      for (const q of pts) {
+        const p = view(q);
+        x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+      }
+    });
     const span = Math.max(x1 - x0, y1 - y0, 1e-9), k = 280 / span;
     const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-    const map = p => [160 + (p[0] - cx) * k, 160 - (p[1] - cy) * k];
+    const map = q => { const p = view(q); return [160 + (p[0] - cx) * k, 160 - (p[1] - cy) * k]; };
+    const line = (e, a, b) => { e.setAttribute("x1", a[0]); e.setAttribute("y1", a[1]); e.setAttribute("x2", b[0]); e.setAttribute("y2", b[1]); };
+    const pts = a => a.map(p => p[0].toFixed(1) + "," + p[1].toFixed(1)).join(" ");
     const colours = { rigid: "#0072b2", link: "#0072b2", particle: "#d55e00", point: "#555", spring: "#009e73", damper: "#cc79a7" };
     function build(opacity) {
       const g = el(svg, "g", { opacity: opacity });
-      return data.kinds.map(kind => {
+      return data.kinds.map((kind, i) => {
         const c = colours[kind] || "#000";
         if (kind === "spring") return [el(g, "polyline", { fill: "none", stroke: c, "stroke-width": 1.5 })];
         if (kind === "damper") return [el(g, "line", { stroke: c, "stroke-width": 5, "stroke-dasharray": "2 2" })];
@@ -378,6 +416,10 @@ const SCRIPT: &str = r##"<script>
         if (kind === "link") return [el(g, "line", { stroke: "#999", "stroke-width": 1 }),
           el(g, "line", { stroke: c, "stroke-width": 5, "stroke-linecap": "round" }),
           el(g, "circle", { r: 3.5, fill: "#fff", stroke: "#000" })];
+        if (is3(kind, data.frames[0].p[i])) return [
+          el(g, "polygon", { fill: c, "fill-opacity": 0.25, stroke: c, "stroke-width": 2.5, "stroke-linejoin": "round" }),
+          el(g, "line", { stroke: c, "stroke-width": 2 }), el(g, "line", { stroke: "#555", "stroke-width": 1.5 }),
+          el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })];
         return [el(g, "line", { stroke: c, "stroke-width": 6, "stroke-linecap": "round" }),
           el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })];
       });
@@ -385,6 +427,14 @@ const SCRIPT: &str = r##"<script>
     function place(shapes, frame) {
       shapes.forEach((parts, i) => {
         const p = frame.p[i].map(map), kind = data.kinds[i];
+        if (is3(kind, frame.p[i])) {
+          const b = body3(frame.p[i]);
+          parts[0].setAttribute("points", pts(b.rim.map(map)));
+          parts[0].setAttribute("stroke-width", b.spoke ? 2.5 : 6);
+          if (b.spoke) { line(parts[1], map(b.spoke[0]), map(b.spoke[1])); line(parts[2], map(b.axle[0]), map(b.axle[1])); }
+          parts[3].setAttribute("cx", p[0][0]); parts[3].setAttribute("cy", p[0][1]);
+          return;
+        }
         if (kind === "spring") {
           const len = Math.hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
           parts[0].setAttribute("points", zigzag(p[0], p[1], Math.max(3, Math.round(len / 10)), 5));
