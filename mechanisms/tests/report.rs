@@ -135,3 +135,60 @@ fn every_compared_quantity_is_on_a_curve_of_its_run() {
     }
     assert_eq!(rows, 60, "the manual's 60 compared rows");
 }
+
+#[test]
+fn a_spatial_body_is_drawn_by_its_axes() {
+    // Case 29: the disk (radius 0.1 m, diag(mR²/4, mR²/2, mR²/4)) has the second moments
+    // J = mR²/4 in its plane (body x and z) and 0 along its axle (body y): its axes' ends at
+    // sqrt(3 J/m) = (√3/2) R, which the page scales by 2/√3 to the rim. The frame's shaft
+    // (0.1 m) and arm (0.3 m) are bars: one axis each, of half their length.
+    let anim = (case("29").draw)(0.5, &[0.0]).expect("drawn");
+    let still = &anim.stills[0];
+    let names: Vec<&str> = still.shapes.iter().map(|s| s.name).collect();
+    assert_eq!(names, ["shaft", "arm", "disk"]);
+    let half = |s: usize| -> Vec<f64> {
+        let p = &still.shapes[s].points;
+        assert_eq!(p.len(), 4, "centre and three axis ends");
+        p[1..]
+            .iter()
+            .map(|e| (0..3).map(|k| (e[k] - p[0][k]).powi(2)).sum::<f64>().sqrt())
+            .collect()
+    };
+    let r = 0.1 * 3f64.sqrt() / 2.0;
+    for (got, want) in half(2).iter().zip([r, 0.0, r]) {
+        assert!((got - want).abs() < 1e-12, "disk {got} vs {want}");
+    }
+    for (got, want) in half(0).iter().zip([0.0, 0.0, 0.05]) {
+        assert!((got - want).abs() < 1e-12, "shaft {got} vs {want}");
+    }
+    for (got, want) in half(1).iter().zip([0.15, 0.0, 0.0]) {
+        assert!((got - want).abs() < 1e-12, "arm {got} vs {want}");
+    }
+    // At t = 0 the disk is in the x-z plane, centred at (0.3, 0, 0.1); its body z end is
+    // straight above the centre, towards A.
+    let disk = &still.shapes[2].points;
+    assert_eq!(disk[0], [0.3, 0.0, 0.1]);
+    assert!((disk[3][2] - (0.1 + r)).abs() < 1e-12 && disk[3][0] == 0.3);
+}
+
+#[test]
+fn cranks_are_drawn_from_pivot_to_pin() {
+    // Case 11: the crank OB ends at the rod's end B; the rod's other end is the piston A.
+    let anim = (case("11").draw)(0.04, &[]).expect("drawn");
+    let gap = |a: [f64; 3], b: [f64; 3]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    for f in &anim.frames {
+        let (crank, rod, piston) = (
+            &f.shapes[0].points,
+            &f.shapes[1].points,
+            &f.shapes[2].points,
+        );
+        assert!(gap(crank[1], [0.0; 3]).min(gap(crank[2], [0.0; 3])) < 1e-9);
+        let b = if gap(crank[1], [0.0; 3]) < 1e-9 {
+            crank[2]
+        } else {
+            crank[1]
+        };
+        assert!(gap(b, rod[1]).min(gap(b, rod[2])) < 1e-9, "crank misses B");
+        assert!(gap(piston[0], rod[1]).min(gap(piston[0], rod[2])) < 1e-9);
+    }
+}
