@@ -45,11 +45,11 @@ struct Args {
 fn main() {
     let args = Args::parse();
     let json = args.json;
-    if let Some(dir) = &args.svg {
-        if let Err(e) = write_svgs(dir) {
-            eprintln!("modes: {e}");
-            std::process::exit(1);
-        }
+    if let Some(dir) = &args.svg
+        && let Err(e) = write_svgs(dir)
+    {
+        eprintln!("modes: {e}");
+        std::process::exit(1);
     }
     let rows = match modes::rows_timed(true) {
         Ok(rows) => rows,
