@@ -31,7 +31,8 @@
 //! its rounded α = 1.018e-3 the time would be 78.5626). RecurDyn's 78.6 agrees.
 
 use crate::sim;
-use crate::validation::{Curve, Outcome, Row};
+use crate::validation::{Animation, Curve, Frame, Outcome, Row};
+use mbd::Drawable;
 use mbd::integrate::Solution;
 use mbd::prelude::*;
 
@@ -103,6 +104,40 @@ pub fn phases() -> mbd::Result<(Solution<2>, Solution<2>)> {
         .first()
         .ok_or(missing("the block did not stop"))?;
     Ok((first, second))
+}
+
+/// The block over both phases (the torque reversed at the switch), for the report: `span`
+/// and the stills as [`crate::validation::Draw`] asks, on the run's clock.
+pub fn draw(span: f64, at: &[f64]) -> mbd::Result<Animation> {
+    let (first, second) = phases()?;
+    let t_switch = first.events[0].t;
+    let end = t_switch + second.last().0;
+    let frame = |t: f64| -> mbd::Result<Option<Frame>> {
+        let (model, sol, t_phase) = if t <= t_switch {
+            (&MODEL, &first, t)
+        } else {
+            (&REVERSED, &second, t - t_switch)
+        };
+        let Some(y) = sol.at(t_phase) else {
+            return Ok(None);
+        };
+        let shapes = model.geometry(t_phase, &y)?;
+        Ok(Some(Frame {
+            t,
+            shapes,
+            outputs: Vec::new(),
+        }))
+    };
+    let span = span.min(end);
+    let mut frames = Vec::new();
+    for i in 0..=sim::FRAMES {
+        frames.extend(frame(span * i as f64 / sim::FRAMES as f64)?);
+    }
+    let mut stills = Vec::new();
+    for &t in at.iter().filter(|t| (0.0..=span).contains(*t)) {
+        stills.extend(frame(t)?);
+    }
+    Ok(Animation { frames, stills })
 }
 
 pub fn run() -> mbd::Result<Outcome> {

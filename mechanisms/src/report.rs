@@ -309,12 +309,14 @@ pub fn html(runs: &[CaseRun]) -> String {
 const HEAD: &str = r##"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mbd validation report</title>
 <style>
-body { font-family: sans-serif; max-width: 1040px; margin: 1em auto; color: #222; }
+body { font-family: sans-serif; max-width: 1100px; margin: 1em auto; color: #222; }
 section { border-top: 1px solid #ccc; margin-top: 1.5em; }
 .ref { color: #444; font-size: 0.92em; }
 .figs { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
 figure { margin: 0; }
 .mech svg { border: 1px solid #ddd; background: #fcfcfc; }
+/* Two plots a row (plotters' SVG has a viewBox: it scales). */
+.plot svg { width: 540px; height: auto; }
 figcaption { font-size: 0.85em; }
 table { border-collapse: collapse; font-size: 0.9em; margin: 0.6em 0; }
 td, th { border: 1px solid #ccc; padding: 2px 6px; text-align: right; }

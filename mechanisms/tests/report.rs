@@ -192,3 +192,15 @@ fn cranks_are_drawn_from_pivot_to_pin() {
         assert!(gap(piston[0], rod[1]).min(gap(piston[0], rod[2])) < 1e-9);
     }
 }
+
+#[test]
+fn case23_is_drawn_over_both_phases() {
+    // The torque reverses at 45°: at the compared instant the block has stopped at 90°, its
+    // mass centre straight above the axis (drawing the first phase's model alone, it would
+    // have turned 180°).
+    let out = (case("23").run)().expect("runs");
+    let t = out.rows[0].value;
+    let anim = (case("23").draw)(t, &[t]).expect("drawn");
+    let g = anim.stills[0].shapes[0].points[0];
+    assert!(g[1] > 0.0 && g[0].abs() < 1e-6 * g[1], "{g:?}");
+}
