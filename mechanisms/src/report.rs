@@ -286,7 +286,7 @@ pub fn html(runs: &[CaseRun]) -> String {
         under it). Every compared quantity is plotted from the case's own run (over time, or over the \
         parameter its axis names) with the theory, RecurDyn and mbd values marked where it is compared. The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
         rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares, \
-        spatial models in an oblique projection; faint copies show the compared instants.</p>\n<nav>");
+        spatial models in an isometric projection; faint copies show the compared instants.</p>\n<nav>");
     for r in runs {
         let worst = r.rows.iter().map(|x| x.error_pct).fold(0.0, f64::max);
         let _ = write!(
