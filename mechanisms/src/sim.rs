@@ -35,7 +35,12 @@ pub fn sample<const D: usize>(
     let (t0, (t1, _)) = (sol.t[0], sol.last());
     (0..=n)
         .filter_map(|i| {
-            let t = t0 + (t1 - t0) * i as f64 / n as f64;
+            // The last sample at the run's end itself (an event's instant), not an ulp off.
+            let t = if i == n {
+                t1
+            } else {
+                t0 + (t1 - t0) * i as f64 / n as f64
+            };
             sol.at(t).map(|y| f(t, &y))
         })
         .collect()
@@ -51,7 +56,12 @@ pub fn curve<const D: usize, O>(
     let (t0, (t1, _)) = (sol.t[0], sol.last());
     (0..=n)
         .filter_map(|i| {
-            let t = t0 + (t1 - t0) * i as f64 / n as f64;
+            // The last sample at the run's end itself (an event's instant), not an ulp off.
+            let t = if i == n {
+                t1
+            } else {
+                t0 + (t1 - t0) * i as f64 / n as f64
+            };
             sol.at(t).map(|y| Ok((t, f(t, &y)?)))
         })
         .collect()
