@@ -13,7 +13,8 @@ use crate::{Result, Vector};
 pub enum ShapeKind {
     /// A particle: one point.
     Particle,
-    /// A rigid body: its mass centre, then the two ends of its bar.
+    /// A rigid body: its mass centre, then the two ends of its bar (planar), or the ends of
+    /// its three body axes (spatial, `inertia = diag(..)`; none for other inertia forms).
     Rigid,
     /// A named point (`#[point]`): one point.
     Point,

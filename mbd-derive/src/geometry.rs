@@ -6,8 +6,9 @@
 //! like the user's outputs, and emitted as one straight-line function. So it follows every
 //! form the mechanics takes (drives, closed-form closures, trees) without knowing it.
 //! A rigid body has no extent in the language: it is drawn as the slender bar of its mass
-//! and central inertia (half-length `sqrt(3 I / m)`) along its body x axis; a tree body as
-//! the segment from its joint through its mass centre to twice that offset.
+//! and central inertia (half-length `sqrt(3 I / m)`) along its body x axis; a spatial body
+//! with a diagonal inertia by its three body axes (`principal_ends`); a tree body as the
+//! segment from its joint through its mass centre to twice that offset.
 
 use crate::codegen::Block;
 use crate::model::Equations;
@@ -52,6 +53,9 @@ pub fn shapes(ast: &Mechanism) -> Vec<Shape<syn::Expr>> {
             let h: syn::Expr = parse_quote!(sqrt(3.0 * (#i) / (#m)));
             points.push(parse_quote!(position(#name, [#h, 0.0])));
             points.push(parse_quote!(position(#name, [-(#h), 0.0])));
+        }
+        if let (BodyKind::Rigid3, Some(m), Some(i)) = (&b.kind, &b.mass, &b.inertia) {
+            points.extend(principal_ends(name, m, i));
         }
         out.push(Shape {
             kind,
@@ -116,6 +120,35 @@ pub fn shapes(ast: &Mechanism) -> Vec<Shape<syn::Expr>> {
         });
     }
     out
+}
+
+/// A spatial body with `inertia = diag(a, b, c)`: the ends of its three body axes at the
+/// half-lengths `sqrt(3 J_k / m)` of a uniform box of the same second moments
+/// `J_k = (a + b + c)/2 - I_k` (a slender bar's ends, exactly; a report draws a body with two
+/// such axes as the plate or disk they span). Another inertia form: none.
+fn principal_ends(name: &syn::Ident, m: &syn::Expr, inertia: &syn::Expr) -> Vec<syn::Expr> {
+    let syn::Expr::Call(call) = inertia else {
+        return Vec::new();
+    };
+    let is_diag = matches!(&*call.func, syn::Expr::Path(p) if p.path.is_ident("diag"));
+    let moments: Vec<&syn::Expr> = call.args.iter().collect();
+    let [a, b, c] = moments.as_slice() else {
+        return Vec::new();
+    };
+    if !is_diag {
+        return Vec::new();
+    }
+    [a, b, c]
+        .into_iter()
+        .enumerate()
+        .map(|(k, ik)| {
+            let j: syn::Expr = parse_quote!(((#a) + (#b) + (#c)) / 2.0 - (#ik));
+            let h: syn::Expr = parse_quote!(sqrt(3.0 * abs((#j) / (#m))));
+            let mut axis: Vec<syn::Expr> = vec![parse_quote!(0.0); 3];
+            axis[k] = h;
+            parse_quote!(position(#name, [#(#axis),*]))
+        })
+        .collect()
 }
 
 /// Lower every point with `vector` (the model's output lowering); a shape with a point that

@@ -14,7 +14,7 @@
 //! rounded.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A ball thrown up at `v0` from `y = 0`.
@@ -72,33 +72,37 @@ pub fn run() -> mbd::Result<Outcome> {
         })?;
     let [h, t_ab, v_b] = references();
     let speed = model.outputs(at_b.t, &at_b.y)?.speed;
+    let height = sim::sample(&sol, 200, |t, y| (t, y[0]));
+    let above_b = sim::sample(&sol, 200, |t, y| (t, y[0] - model.b));
+    let speeds = sim::curve(&sol, 200, |t, y| Ok(model.outputs(t, y)?.speed))?;
+    let row = |quantity, value, reference, curve| Row {
+        quantity,
+        value,
+        reference,
+        method: sim::METHOD,
+        curve,
+    };
     Ok(Outcome {
         rows: vec![
-            Row {
-                quantity: "h",
-                value: apex.y[0] - model.b,
-                reference: h,
-                method: sim::METHOD,
-            },
-            Row {
-                quantity: "t_AB",
-                value: at_b.t,
-                reference: t_ab,
-                method: sim::METHOD,
-            },
-            Row {
-                quantity: "v_B",
-                value: speed,
-                reference: v_b,
-                method: sim::METHOD,
-            },
+            row(
+                "h",
+                apex.y[0] - model.b,
+                h,
+                Curve::at_instant("height above B y − 15 m [m]", above_b, apex.t),
+            ),
+            row(
+                "t_AB",
+                at_b.t,
+                t_ab,
+                Curve::instant_of("height above A y [m]", height, model.b),
+            ),
+            row(
+                "v_B",
+                speed,
+                v_b,
+                Curve::at_instant("speed [m/s]", speeds, at_b.t),
+            ),
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "height y [m]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[0])),
-            mark: Some((at_b.t, at_b.y[0])),
-        },
     })
 }
 

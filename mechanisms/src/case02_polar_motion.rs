@@ -24,7 +24,7 @@
 //! **Discrepancies in the manual.** None: its 0.5447 and 0.63193 are these, rounded, and
 //! RecurDyn agrees.
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
 /// How the case is measured.
@@ -74,11 +74,11 @@ pub fn run() -> mbd::Result<Outcome> {
     let model = MODEL;
     let no_state = Vector::<0>::zeros();
     let now = model.outputs(0.0, &no_state)?;
-    // The manual's plot: the speed of B against time, while r > 0 (until t = 3.33 s).
-    let points = (0..=150)
+    // B's speed and acceleration over time, while r > 0 (until t = 3.33 s).
+    let samples = (0..=150)
         .map(|i| {
             let t = 3.0 * f64::from(i) / 150.0;
-            Ok((t, model.outputs(t, &no_state)?.v))
+            Ok((t, model.outputs(t, &no_state)?))
         })
         .collect::<mbd::Result<Vec<_>>>()?;
     let [v, a] = references();
@@ -89,20 +89,20 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: now.v,
                 reference: v,
                 method: METHOD,
+                curve: Curve::at_instant("speed of B v [m/s]", series(&samples, |o| o.v), 0.0),
             },
             Row {
                 quantity: "a",
                 value: now.a,
                 reference: a,
                 method: METHOD,
+                curve: Curve::at_instant(
+                    "acceleration of B a [m/s²]",
+                    series(&samples, |o| o.a),
+                    0.0,
+                ),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "speed of B v [m/s]",
-            points,
-            mark: Some((0.0, now.v)),
-        },
     })
 }
 

@@ -36,7 +36,7 @@
 //! (RecurDyn 315.12); its table's 315 is right. The worked `θ'' = −1510.48` uses the rounded
 //! `r'`, `θ'` and γ: exactly −1510.4256 (RecurDyn −1510.43); the table's −1510 is right.
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
 
@@ -52,8 +52,10 @@ const METHOD: &str =
 #[drive(beta = beta_0 + beta_dot * t)]
 #[constraint(r * cos(theta) == oc - a * cos(beta))]
 #[constraint(r * sin(theta) == a * sin(beta))]
-#[rigid(crank, mass = m, inertia = m * a * a / 12.0, at = [oc, 0.0], angle = beta)]
-#[rigid(arm, mass = m, inertia = m * oc * oc / 12.0, at = [0.0, 0.0], angle = theta)]
+#[rigid(crank, mass = m, inertia = m * a * a / 12.0,
+        at = [oc - a / 2.0 * cos(beta), a / 2.0 * sin(beta)], angle = PI - beta)]
+#[rigid(arm, mass = m, inertia = m * (oc + a) * (oc + a) / 12.0,
+        at = [(oc + a) / 2.0 * cos(theta), (oc + a) / 2.0 * sin(theta)], angle = theta)]
 #[particle(pin, mass = m, at = [r * cos(theta), r * sin(theta)])]
 #[init(r = hypot(oc - a * cos(beta_0), a * sin(beta_0)),
        theta = atan2(a * sin(beta_0), oc - a * cos(beta_0)))]
@@ -119,33 +121,46 @@ pub fn run() -> mbd::Result<Outcome> {
     let opts = NewtonOptions::default();
     let guess = model.initial_state().fixed_rows::<2>(0).into_owned();
     let now = model.outputs(0.0, &state(&kinematics(&model, 0.0, &guess, &opts)?))?;
-    // The manual's plot: the pin's velocity along the slot over one turn of the crank.
+    // Each rate over one turn of the crank.
     let turn = 2.0 * std::f64::consts::PI / model.beta_dot;
     let times: Vec<f64> = (0..=200).map(|i| turn * f64::from(i) / 200.0).collect();
-    let points = kinematic_sweep(&model, &times, &guess, &opts)?
+    let samples = kinematic_sweep(&model, &times, &guess, &opts)?
         .iter()
-        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?.r_dot)))
+        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?)))
         .collect::<mbd::Result<Vec<_>>>()?;
     let [r_dot, r_ddot, theta_dot, theta_ddot] = references();
-    let row = |quantity, value, reference| Row {
+    let row = |quantity, value, reference, label, f: fn(&SlottedArmOutputs) -> f64| Row {
         quantity,
         value,
         reference,
         method: METHOD,
+        curve: Curve::at_instant(label, series(&samples, f), 0.0),
     };
     Ok(Outcome {
         rows: vec![
-            row("r_dot", now.r_dot, r_dot),
-            row("r_ddot", now.r_ddot, r_ddot),
-            row("theta_dot", now.theta_dot, theta_dot),
-            row("theta_ddot", now.theta_ddot, theta_ddot),
+            row(
+                "r_dot",
+                now.r_dot,
+                r_dot,
+                "pin velocity along the slot r' [m/s]",
+                |o| o.r_dot,
+            ),
+            row("r_ddot", now.r_ddot, r_ddot, "r'' [m/s²]", |o| o.r_ddot),
+            row(
+                "theta_dot",
+                now.theta_dot,
+                theta_dot,
+                "arm's angular velocity θ' [rad/s]",
+                |o| o.theta_dot,
+            ),
+            row(
+                "theta_ddot",
+                now.theta_ddot,
+                theta_ddot,
+                "θ'' [rad/s²]",
+                |o| o.theta_ddot,
+            ),
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "pin velocity along the slot r' [m/s]",
-            points,
-            mark: Some((0.0, now.r_dot)),
-        },
     })
 }
 

@@ -37,7 +37,7 @@
 //! stiction) deviates. The reference is 19.57998 m.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::Slip;
 use mbd::hybrid::HybridSolution;
 use mbd::integrate::Radau5;
@@ -141,20 +141,24 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: t,
                 reference: t_stop,
                 method: METHOD,
+                curve: Curve::instant_of(
+                    "speed down the slope s' [m/s]",
+                    sim::sample(sol, 200, |t, y| (t, y[1])),
+                    0.0,
+                ),
             },
             Row {
                 quantity: "x_stop_15",
                 value: x,
                 reference: x_stop,
                 method: METHOD,
+                curve: Curve::at_instant(
+                    "distance down the slope s [m]",
+                    sim::sample(sol, 200, |t, y| (t, y[0])),
+                    t,
+                ),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "distance down the slope s [m]",
-            points: sim::sample(sol, 200, |t, y| (t, y[0])),
-            mark: Some((t, x)),
-        },
     })
 }
 

@@ -33,7 +33,7 @@
 //! rounded; the worked solution's 1.364 too). Its reference and its units are misprinted (above).
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
 /// How the case is measured.
@@ -96,35 +96,35 @@ pub fn run() -> mbd::Result<Outcome> {
     let model = MODEL;
     let y0 = model.initial_state();
     let now = model.outputs(0.0, &y0)?;
-    // The manual's plot: A's acceleration against time, until B nears O (the bar would
-    // reach the toggle y_B = 0).
+    // Each quantity over time, until B nears O (the bar would reach the toggle y_B = 0).
     let sol = sim::integrate(&model, y0, 1.0, &model.events())?;
-    let points = (0..=200)
+    let samples = (0..=200)
         .filter_map(|i| {
             let t = sol.last().0 * f64::from(i) / 200.0;
             sol.at(t).map(|y| (t, y))
         })
-        .map(|(t, y)| Ok((t, model.outputs(t, &y)?.a_a)))
+        .map(|(t, y)| Ok((t, model.outputs(t, &y)?)))
         .collect::<mbd::Result<Vec<_>>>()?;
     let [a_a, a_b, tension] = references();
-    let row = |quantity, value, reference| Row {
+    let row = |quantity, value, reference, label, f: fn(&SlidersAndLinkOutputs) -> f64| Row {
         quantity,
         value,
         reference,
         method: METHOD,
+        curve: Curve::at_instant(label, series(&samples, f), 0.0),
     };
     Ok(Outcome {
         rows: vec![
-            row("a_A", now.a_a, a_a),
-            row("a_B", now.a_b, a_b),
-            row("T", now.tension, tension),
+            row("a_A", now.a_a, a_a, "acceleration of A a_A [m/s²]", |o| {
+                o.a_a
+            }),
+            row("a_B", now.a_b, a_b, "acceleration of B a_B [m/s²]", |o| {
+                o.a_b
+            }),
+            row("T", now.tension, tension, "force in the bar T [N]", |o| {
+                o.tension
+            }),
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "acceleration of A a_A [m/s²]",
-            points,
-            mark: Some((0.0, now.a_a)),
-        },
     })
 }
 

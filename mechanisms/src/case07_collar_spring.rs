@@ -31,7 +31,7 @@
 //! RecurDyn's 1.1556 matches g = 9.81 (1.1556287).
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A collar on the straight rod from A to B (directly below the anchor O), pulled by a
@@ -108,13 +108,12 @@ pub fn run() -> mbd::Result<Outcome> {
             value: v_b,
             reference,
             method: sim::METHOD,
+            curve: Curve::at_instant(
+                "speed of the collar v [m/s]",
+                sim::curve(&sol, 200, |t, y| Ok(model.outputs(t, y)?.speed))?,
+                at_b.t,
+            ),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "speed of the collar v [m/s]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[1].abs())),
-            mark: Some((at_b.t, v_b)),
-        },
     })
 }
 

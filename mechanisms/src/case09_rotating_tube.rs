@@ -17,6 +17,8 @@
 //! immaterial) at `r (cos θ, −sin θ)`; gravity `(0, −g)`; smooth. From `r = r' = 0`, the exit
 //! is the upward zero crossing of `r − 1` (terminal); `θ_exit` is the model's output there, in
 //! degrees as in the table.
+//! The tube is a uniform bar driven with θ, there to be drawn: prescribed, its mass enters no
+//! equation of r.
 //!
 //! **Reference (exact).** The root of `sinh θ − sin θ = 2 ω_0^2 L/g`, by Newton:
 //! **`θ_exit = 0.534720287559433 rad = 30.6372156971773°`**, **`t_exit = θ_exit/ω_0 =
@@ -28,7 +30,7 @@
 //! 30.6372157°. Its `t = 1.07 s` is right to its digits.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A particle at distance r from O in a smooth tube of length `length` turned downward from
@@ -39,6 +41,8 @@ use mbd::prelude::*;
 #[coords(r)]
 #[drive(theta = omega_0 * t)]
 #[particle(particle, mass = m, at = [r * cos(theta), -r * sin(theta)])]
+#[rigid(tube, mass = m, inertia = m * length * length / 12.0,
+        at = [length / 2.0 * cos(theta), -length / 2.0 * sin(theta)], angle = -theta)]
 #[init(r = 0.0, der(r) = 0.0)]
 #[output(theta_deg = theta * 180.0 / PI)]
 #[event(exits = r - length, rising, terminal)]
@@ -109,20 +113,24 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: exit.t,
                 reference: t_exit,
                 method: sim::METHOD,
+                curve: Curve::instant_of(
+                    "distance from O along the tube r [m]",
+                    sim::sample(&sol, 200, |t, y| (t, y[0])),
+                    exit.y[0],
+                ),
             },
             Row {
                 quantity: "theta_exit",
                 value: theta_deg,
                 reference: theta_exit,
                 method: sim::METHOD,
+                curve: Curve::at_instant(
+                    "tube angle θ [deg]",
+                    sim::curve(&sol, 200, |t, y| Ok(model.outputs(t, y)?.theta_deg))?,
+                    exit.t,
+                ),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "distance from O along the tube r [m]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[0])),
-            mark: Some((exit.t, exit.y[0])),
-        },
     })
 }
 

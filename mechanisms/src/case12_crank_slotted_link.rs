@@ -30,7 +30,7 @@
 //! `r = 0.2 > l = 0.1` would make the crank longer than the pivot distance (a different,
 //! fully rotating link).
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
 
@@ -46,8 +46,10 @@ const METHOD: &str = "kinematic analysis: Newton on Phi = 0 (tol 1e-12), Phi_q q
 #[drive(theta = theta_0 + theta_dot * t)]
 #[constraint(l + s * cos(phi) == r * cos(theta))]
 #[constraint(s * sin(phi) == r * sin(theta))]
-#[rigid(crank, mass = m, inertia = m * r * r / 12.0, at = [0.0, 0.0], angle = theta)]
-#[rigid(link, mass = m, inertia = m * l * l / 12.0, at = [l, 0.0], angle = phi)]
+#[rigid(crank, mass = m, inertia = m * r * r / 12.0,
+        at = [r / 2.0 * cos(theta), r / 2.0 * sin(theta)], angle = theta)]
+#[rigid(link, mass = m, inertia = m * (l + r) * (l + r) / 12.0,
+        at = [l + (l + r) / 2.0 * cos(phi), (l + r) / 2.0 * sin(phi)], angle = phi)]
 #[rigid(slider, mass = m, inertia = m * r * r / 12.0,
         at = [l + s * cos(phi), s * sin(phi)], angle = phi)]
 #[init(s = hypot(r * cos(theta_0) - l, r * sin(theta_0)),
@@ -102,12 +104,12 @@ pub fn run() -> mbd::Result<Outcome> {
     let opts = NewtonOptions::default();
     let guess = model.initial_state().fixed_rows::<2>(0).into_owned();
     let now = model.outputs(0.0, &state(&kinematics(&model, 0.0, &guess, &opts)?))?;
-    // The manual's plot: the link's angular velocity over one turn of the crank.
+    // Each compared quantity over the same span (the manual's plot and more).
     let turn = 2.0 * std::f64::consts::PI / model.theta_dot;
     let times: Vec<f64> = (0..=200).map(|i| turn * f64::from(i) / 200.0).collect();
-    let points = kinematic_sweep(&model, &times, &guess, &opts)?
+    let samples = kinematic_sweep(&model, &times, &guess, &opts)?
         .iter()
-        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?.omega_link)))
+        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?)))
         .collect::<mbd::Result<Vec<_>>>()?;
     let [omega] = references();
     Ok(Outcome {
@@ -116,13 +118,12 @@ pub fn run() -> mbd::Result<Outcome> {
             value: now.omega_link,
             reference: omega,
             method: METHOD,
+            curve: Curve::at_instant(
+                "clockwise angular velocity of the link ω [rad/s]",
+                series(&samples, |o| o.omega_link),
+                0.0,
+            ),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "clockwise angular velocity of the link ω [rad/s]",
-            points,
-            mark: Some((0.0, now.omega_link)),
-        },
     })
 }
 

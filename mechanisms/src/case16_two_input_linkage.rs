@@ -39,7 +39,7 @@
 //! **Discrepancies in the manual.** None: its arithmetic is exact (a 3-4-5 triangle) and
 //! RecurDyn's 2 agrees.
 
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
 
@@ -141,12 +141,12 @@ pub fn run() -> mbd::Result<Outcome> {
     let guess = model.initial_state().fixed_rows::<2>(0).into_owned();
     let now = kinematics(&model, 0.0, &guess, &opts)?;
     let omega_bc = model.outputs(0.0, &state(&now))?.omega_bc;
-    // The manual's plot: ω_BC against time, from the instant until just before the links
+    // ω_BC against time, from the instant until just before the links
     // BC and AB line up (|A − C| = 0.9 m, at about t = 0.075 s).
     let times: Vec<f64> = (0..=100).map(|i| 0.06 * f64::from(i) / 100.0).collect();
-    let points = kinematic_sweep(&model, &times, &guess, &opts)?
+    let samples = kinematic_sweep(&model, &times, &guess, &opts)?
         .iter()
-        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?.omega_bc)))
+        .map(|k| Ok((k.t, model.outputs(k.t, &state(k))?)))
         .collect::<mbd::Result<Vec<_>>>()?;
     let [reference] = references();
     Ok(Outcome {
@@ -155,13 +155,12 @@ pub fn run() -> mbd::Result<Outcome> {
             value: omega_bc,
             reference,
             method: METHOD,
+            curve: Curve::at_instant(
+                "angular velocity of BC ω_BC [rad/s]",
+                series(&samples, |o| o.omega_bc),
+                0.0,
+            ),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "angular velocity of BC ω_BC [rad/s]",
-            points,
-            mark: Some((0.0, omega_bc)),
-        },
     })
 }
 

@@ -38,7 +38,7 @@
 //! −1982.733027` (manual −1983.19).
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Read, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematics};
 use mbd::prelude::*;
 
@@ -150,16 +150,15 @@ pub fn run() -> mbd::Result<Outcome> {
             detail: "the piston speed had no maximum in a turn".into(),
         })?;
     let found = model.outputs(at_max.t, &at_max.y)?;
-    let points = (0..=200)
-        .filter_map(|i| {
-            let t = turn * f64::from(i) / 200.0;
-            sol.at(t).map(|y| (t, y))
-        })
-        .map(|(t, y)| {
-            let o = model.outputs(t, &y)?;
-            Ok((o.crank_angle, o.v_a))
-        })
-        .collect::<mbd::Result<Vec<_>>>()?;
+    // Over the crank angle the run sweeps in its turn (the run's own abscissa: the
+    // maximum is compared where it lies, not at an instant of the table).
+    let samples = sim::curve(&sol, 200, |t, y| model.outputs(t, y))?;
+    let speed: Vec<(f64, f64)> = samples
+        .iter()
+        .map(|(_, o)| (o.crank_angle, o.v_a))
+        .collect();
+    const ANGLE: &str = "crank angle θ over the run [rad]";
+    const SPEED: &str = "piston speed v_A [m/s]";
     let [v_max, theta_max] = references();
     Ok(Outcome {
         rows: vec![
@@ -168,20 +167,28 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: found.v_a,
                 reference: v_max,
                 method: sim::METHOD,
+                curve: Curve {
+                    x_label: ANGLE,
+                    y_label: SPEED,
+                    points: speed.clone(),
+                    read: Read::Ordinate {
+                        at: found.crank_angle,
+                    },
+                },
             },
             Row {
                 quantity: "theta_at_v_A_max",
                 value: found.crank_angle,
                 reference: theta_max,
                 method: sim::METHOD,
+                curve: Curve {
+                    x_label: ANGLE,
+                    y_label: SPEED,
+                    points: speed,
+                    read: Read::Abscissa { y: found.v_a },
+                },
             },
         ],
-        plot: Plot {
-            x_label: "crank angle θ [rad]",
-            y_label: "piston speed v_A [m/s]",
-            points,
-            mark: Some((found.crank_angle, found.v_a)),
-        },
     })
 }
 

@@ -36,7 +36,7 @@
 //! value is 155.6782: RecurDyn agrees with the corrected theory, not with 155.65.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A pendulum on a bearing at O, released from rest with OG horizontal; θ is OG's angle
@@ -104,14 +104,7 @@ pub fn run() -> mbd::Result<Outcome> {
             detail: "the pendulum did not reach 60°".into(),
         })?;
     let [r_o] = references();
-    let (t_end, _) = sol.last();
-    let points = (0..=200)
-        .filter_map(|i| {
-            let t = t_end * f64::from(i) / 200.0;
-            sol.at(t).map(|y| (t, y))
-        })
-        .map(|(t, y)| Ok((y[0].to_degrees(), model.outputs(t, &y)?.r_o)))
-        .collect::<mbd::Result<Vec<_>>>()?;
+    let forces = sim::curve(&sol, 200, |t, y| Ok(model.outputs(t, y)?.r_o))?;
     let measured = model.outputs(at_60.t, &at_60.y)?.r_o;
     Ok(Outcome {
         rows: vec![Row {
@@ -119,13 +112,8 @@ pub fn run() -> mbd::Result<Outcome> {
             value: measured,
             reference: r_o,
             method: sim::METHOD,
+            curve: Curve::at_instant("bearing force R_O [N]", forces, at_60.t),
         }],
-        plot: Plot {
-            x_label: "θ [deg]",
-            y_label: "bearing force R_O [N]",
-            points,
-            mark: Some((at_60.y[0].to_degrees(), measured)),
-        },
     })
 }
 

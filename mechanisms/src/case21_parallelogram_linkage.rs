@@ -42,7 +42,7 @@
 //! text (5.872) says.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
 /// Bar BD carried by the links AB (driven by the couple) and CD (a two-force link, its
@@ -122,13 +122,7 @@ pub fn run() -> mbd::Result<Outcome> {
     let at_instant = model.outputs(0.0, &y0)?;
     let [r_d, alpha] = references();
     let sol = sim::integrate(&model, y0, PLOT_SPAN, &[])?;
-    let points = (0..=200)
-        .filter_map(|i| {
-            let t = PLOT_SPAN * f64::from(i) / 200.0;
-            sol.at(t).map(|y| (t, y))
-        })
-        .map(|(t, y)| Ok((t, model.outputs(t, &y)?.r_d)))
-        .collect::<mbd::Result<Vec<_>>>()?;
+    let samples = sim::curve(&sol, 200, |t, y| model.outputs(t, y))?;
     let method = "generated outputs at t = 0 (augmented system)";
     Ok(Outcome {
         rows: vec![
@@ -137,20 +131,20 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: at_instant.r_d,
                 reference: r_d,
                 method,
+                curve: Curve::at_instant("pin force R_D [N]", series(&samples, |o| o.r_d), 0.0),
             },
             Row {
                 quantity: "alpha",
                 value: at_instant.alpha_cd,
                 reference: alpha,
                 method,
+                curve: Curve::at_instant(
+                    "angular acceleration of CD α [rad/s²]",
+                    series(&samples, |o| o.alpha_cd),
+                    0.0,
+                ),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "pin force R_D [N]",
-            points,
-            mark: Some((0.0, at_instant.r_d)),
-        },
     })
 }
 

@@ -31,7 +31,8 @@
 //! its rounded α = 1.018e-3 the time would be 78.5626). RecurDyn's 78.6 agrees.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Animation, Curve, Frame, Outcome, Row};
+use mbd::Drawable;
 use mbd::integrate::Solution;
 use mbd::prelude::*;
 
@@ -105,6 +106,40 @@ pub fn phases() -> mbd::Result<(Solution<2>, Solution<2>)> {
     Ok((first, second))
 }
 
+/// The block over both phases (the torque reversed at the switch), for the report: `span`
+/// and the stills as [`crate::validation::Draw`] asks, on the run's clock.
+pub fn draw(span: f64, at: &[f64]) -> mbd::Result<Animation> {
+    let (first, second) = phases()?;
+    let t_switch = first.events[0].t;
+    let end = t_switch + second.last().0;
+    let frame = |t: f64| -> mbd::Result<Option<Frame>> {
+        let (model, sol, t_phase) = if t <= t_switch {
+            (&MODEL, &first, t)
+        } else {
+            (&REVERSED, &second, t - t_switch)
+        };
+        let Some(y) = sol.at(t_phase) else {
+            return Ok(None);
+        };
+        let shapes = model.geometry(t_phase, &y)?;
+        Ok(Some(Frame {
+            t,
+            shapes,
+            outputs: Vec::new(),
+        }))
+    };
+    let span = span.min(end);
+    let mut frames = Vec::new();
+    for i in 0..=sim::FRAMES {
+        frames.extend(frame(span * i as f64 / sim::FRAMES as f64)?);
+    }
+    let mut stills = Vec::new();
+    for &t in at.iter().filter(|t| (0.0..=span).contains(*t)) {
+        stills.extend(frame(t)?);
+    }
+    Ok(Animation { frames, stills })
+}
+
 pub fn run() -> mbd::Result<Outcome> {
     let (first, second) = phases()?;
     let (t_switch, stop) = (first.events[0].t, &second.events[0]);
@@ -120,13 +155,8 @@ pub fn run() -> mbd::Result<Outcome> {
             value: t_90,
             reference,
             method: sim::METHOD,
+            curve: Curve::instant_of("turn θ [deg]", points, stop.y[0].to_degrees()),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "turn θ [deg]",
-            points,
-            mark: Some((t_90, stop.y[0].to_degrees())),
-        },
     })
 }
 

@@ -37,7 +37,7 @@
 //! **Discrepancies in the manual.** None: its 2.29 is the exact value rounded.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A crank OA (angle θ) and a bar AB (angle φ) whose end B slides on the guide `y = h`.
@@ -116,26 +116,15 @@ pub fn run() -> mbd::Result<Outcome> {
     let (sol, t, y) = swing(&model)?;
     let [v_b] = references();
     let measured = model.outputs(t, &y)?.v_b;
-    let points = (0..=200)
-        .filter_map(|i| {
-            let t = t * f64::from(i) / 200.0;
-            sol.at(t).map(|y| (t, y))
-        })
-        .map(|(t, y)| Ok((t, model.outputs(t, &y)?.v_b)))
-        .collect::<mbd::Result<Vec<_>>>()?;
+    let speeds = sim::curve(&sol, 200, |t, y| Ok(model.outputs(t, y)?.v_b))?;
     Ok(Outcome {
         rows: vec![Row {
             quantity: "v_B",
             value: measured,
             reference: v_b,
             method: sim::METHOD,
+            curve: Curve::at_instant("speed of B v_B [m/s]", speeds, t),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "speed of B v_B [m/s]",
-            points,
-            mark: Some((t, measured)),
-        },
     })
 }
 

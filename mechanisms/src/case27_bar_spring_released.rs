@@ -36,7 +36,7 @@
 //! is an artefact of sampling or reading the plot.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A bar pivoted at its end O (θ below the horizontal), with a spring from C, `c` above O,
@@ -130,6 +130,8 @@ pub fn run() -> mbd::Result<Outcome> {
         })?;
     let omega_max = model.outputs(fastest.t, &fastest.y)?.omega;
     let [omega_ref, theta_ref] = references();
+    let speed = sim::sample(&sol, 200, |t, y| (t, y[1]));
+    let angle = sim::sample(&sol, 200, |t, y| (t, y[0].to_degrees()));
     Ok(Outcome {
         rows: vec![
             Row {
@@ -137,20 +139,16 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: omega_max,
                 reference: omega_ref,
                 method: sim::METHOD,
+                curve: Curve::at_instant("angular speed θ' [rad/s]", speed, fastest.t),
             },
             Row {
                 quantity: "theta_at_omega_max",
                 value: fastest.y[0].to_degrees(),
                 reference: theta_ref,
                 method: sim::METHOD,
+                curve: Curve::at_instant("bar angle θ [deg]", angle, fastest.t),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "angular speed θ' [rad/s]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[1])),
-            mark: Some((fastest.t, omega_max)),
-        },
     })
 }
 

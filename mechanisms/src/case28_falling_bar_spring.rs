@@ -42,7 +42,7 @@
 //! RecurDyn is about 1 % off in both ω's, in opposite directions.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A bar pivoted at its lower end O (θ from the upward vertical, clockwise), with a spring
@@ -139,6 +139,8 @@ pub fn run() -> mbd::Result<Outcome> {
     let horizontal = find(1, "the bar did not reach the horizontal")?;
     let omega_min = model.outputs(slowest.t, &slowest.y)?.omega;
     let [omega_min_ref, theta_ref, omega_90_ref] = references();
+    let speed = || sim::sample(&sol, 200, |t, y| (t, y[1]));
+    const SPEED: &str = "angular speed θ' [rad/s]";
     Ok(Outcome {
         rows: vec![
             Row {
@@ -146,26 +148,27 @@ pub fn run() -> mbd::Result<Outcome> {
                 value: omega_min,
                 reference: omega_min_ref,
                 method: sim::METHOD,
+                curve: Curve::at_instant(SPEED, speed(), slowest.t),
             },
             Row {
                 quantity: "theta_at_omega_min",
                 value: slowest.y[0].to_degrees(),
                 reference: theta_ref,
                 method: sim::METHOD,
+                curve: Curve::at_instant(
+                    "bar angle θ [deg]",
+                    sim::sample(&sol, 200, |t, y| (t, y[0].to_degrees())),
+                    slowest.t,
+                ),
             },
             Row {
                 quantity: "omega_at_90deg",
                 value: model.outputs(horizontal.t, &horizontal.y)?.omega,
                 reference: omega_90_ref,
                 method: sim::METHOD,
+                curve: Curve::at_instant(SPEED, speed(), horizontal.t),
             },
         ],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "angular speed θ' [rad/s]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[1])),
-            mark: Some((slowest.t, omega_min)),
-        },
     })
 }
 

@@ -29,7 +29,7 @@
 //! `f_d = ω_d/2π` and `T = 1/f_d = 1.209 s`; and it rounds `e^{−π/√3} = 0.163034` to 0.163.
 
 use crate::sim;
-use crate::validation::{Outcome, Plot, Row};
+use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
 
 /// A block on a spring and a damper in parallel, anchored to a wall `wall` behind the
@@ -95,13 +95,12 @@ pub fn run() -> mbd::Result<Outcome> {
             value: extreme.y[0],
             reference: x_1,
             method: sim::METHOD,
+            curve: Curve::at_instant(
+                "position x [m]",
+                sim::sample(&sol, 200, |t, y| (t, y[0])),
+                extreme.t,
+            ),
         }],
-        plot: Plot {
-            x_label: "t [s]",
-            y_label: "x [m]",
-            points: sim::sample(&sol, 200, |t, y| (t, y[0])),
-            mark: Some((extreme.t, extreme.y[0])),
-        },
     })
 }
 

@@ -271,7 +271,7 @@ pub fn cases() -> Vec<Case> {
             title: "Block turned 90° by a reversing torque: time taken",
             generated: &[case23_block_reversing_torque::Block::GENERATED],
             run: case23_block_reversing_torque::run,
-            draw: draw!(case23_block_reversing_torque::Block, no_outputs),
+            draw: case23_block_reversing_torque::draw,
             source: include_str!("case23_block_reversing_torque.rs"),
         },
         Case {

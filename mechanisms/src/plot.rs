@@ -49,7 +49,7 @@ pub struct Series {
     pub markers: bool,
 }
 
-/// A reference value marked on a curve: (name, x, y). Each gets its own marker and colour.
+/// A value marked on a curve: (legend text, x, y). Each gets its own marker and colour.
 pub type Mark = (String, f64, f64);
 
 /// A tick label: plain for moderate magnitudes, scientific otherwise, never more digits
@@ -242,7 +242,7 @@ where
                 EmptyElement::at((*mx, *my)) + Polygon::new(outline(shape, size), colour.filled()),
             ))
             .map_err(|x| e(&x))?
-            .label(format!("{name}: {}", tick_sig(*my)))
+            .label(name.as_str())
             .legend(move |c| legend_marker(shape, c, colour));
     }
     chart
@@ -288,11 +288,6 @@ fn legend_corner(
     .into_iter()
     .min_by_key(|c| c.1)
     .unwrap_or((SeriesLabelPosition::UpperRight, 0))
-}
-
-/// A value with six significant figures, for legends.
-fn tick_sig(v: f64) -> String {
-    crate::report::sig(v, 6)
 }
 
 /// One or more curves over linear axes, with reference values marked.
@@ -407,7 +402,14 @@ mod tests {
             line: true,
             markers: false,
         };
-        let svg = line_plot("t", "t [s]", "x [m]", &[s], &[("theory".into(), 5.0, 25.0)]).unwrap();
+        let svg = line_plot(
+            "t",
+            "t [s]",
+            "x [m]",
+            &[s],
+            &[("theory: 25".into(), 5.0, 25.0)],
+        )
+        .unwrap();
         assert!(svg.starts_with("<svg"));
         for text in ["t [s]", "x [m]", "mbd", "theory: 25"] {
             assert!(svg.contains(text), "{text} missing");

@@ -4,7 +4,7 @@
 //! manual is wrong. Inline SVG, CSS and a few lines of JavaScript; no network.
 
 use crate::plot::{self, Mark, Series};
-use crate::validation::{Animation, Case, Outcome};
+use crate::validation::{Animation, Case, OFF_CURVE, Outcome, Read};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -93,29 +93,60 @@ fn inline(s: &str) -> String {
     out
 }
 
-/// The case's plot: its curve, and for the row whose mbd value it marks, the theory,
-/// RecurDyn and mbd values at the compared instant.
-pub fn case_plot(run: &CaseRun) -> Result<String, String> {
-    let p = &run.outcome.plot;
+/// The plot of a case's `i`-th compared quantity: its curve from the case's run, with the
+/// theory, RecurDyn and mbd values (and the exact one where the manual's theory is
+/// corrected) marked where the quantity is compared; or why there is none.
+pub fn row_plot(run: &CaseRun, i: usize) -> Result<String, String> {
+    let (Some(row), Some(r)) = (run.outcome.rows.get(i), run.rows.get(i)) else {
+        return Err(format!("no row {i}"));
+    };
+    let c = &row.curve;
+    let what = match c.read {
+        Read::Ordinate { .. } => r.quantity.clone(),
+        Read::Abscissa { .. } => format!("{} (abscissa)", r.quantity),
+    };
+    let mark = |name: &str, v: f64| {
+        let (x, y) = c.point(v);
+        (format!("{name}: {}", sig(v, 6)), x, y)
+    };
+    let mut marks: Vec<Mark> = vec![mark(&format!("mbd {what}"), r.value)];
+    marks.extend(r.theory.map(|v| mark("theory", v)));
+    marks.extend(r.recurdyn.map(|v| mark("RecurDyn", v)));
+    if corrected(r) {
+        marks.push(mark("exact", r.reference));
+    }
     let curve = Series {
         name: "mbd".into(),
-        points: p.points.clone(),
+        points: c.points.clone(),
         line: true,
         markers: false,
     };
-    let mut marks: Vec<Mark> = Vec::new();
-    if let Some((x, y)) = p.mark {
-        match run.rows.iter().find(|r| r.value == y) {
-            Some(r) => {
-                marks.push((format!("mbd {}", r.quantity), x, y));
-                marks.extend(r.theory.map(|v| ("theory".to_string(), x, v)));
-                marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), x, v)));
-            }
-            None => marks.push(("compared instant".into(), x, y)),
-        }
+    let title = format!("Case {}: {} [{}]", run.case.id, r.quantity, r.unit);
+    plot::line_plot(&title, c.x_label, c.y_label, &[curve], &marks)
+}
+
+/// Whether mbd's value of the `i`-th row lies on its curve (to [`OFF_CURVE`] of the curve's
+/// height): else the row and the run it is plotted from disagree, and the page says so.
+pub fn off_curve(run: &CaseRun, i: usize) -> Option<String> {
+    let row = run.outcome.rows.get(i)?;
+    match row.curve.offset(row.value) {
+        Some(d) if d <= OFF_CURVE => None,
+        Some(d) => Some(format!(
+            "mbd's {} lies off its curve by {} % of the curve's height",
+            row.quantity,
+            sig(100.0 * d, 2)
+        )),
+        None => Some(format!(
+            "mbd's {} is compared outside its curve",
+            row.quantity
+        )),
     }
-    let title = format!("Case {}: {}", run.case.id, p.y_label);
-    plot::line_plot(&title, p.x_label, p.y_label, &[curve], &marks)
+}
+
+/// Whether the row's reference is a corrected value (the manual's theory does not round to
+/// it).
+fn corrected(r: &ReportRow) -> bool {
+    r.theory.is_some_and(|t| !rounds_to(r.reference, t))
 }
 
 /// Whether `exact` rounds to `printed` at `printed`'s own digits (its shortest decimal form):
@@ -127,68 +158,6 @@ fn rounds_to(exact: f64, printed: f64) -> bool {
     (exact - printed).abs() <= half_unit * (1.0 + 1e-9)
 }
 
-/// Plots of the rows the case's own plot does not mark, each from the model's output of the
-/// same name over the drawing's run: the theory, RecurDyn and mbd values are marked where
-/// the curve takes mbd's value (interpolated between frames; at an extremum, its frame).
-/// A row without such an output, or whose value the curve does not reach (to 1e-3
-/// relative: another run or unit), gets none.
-pub fn row_plots(run: &CaseRun) -> Vec<(String, Result<String, String>)> {
-    let Ok(anim) = &run.animation else {
-        return Vec::new();
-    };
-    let marked = run.outcome.plot.mark.map(|m| m.1);
-    let mut out = Vec::new();
-    for r in run.rows.iter().filter(|r| Some(r.value) != marked) {
-        let curve: Vec<(f64, f64)> = anim
-            .frames
-            .iter()
-            .filter_map(|f| {
-                let v = f
-                    .outputs
-                    .iter()
-                    .find(|o| o.0.eq_ignore_ascii_case(&r.quantity))?;
-                Some((f.t, v.1))
-            })
-            .collect();
-        let Some(t) = instant(&curve, r.value) else {
-            continue;
-        };
-        let mut marks: Vec<Mark> = vec![(format!("mbd {}", r.quantity), t, r.value)];
-        marks.extend(r.theory.map(|v| ("theory".to_string(), t, v)));
-        marks.extend(r.recurdyn.map(|v| ("RecurDyn".to_string(), t, v)));
-        let series = Series {
-            name: "mbd".into(),
-            points: curve,
-            line: true,
-            markers: false,
-        };
-        let title = format!("Case {}: {} [{}]", run.case.id, r.quantity, r.unit);
-        let label = format!("{} [{}]", r.quantity, r.unit);
-        out.push((
-            r.quantity.clone(),
-            plot::line_plot(&title, "t [s]", &label, &[series], &marks),
-        ));
-    }
-    out
-}
-
-/// Where `curve` takes `value`: the first crossing (linear between samples), else the
-/// closest sample if within 1e-3 relative (an extremum).
-fn instant(curve: &[(f64, f64)], value: f64) -> Option<f64> {
-    let tol = 1e-3 * value.abs().max(1e-9);
-    for w in curve.windows(2) {
-        let ((t0, v0), (t1, v1)) = (w[0], w[1]);
-        if (v0 - value) * (v1 - value) <= 0.0 && v0 != v1 {
-            return Some(t0 + (t1 - t0) * (value - v0) / (v1 - v0));
-        }
-    }
-    curve
-        .iter()
-        .min_by(|a, b| (a.1 - value).abs().total_cmp(&(b.1 - value).abs()))
-        .filter(|c| (c.1 - value).abs() <= tol)
-        .map(|c| c.0)
-}
-
 fn table(rows: &[ReportRow]) -> String {
     let mut s = String::from(
         "<table><tr><th>quantity</th><th>unit</th><th>theory</th><th>RecurDyn</th>\
@@ -196,8 +165,7 @@ fn table(rows: &[ReportRow]) -> String {
     );
     let opt = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |v| format!("{v}"));
     for r in rows {
-        let corrected = r.theory.is_some_and(|t| !rounds_to(r.reference, t));
-        let reference = if corrected {
+        let reference = if corrected(r) {
             format!(
                 r#"<br><span class="corr">exact {}</span>"#,
                 sig(r.reference, 7)
@@ -281,14 +249,17 @@ fn section(run: &CaseRun) -> String {
             let _ = write!(s, "<p>Not drawn: {}</p>", esc(e));
         }
     }
-    let plots = std::iter::once(("the manual's plot".to_string(), case_plot(run)));
-    for (what, svg) in plots.chain(row_plots(run)) {
-        match svg {
+    for (i, r) in run.rows.iter().enumerate() {
+        match row_plot(run, i) {
             Ok(svg) => {
-                let _ = write!(s, "<figure class=\"plot\">{svg}</figure>");
+                let _ = write!(s, "<figure class=\"plot\">{svg}");
+                if let Some(e) = off_curve(run, i) {
+                    let _ = write!(s, "<figcaption class=\"corr\">{}</figcaption>", esc(&e));
+                }
+                s.push_str("</figure>");
             }
             Err(e) => {
-                let _ = write!(s, "<p>No plot of {}: {}</p>", esc(&what), esc(&e));
+                let _ = write!(s, "<p>No plot of {}: {}</p>", esc(&r.quantity), esc(&e));
             }
         }
     }
@@ -312,9 +283,10 @@ pub fn html(runs: &[CaseRun]) -> String {
     s.push_str("<h1>mbd validation report</h1>\n<p>Each case of the validation manual run with mbd: \
         the theory and RecurDyn columns are the manual's; errors are relative to the exact value \
         (the manual's theory where it is right, else the corrected value its case documents, shown \
-        under it). The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
-        rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares; \
-        faint copies show the compared instants.</p>\n<nav>");
+        under it). Every compared quantity is plotted from the case's own run (over time, or over the \
+        parameter its axis names) with the theory, RecurDyn and mbd values marked where it is compared. The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
+        rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares, \
+        spatial models in an isometric projection; faint copies show the compared instants.</p>\n<nav>");
     for r in runs {
         let worst = r.rows.iter().map(|x| x.error_pct).fold(0.0, f64::max);
         let _ = write!(
@@ -337,12 +309,14 @@ pub fn html(runs: &[CaseRun]) -> String {
 const HEAD: &str = r##"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>mbd validation report</title>
 <style>
-body { font-family: sans-serif; max-width: 1040px; margin: 1em auto; color: #222; }
+body { font-family: sans-serif; max-width: 1100px; margin: 1em auto; color: #222; }
 section { border-top: 1px solid #ccc; margin-top: 1.5em; }
 .ref { color: #444; font-size: 0.92em; }
 .figs { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
 figure { margin: 0; }
 .mech svg { border: 1px solid #ddd; background: #fcfcfc; }
+/* Two plots a row (plotters' SVG has a viewBox: it scales). */
+.plot svg { width: 540px; height: auto; }
 figcaption { font-size: 0.85em; }
 table { border-collapse: collapse; font-size: 0.9em; margin: 0.6em 0; }
 td, th { border: 1px solid #ccc; padding: 2px 6px; text-align: right; }
@@ -354,6 +328,11 @@ td.m { font-size: 0.85em; color: #555; }
 nav a { display: inline-block; width: 4.2em; margin: 2px; padding: 2px; border: 1px solid #ccc; text-align: center; text-decoration: none; }
 nav small { display: block; font-size: 0.7em; color: #555; }
 .small { font-size: 0.85em; color: #555; }
+body.drawings { max-width: none; }
+body.drawings > :not(section):not(script), body.drawings section > :not(h2):not(.figs),
+body.drawings figure.plot, body.drawings .figs > p { display: none; }
+body.drawings section { display: inline-block; width: 330px; margin: 4px; border: none; vertical-align: top; }
+body.drawings h2 { font-size: 0.8em; height: 2.4em; overflow: hidden; margin: 0; }
 </style></head><body>
 "##;
 
@@ -362,10 +341,12 @@ nav small { display: block; font-size: 0.7em; color: #555; }
 const SCRIPT: &str = r##"<script>
 (function () {
   // `report.html?case=28` shows case 28 alone (for links and screenshots).
-  const only = new URLSearchParams(location.search).get("case");
+  const query = new URLSearchParams(location.search), only = query.get("case");
   if (only) document.querySelectorAll("body > *:not(script)").forEach(e => {
     e.hidden = e.id !== "case" + only;
   });
+  // `report.html?drawings`: every case's drawing alone, in a grid (to check them at a glance).
+  if (query.has("drawings")) document.body.classList.add("drawings");
   const NS = "http://www.w3.org/2000/svg";
   function el(svg, tag, attrs) {
     const e = document.createElementNS(NS, tag);
@@ -387,17 +368,48 @@ const SCRIPT: &str = r##"<script>
   document.querySelectorAll("figure.mech").forEach(fig => {
     const data = JSON.parse(fig.querySelector("script").textContent);
     const svg = fig.querySelector("svg"), label = fig.querySelector(".t");
-    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
-    for (const f of data.frames.concat(data.stills)) for (const s of f.p) for (const p of s) {
-      x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+    // A spatial model (any z) is drawn in an isometric projection, z up.
+    const all = data.frames.concat(data.stills);
+    const spatial = all.some(f => f.p.some(s => s.some(p => Math.abs(p[2]) > 1e-12)));
+    const c30 = Math.cos(Math.PI / 6), s30 = 0.5;
+    const view = spatial ? p => [(p[1] - p[0]) * c30, p[2] - (p[0] + p[1]) * s30] : p => [p[0], p[1]];
+    // A spatial body given by its axes' ends: a plate (two axes) as the disk they span
+    // (its box half-lengths times 2/sqrt(3): a uniform disk's radius), with a spoke to show
+    // its spin and its normal as an axle; a bar (one axis) as the bar.
+    function body3(p) {
+      const c = p[0], ax = p.slice(1).map(e => [e[0] - c[0], e[1] - c[1], e[2] - c[2]]);
+      const len = a => Math.hypot(a[0], a[1], a[2]);
+      const order = [0, 1, 2].sort((i, j) => len(ax[j]) - len(ax[i]));
+      const [u, v] = [ax[order[0]], ax[order[1]]];
+      const at = (a, k) => [c[0] + k * a[0], c[1] + k * a[1], c[2] + k * a[2]];
+      if (len(v) <= 1e-6 * len(u)) return { rim: [at(u, -1), at(u, 1)], spoke: null, axle: null, c: c };
+      const k = 2 / Math.sqrt(3), rim = [];
+      for (let i = 0; i <= 36; i++) {
+        const a = 2 * Math.PI * i / 36, cs = k * Math.cos(a), sn = k * Math.sin(a);
+        rim.push([c[0] + cs * u[0] + sn * v[0], c[1] + cs * u[1] + sn * v[1], c[2] + cs * u[2] + sn * v[2]]);
+      }
+      const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+      const w = 0.5 * k * len(u) / (len(n) || 1);
+      return { rim: rim, spoke: [c, at(u, k)], axle: [at(n, -w), at(n, w)], c: c };
     }
+    const is3 = (kind, p) => spatial && kind === "rigid" && p.length === 4;
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (const f of all) f.p.forEach((s, i) => {
+      const pts = is3(data.kinds[i], s) ? body3(s).rim.concat([s[0]]) : s;
+      for (const q of pts) {
+        const p = view(q);
+        x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+      }
+    });
     const span = Math.max(x1 - x0, y1 - y0, 1e-9), k = 280 / span;
     const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-    const map = p => [160 + (p[0] - cx) * k, 160 - (p[1] - cy) * k];
+    const map = q => { const p = view(q); return [160 + (p[0] - cx) * k, 160 - (p[1] - cy) * k]; };
+    const line = (e, a, b) => { e.setAttribute("x1", a[0]); e.setAttribute("y1", a[1]); e.setAttribute("x2", b[0]); e.setAttribute("y2", b[1]); };
+    const pts = a => a.map(p => p[0].toFixed(1) + "," + p[1].toFixed(1)).join(" ");
     const colours = { rigid: "#0072b2", link: "#0072b2", particle: "#d55e00", point: "#555", spring: "#009e73", damper: "#cc79a7" };
     function build(opacity) {
       const g = el(svg, "g", { opacity: opacity });
-      return data.kinds.map(kind => {
+      return data.kinds.map((kind, i) => {
         const c = colours[kind] || "#000";
         if (kind === "spring") return [el(g, "polyline", { fill: "none", stroke: c, "stroke-width": 1.5 })];
         if (kind === "damper") return [el(g, "line", { stroke: c, "stroke-width": 5, "stroke-dasharray": "2 2" })];
@@ -406,6 +418,10 @@ const SCRIPT: &str = r##"<script>
         if (kind === "link") return [el(g, "line", { stroke: "#999", "stroke-width": 1 }),
           el(g, "line", { stroke: c, "stroke-width": 5, "stroke-linecap": "round" }),
           el(g, "circle", { r: 3.5, fill: "#fff", stroke: "#000" })];
+        if (is3(kind, data.frames[0].p[i])) return [
+          el(g, "polygon", { fill: c, "fill-opacity": 0.25, stroke: c, "stroke-width": 2.5, "stroke-linejoin": "round" }),
+          el(g, "line", { stroke: c, "stroke-width": 2 }), el(g, "line", { stroke: "#555", "stroke-width": 1.5 }),
+          el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })];
         return [el(g, "line", { stroke: c, "stroke-width": 6, "stroke-linecap": "round" }),
           el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })];
       });
@@ -413,6 +429,14 @@ const SCRIPT: &str = r##"<script>
     function place(shapes, frame) {
       shapes.forEach((parts, i) => {
         const p = frame.p[i].map(map), kind = data.kinds[i];
+        if (is3(kind, frame.p[i])) {
+          const b = body3(frame.p[i]);
+          parts[0].setAttribute("points", pts(b.rim.map(map)));
+          parts[0].setAttribute("stroke-width", b.spoke ? 2.5 : 6);
+          if (b.spoke) { line(parts[1], map(b.spoke[0]), map(b.spoke[1])); line(parts[2], map(b.axle[0]), map(b.axle[1])); }
+          parts[3].setAttribute("cx", p[0][0]); parts[3].setAttribute("cy", p[0][1]);
+          return;
+        }
         if (kind === "spring") {
           const len = Math.hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
           parts[0].setAttribute("points", zigzag(p[0], p[1], Math.max(3, Math.round(len / 10)), 5));

@@ -35,8 +35,34 @@ pub fn sample<const D: usize>(
     let (t0, (t1, _)) = (sol.t[0], sol.last());
     (0..=n)
         .filter_map(|i| {
-            let t = t0 + (t1 - t0) * i as f64 / n as f64;
+            // The last sample at the run's end itself (an event's instant), not an ulp off.
+            let t = if i == n {
+                t1
+            } else {
+                t0 + (t1 - t0) * i as f64 / n as f64
+            };
             sol.at(t).map(|y| f(t, &y))
+        })
+        .collect()
+}
+
+/// `f` at `n + 1` equally spaced times of a solution's dense output: a quantity's curve
+/// over the run (or the model's outputs there, for [`crate::validation::series`]).
+pub fn curve<const D: usize, O>(
+    sol: &Solution<D>,
+    n: usize,
+    f: impl Fn(f64, &Vector<D>) -> mbd::Result<O>,
+) -> mbd::Result<Vec<(f64, O)>> {
+    let (t0, (t1, _)) = (sol.t[0], sol.last());
+    (0..=n)
+        .filter_map(|i| {
+            // The last sample at the run's end itself (an event's instant), not an ulp off.
+            let t = if i == n {
+                t1
+            } else {
+                t0 + (t1 - t0) * i as f64 / n as f64
+            };
+            sol.at(t).map(|y| Ok((t, f(t, &y)?)))
         })
         .collect()
 }

@@ -38,3 +38,13 @@ fn ensemble_refuses_no_members_and_bad_times() {
     assert_eq!(status(bin, &["--t-end=-1"]), Some(2));
     assert_eq!(status(bin, &["--t-end", "nan"]), Some(2));
 }
+
+#[test]
+fn friction_and_modes_refuse_unknown_arguments() {
+    assert_eq!(
+        status(env!("CARGO_BIN_EXE_friction"), &["--bogus"]),
+        Some(2)
+    );
+    assert_eq!(status(env!("CARGO_BIN_EXE_modes"), &["--bogus"]), Some(2));
+    assert_eq!(status(env!("CARGO_BIN_EXE_modes"), &["--svg"]), Some(2));
+}

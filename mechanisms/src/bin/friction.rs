@@ -11,6 +11,7 @@
 //!
 //! `cargo run --release -p mechanisms --bin friction`
 
+use clap::Parser;
 use mbd::Slip;
 use mbd::hybrid::HybridSolution;
 use mbd::integrate::{Dopri5, GeneralizedAlpha, Integrator, Radau5};
@@ -101,7 +102,13 @@ fn compare<I: Integrator>(
     Ok(())
 }
 
+/// No options: any argument is a usage error (exit status 2) before the runs.
+#[derive(Parser, Debug)]
+#[command(about = "Coulomb friction's cost on the stick-slip oscillator")]
+struct Args {}
+
 fn main() -> mbd::Result<()> {
+    Args::parse();
     println!(
         "stick-slip oscillator, {PERIODS} periods of the limit cycle (mode by mode) against the same run without friction"
     );

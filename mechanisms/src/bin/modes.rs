@@ -6,6 +6,7 @@
 //! the mode shapes of the planar mechanisms as SVG files in `DIR`
 //! ([`mechanisms::mode_svg`]).
 
+use clap::Parser;
 use mbd::prelude::Vector;
 use mechanisms::modes::{self, Cost, DOUBLE, FOUR_BAR, GOAL};
 
@@ -30,18 +31,25 @@ fn write_svgs(dir: &str) -> Result<(), String> {
     Ok(())
 }
 
+#[derive(Parser, Debug)]
+#[command(about = "Linear modes of mechanisms against closed forms")]
+struct Args {
+    /// Print the rows as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write the planar mechanisms' mode shapes as SVG files into this directory.
+    #[arg(long)]
+    svg: Option<String>,
+}
+
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let json = args.iter().any(|a| a == "--json");
-    if let Some(i) = args.iter().position(|a| a == "--svg") {
-        let Some(dir) = args.get(i + 1) else {
-            eprintln!("modes: --svg needs a directory");
-            std::process::exit(2);
-        };
-        if let Err(e) = write_svgs(dir) {
-            eprintln!("modes: {e}");
-            std::process::exit(1);
-        }
+    let args = Args::parse();
+    let json = args.json;
+    if let Some(dir) = &args.svg
+        && let Err(e) = write_svgs(dir)
+    {
+        eprintln!("modes: {e}");
+        std::process::exit(1);
     }
     let rows = match modes::rows_timed(true) {
         Ok(rows) => rows,

@@ -21,7 +21,7 @@ struct Args {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=30))]
     case: Option<u32>,
     /// Write the report into this directory: `report.html` (self-contained: drawings,
-    /// animations, plots, tables), `report.md` and one SVG plot per case.
+    /// animations, plots, tables), `report.md` and one SVG plot per compared quantity.
     #[arg(long)]
     out: Option<PathBuf>,
 }
@@ -140,25 +140,26 @@ fn report_rows(
         .collect()
 }
 
-/// Draws the case over its plot's time span (2 s where the plot is not over time), with a
-/// still at the marked instant.
+/// Draws the case over the time span of its curves over time (2 s where none is), with a
+/// still at each compared instant.
 fn draw(case: &Case, outcome: &Outcome) -> Result<mechanisms::validation::Animation, String> {
-    let p = &outcome.plot;
-    let scale = match p.x_label {
-        "t [s]" => Some(1.0),
-        "t [ms]" => Some(1e-3),
-        _ => None,
-    };
-    let last = p.points.last().map(|q| q.0);
-    let (span, at) = match (scale, last) {
-        (Some(k), Some(x)) if x > 0.0 => (x * k, p.mark.map(|m| m.0 * k)),
-        _ => (DEFAULT_SPAN, None),
-    };
-    // A run the plain integrator cannot finish (friction's stop) is drawn to the compared
-    // instant, which the case itself reached.
-    (case.draw)(span, at.as_slice())
-        .or_else(|e| match at {
-            Some(t) if t > 0.0 => (case.draw)(t, &[t]),
+    let rows = &outcome.rows;
+    let span = rows
+        .iter()
+        .filter_map(|r| r.curve.end())
+        .fold(0.0, f64::max);
+    let mut at: Vec<f64> = rows
+        .iter()
+        .filter_map(|r| r.curve.instant(r.value))
+        .collect();
+    at.sort_by(f64::total_cmp);
+    at.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * span);
+    let span = if span > 0.0 { span } else { DEFAULT_SPAN };
+    // A run the plain integrator cannot finish (friction's stop) is drawn to the last
+    // compared instant, which the case itself reached.
+    (case.draw)(span, &at)
+        .or_else(|e| match at.last() {
+            Some(&t) if t > 0.0 => (case.draw)(t, &at),
             _ => Err(e),
         })
         .map_err(|e| e.to_string())
@@ -240,12 +241,15 @@ fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io:
             statements,
             parts.join(", ")
         );
-        let svg = mechanisms::report::case_plot(run).map_err(std::io::Error::other)?;
-        std::fs::write(dir.join(format!("case{}.svg", case.id)), svg)?;
     }
     md.push_str("\n## Plots\n\n");
     for run in runs {
-        let _ = writeln!(md, "![case {0}](case{0}.svg)\n", run.case.id);
+        for (i, r) in run.rows.iter().enumerate() {
+            let name = format!("case{}-{}.svg", run.case.id, r.quantity);
+            let svg = mechanisms::report::row_plot(run, i).map_err(std::io::Error::other)?;
+            std::fs::write(dir.join(&name), svg)?;
+            let _ = writeln!(md, "![case {} {}]({name})\n", run.case.id, r.quantity);
+        }
     }
     std::fs::write(dir.join("report.md"), md)?;
     std::fs::write(dir.join("report.html"), mechanisms::report::html(runs))
