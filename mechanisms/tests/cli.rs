@@ -48,3 +48,11 @@ fn friction_and_modes_refuse_unknown_arguments() {
     assert_eq!(status(env!("CARGO_BIN_EXE_modes"), &["--bogus"]), Some(2));
     assert_eq!(status(env!("CARGO_BIN_EXE_modes"), &["--svg"]), Some(2));
 }
+
+#[test]
+fn loops_refuses_unknown_arguments_and_methods() {
+    let bin = env!("CARGO_BIN_EXE_loops");
+    assert_eq!(status(bin, &["--bogus"]), Some(2));
+    assert_eq!(status(bin, &["--only", "RK5"]), Some(2));
+    assert_eq!(status(bin, &["--tol", "x"]), Some(2));
+}

@@ -10,6 +10,7 @@
 //! [--tol 1e-7,3e-7] [--no-rhs]` (`--tol`: the DOPRI5, DOP853, Auto and Radau5 tolerances run, in place of the
 //! defaults; `--no-rhs`: skip timing one right-hand side, as when profiling the runs)
 
+use clap::Parser;
 use mbd::integrate::{Ali3, Auto, Dop853, GeneralizedAlpha, Radau5};
 use mbd::passage::{self, Settings};
 use mbd::{Dopri5, OdeSystem, Options, Solution};
@@ -46,30 +47,44 @@ fn median_us<F: FnMut()>(mut f: F) -> f64 {
     v[v.len() / 2]
 }
 
-/// The tolerances of `--tol A,B,..` when given, else `default`.
-fn tolerances(default: &[f64]) -> Vec<f64> {
-    let args: Vec<String> = std::env::args().collect();
-    match args.iter().position(|a| a == "--tol") {
-        Some(k) => (args.get(k + 1).map(String::as_str).unwrap_or(""))
-            .split(',')
-            .filter_map(|s| s.parse().ok())
-            .collect(),
-        None => default.to_vec(),
+/// Bad arguments are a usage error (exit status 2) before any run.
+#[derive(Parser, Debug)]
+#[command(about = "The 40-loop four-bar assembly (IFToMM A02) by every method")]
+struct Args {
+    /// Fewer settings per method.
+    #[arg(long)]
+    quick: bool,
+    /// Run one method's rows only.
+    #[arg(long, value_parser = ["DOPRI5", "DOP853", "Auto", "Radau5", "ALI3-P", "gen-a"])]
+    only: Option<String>,
+    /// The DOPRI5, DOP853, Auto and Radau5 tolerances, in place of the defaults.
+    #[arg(long, value_delimiter = ',')]
+    tol: Option<Vec<f64>>,
+    /// Skip timing one right-hand side (as when profiling the runs).
+    #[arg(long)]
+    no_rhs: bool,
+}
+
+impl Args {
+    /// The tolerances of `--tol A,B,..` when given, else `default`.
+    fn tolerances(&self, default: &[f64]) -> Vec<f64> {
+        self.tol.clone().unwrap_or_else(|| default.to_vec())
+    }
+
+    fn runs(&self, name: &str) -> bool {
+        self.only.as_deref().is_none_or(|only| only == name)
     }
 }
 
 fn row(
+    args: &Args,
     name: &str,
     setting: &str,
     a: &FourBarAssembly,
     r: &Solution<2>,
     run: impl FnOnce() -> mbd::Result<(Solution<{ fa::D }>, usize)>,
 ) {
-    // `--only NAME` runs one method's rows.
-    let args: Vec<String> = std::env::args().collect();
-    if let Some(k) = args.iter().position(|a| a == "--only")
-        && args.get(k + 1).is_some_and(|only| only != name)
-    {
+    if !args.runs(name) {
         return;
     }
     let (start, cpu0) = (Instant::now(), cpu_time());
@@ -92,13 +107,14 @@ fn row(
 }
 
 fn main() {
-    let quick = std::env::args().any(|a| a == "--quick");
+    let args = Args::parse();
+    let quick = args.quick;
     let a = FourBarAssembly::benchmark();
     let y0 = a.benchmark_state(1.0);
     let reference = fa::reference(&a, 1.0, T1).expect("reference");
     let mut y = y0;
     y[0] += 0.3;
-    if !std::env::args().any(|a| a == "--no-rhs") {
+    if !args.no_rhs {
         println!(
             "rhs: {:.2} us",
             median_us(|| {
@@ -106,7 +122,7 @@ fn main() {
             })
         );
     }
-    let dopri = tolerances(if quick {
+    let dopri = args.tolerances(if quick {
         &[1e-6, 1e-8]
     } else {
         &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]
@@ -117,21 +133,28 @@ fn main() {
             atol: tol,
             ..Default::default()
         };
-        row("DOPRI5", &format!("{tol:.0e}"), &a, &reference, || {
-            passage::solve(
-                &Dopri5::new(opts),
-                &a,
-                0.0,
-                y0,
-                T1,
-                &[],
-                &Settings::new(tol),
-            )
-            .map(|p| (p.solution, p.passages.len()))
-        });
+        row(
+            &args,
+            "DOPRI5",
+            &format!("{tol:.0e}"),
+            &a,
+            &reference,
+            || {
+                passage::solve(
+                    &Dopri5::new(opts),
+                    &a,
+                    0.0,
+                    y0,
+                    T1,
+                    &[],
+                    &Settings::new(tol),
+                )
+                .map(|p| (p.solution, p.passages.len()))
+            },
+        );
     }
     // The other explicit methods at the settings that meet the benchmark's 1e-3 (or nearly).
-    let explicit = tolerances(if quick { &[1e-6] } else { &[1e-6, 1e-7] });
+    let explicit = args.tolerances(if quick { &[1e-6] } else { &[1e-6, 1e-7] });
     for &tol in &explicit {
         let opts = Options {
             rtol: tol,
@@ -139,16 +162,23 @@ fn main() {
             ..Default::default()
         };
         let settings = Settings::new(tol);
-        row("DOP853", &format!("{tol:.0e}"), &a, &reference, || {
-            passage::solve(&Dop853::new(opts.clone()), &a, 0.0, y0, T1, &[], &settings)
-                .map(|p| (p.solution, p.passages.len()))
-        });
-        row("Auto", &format!("{tol:.0e}"), &a, &reference, || {
+        row(
+            &args,
+            "DOP853",
+            &format!("{tol:.0e}"),
+            &a,
+            &reference,
+            || {
+                passage::solve(&Dop853::new(opts.clone()), &a, 0.0, y0, T1, &[], &settings)
+                    .map(|p| (p.solution, p.passages.len()))
+            },
+        );
+        row(&args, "Auto", &format!("{tol:.0e}"), &a, &reference, || {
             passage::solve(&Auto::new(opts), &a, 0.0, y0, T1, &[], &settings)
                 .map(|p| (p.solution, p.passages.len()))
         });
     }
-    let radau = tolerances(if quick {
+    let radau = args.tolerances(if quick {
         &[1e-6]
     } else {
         &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10]
@@ -159,18 +189,25 @@ fn main() {
             atol: tol,
             ..Default::default()
         };
-        row("Radau5", &format!("{tol:.0e}"), &a, &reference, || {
-            passage::solve(
-                &Radau5::new(opts),
-                &a,
-                0.0,
-                y0,
-                T1,
-                &[],
-                &Settings::new(tol),
-            )
-            .map(|p| (p.solution, p.passages.len()))
-        });
+        row(
+            &args,
+            "Radau5",
+            &format!("{tol:.0e}"),
+            &a,
+            &reference,
+            || {
+                passage::solve(
+                    &Radau5::new(opts),
+                    &a,
+                    0.0,
+                    y0,
+                    T1,
+                    &[],
+                    &Settings::new(tol),
+                )
+                .map(|p| (p.solution, p.passages.len()))
+            },
+        );
     }
     let ali3: &[f64] = if quick {
         &[1e-2, 1e-3]
@@ -180,25 +217,45 @@ fn main() {
     for &h in ali3 {
         let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
         let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
-        row("ALI3-P", &format!("h={h:.0e}"), &a, &reference, || {
-            Ali3::new(h)
-                .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
-                .map(|s| (s, 0))
-        });
+        row(
+            &args,
+            "ALI3-P",
+            &format!("h={h:.0e}"),
+            &a,
+            &reference,
+            || {
+                Ali3::new(h)
+                    .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
+                    .map(|s| (s, 0))
+            },
+        );
     }
     let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };
     for &h in alpha {
-        row("gen-a", &format!("h={h:.0e}"), &a, &reference, || {
-            passage::solve_generalized_alpha::<_, { fa::N }, { fa::M }, { fa::N + fa::M }, { fa::D }>(
-                &GeneralizedAlpha::new(0.9, h),
-                &a,
-                0.0,
-                y0,
-                T1,
-                &[],
-                &Settings::new(h * h),
-            )
-            .map(|p| (p.solution, p.passages.len()))
-        });
+        row(
+            &args,
+            "gen-a",
+            &format!("h={h:.0e}"),
+            &a,
+            &reference,
+            || {
+                passage::solve_generalized_alpha::<
+                    _,
+                    { fa::N },
+                    { fa::M },
+                    { fa::N + fa::M },
+                    { fa::D },
+                >(
+                    &GeneralizedAlpha::new(0.9, h),
+                    &a,
+                    0.0,
+                    y0,
+                    T1,
+                    &[],
+                    &Settings::new(h * h),
+                )
+                .map(|p| (p.solution, p.passages.len()))
+            },
+        );
     }
 }
