@@ -179,11 +179,23 @@ impl GeneralizedAlpha {
         let chart = Chart {
             margin: |t: f64, y: &Vector<D>| sys.chart_margin(t, &y.fixed_rows::<N>(0).into_owned()),
             explain: |t: f64, y: &Vector<D>| {
-                let (q, qd) = (y.fixed_rows::<N>(0).into_owned(), y.fixed_rows::<N>(N).into_owned());
+                let (q, qd) = (
+                    y.fixed_rows::<N>(0).into_owned(),
+                    y.fixed_rows::<N>(N).into_owned(),
+                );
                 sys.acceleration(t, &q, &qd).err()
             },
         };
-        self.run::<N, N, D>(start, t1, events, observer, stack, residual, no_structure(), chart)
+        self.run::<N, N, D>(
+            start,
+            t1,
+            events,
+            observer,
+            stack,
+            residual,
+            no_structure(),
+            chart,
+        )
     }
 
     /// Integrate a closed loop in index-3 form (`A = N + M` unknowns `(q1, lambda1)` per
@@ -295,7 +307,10 @@ impl GeneralizedAlpha {
         pack: impl Fn(&Vector<N>, &Vector<N>) -> Vector<D>,
         residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
         structure: Option<impl Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>>,
-        chart: Chart<impl Fn(f64, &Vector<D>) -> Option<f64>, impl Fn(f64, &Vector<D>) -> Option<Error>>,
+        chart: Chart<
+            impl Fn(f64, &Vector<D>) -> Option<f64>,
+            impl Fn(f64, &Vector<D>) -> Option<Error>,
+        >,
     ) -> Result<Solution<D>> {
         let Start {
             t0,
@@ -378,10 +393,11 @@ impl GeneralizedAlpha {
                 &residual,
                 &mut stats,
             );
-            // Newton failing on its way to a limit position: the position, not the solver.
+            // Newton failing on its way to a limit position (within the next step): the
+            // position, not the solver.
             z = solved.map_err(|e| {
                 let margin = |y: &Vector<D>| (chart.margin)(t_next, y);
-                match watch.passed(t_next, &margin) {
+                match watch.passed(t_next + h, &margin) {
                     Some((ts, yb)) => passed_limit(ts, &yb, (chart.explain)(ts, &yb)),
                     None => e,
                 }
@@ -731,8 +747,16 @@ impl Integrator for GeneralizedAlpha {
             margin: |t: f64, y: &Vector<D>| sys.chart_margin(t, y),
             explain: |t: f64, y: &Vector<D>| sys.rhs(t, y).err(),
         };
-        let run =
-            self.run::<D, D, D>(start, t1, events, observer, pack, residual, no_structure(), chart);
+        let run = self.run::<D, D, D>(
+            start,
+            t1,
+            events,
+            observer,
+            pack,
+            residual,
+            no_structure(),
+            chart,
+        );
         match (run, failure.take()) {
             (Err(_), Some(e)) => Err(e),
             (run, _) => run.map(|mut s| {

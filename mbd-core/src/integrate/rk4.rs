@@ -117,7 +117,11 @@ impl Integrator for Rk4 {
             }
             // A limit position stepped over (stages inside the domain) stops the run.
             if let Some((ts, yb)) = chart.accept(t_new, &y1, |y| sys.chart_margin(t_new, y)) {
-                return Err(crate::closure::passed_limit(ts, &yb, sys.rhs(ts, &yb).err()));
+                return Err(crate::closure::passed_limit(
+                    ts,
+                    &yb,
+                    sys.rhs(ts, &yb).err(),
+                ));
             }
             let flow = rec.accept_with(t_new, &y1, || Segment::hermite(t, h, &y, &k[0], &y1, &f1));
             (t, y, k[0]) = (t_new, y1, f1);
