@@ -98,7 +98,7 @@ impl<const D: usize> ChartWatch<D> {
         let [(t0, m0, _), (t1, m1, _), (t2, m2, _)] = [w[0], w[1], w[2]];
         let (d01, d12) = ((m1 - m0) / (t1 - t0), (m2 - m1) / (t2 - t1));
         let curv = (d12 - d01) / (t2 - t0);
-        if !(curv > 0.0) {
+        if curv.is_nan() || curv <= 0.0 {
             return None;
         }
         let ts = 0.5 * (t0 + t1) - d01 / (2.0 * curv);
@@ -106,7 +106,7 @@ impl<const D: usize> ChartWatch<D> {
             return None;
         }
         let ms = m0 + d01 * (ts - t0) + curv * (ts - t0) * (ts - t1);
-        if ms > curv * (t2 - t0) * (t2 - t0) {
+        if ms.is_nan() || ms > curv * (t2 - t0) * (t2 - t0) {
             return None;
         }
         // The state at t* (the quadratic through the three), then out along the path.
@@ -128,11 +128,11 @@ impl<const D: usize> ChartWatch<D> {
         let at = |s: f64| ys + dir * s;
         let m = |s: f64| margin(&at(s)).unwrap_or(f64::NAN);
         let (mut inside, mut outside) = (0.0, 1e-3);
-        if !(m(0.0) > 0.0) {
+        if m(0.0).is_nan() || m(0.0) <= 0.0 {
             return *ys;
         }
         for _ in 0..60 {
-            if !(m(outside) > 0.0) {
+            if m(outside).is_nan() || m(outside) <= 0.0 {
                 break;
             }
             (inside, outside) = (outside, 2.0 * outside);
@@ -182,5 +182,44 @@ mod tests {
                 other => panic!("{bad}: {other:?}"),
             }
         }
+    }
+
+    /// A path that touches the chart's edge and reflects (`m = (t - 1)^2`, `y = 1 + m`
+    /// with the margin `y - 1`) is caught at `t = 1` with the state at the edge; a turn
+    /// whose margin stays at `0.5` is not, at the same steps.
+    #[test]
+    fn a_reflection_at_the_edge_is_caught_and_a_turn_inside_is_not() {
+        let margin = |y: &Vector<1>| Some(y[0] - 1.0);
+        for (floor, caught) in [(0.0, true), (0.5, false)] {
+            let mut watch = ChartWatch::<1>::default();
+            let mut found = None;
+            for k in 0..20 {
+                let t = 0.7 + 0.05 * k as f64;
+                let y = Vector::<1>::new(1.0 + floor + (t - 1.0) * (t - 1.0));
+                found = found.or(watch.accept(t, &y, margin));
+            }
+            match found {
+                Some((ts, yb)) => {
+                    assert!(caught && (ts - 1.0).abs() < 1e-12, "{ts}");
+                    assert!(yb[0] <= 1.0 && yb[0] > 1.0 - 1e-12, "{yb}");
+                }
+                None => assert!(!caught),
+            }
+        }
+        // No chart: the margin is asked once.
+        let asked = std::cell::Cell::new(0);
+        let mut watch = ChartWatch::<1>::default();
+        for k in 0..5 {
+            let none = |_: &Vector<1>| {
+                asked.set(asked.get() + 1);
+                None
+            };
+            assert!(
+                watch
+                    .accept(k as f64, &Vector::<1>::zeros(), none)
+                    .is_none()
+            );
+        }
+        assert_eq!(asked.get(), 1);
     }
 }

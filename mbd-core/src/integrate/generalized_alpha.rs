@@ -539,8 +539,6 @@ const STALL: f64 = 1e3;
 /// ([`crate::banded::SaddleLu`]), smaller ones dense.
 const BANDED_FROM: usize = 24;
 
-/// No structure: the forward-difference matrix.
-#[allow(clippy::type_complexity, reason = "the structure argument's type")]
 /// A minimal loop's closed-form chart, watched for a limit position stepped over
 /// ([`ChartWatch`]): its margin at a state `y = [q; qd]`, and the model's own error there.
 struct Chart<M, E> {
@@ -558,6 +556,8 @@ fn no_chart<const D: usize>()
     }
 }
 
+/// No structure: the forward-difference matrix.
+#[allow(clippy::type_complexity, reason = "the structure argument's type")]
 fn no_structure<const N: usize, const K: usize>()
 -> Option<fn(f64, &Vector<N>, f64) -> Option<Factor<K>>> {
     None
