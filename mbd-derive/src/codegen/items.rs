@@ -432,6 +432,11 @@ fn ode_impl(
                 #onto_constraints
                 Ok(())
             }
+        }
+    });
+    // Only a model with constraints is its own bridge (a ball joint's charts alone are not).
+    let passage = constrained.then(|| {
+        quote! {
             fn passage(&self) -> ::core::option::Option<&dyn ::mbd::__private::passage::Bridge<#d>> {
                 ::core::option::Option::Some(self)
             }
@@ -478,6 +483,7 @@ fn ode_impl(
             }
             #jacobian
             #project
+            #passage
             #margin
         }
         #bridge
