@@ -43,6 +43,12 @@ pub trait OdeSystem<const D: usize> {
     fn passage(&self) -> Option<&dyn crate::passage::Bridge<D>> {
         None
     }
+
+    /// [`Mechanism::chart_margin`] at `y = [q; qd]`; `None` (the default) for systems
+    /// without closed-form closures.
+    fn chart_margin(&self, _t: f64, _y: &Vector<D>) -> Option<f64> {
+        None
+    }
 }
 
 /// A mechanism in minimal coordinates: `M(q, t) qdd = f(q, qd, t)`, plus constraints when
@@ -67,6 +73,15 @@ pub trait Mechanism<const N: usize> {
     /// Total mechanical energy: kinetic plus the potential of gravity and springs. Conserved
     /// by a model without dampers, friction, loads or drives; the stress suite watches it.
     fn energy(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> f64;
+
+    /// For a closed loop reduced to minimal coordinates by closed forms: how far `q` lies
+    /// inside the closed forms' domain (`min (1 - |u|)` over their `asin`/`acos` arguments
+    /// `u`; zero at a limit position, negative outside). Fixed-step integrators watch it to
+    /// stop at a limit position their stages stepped over ([`crate::closure::ChartWatch`]).
+    /// `None` (the default) for models without closed-form closures.
+    fn chart_margin(&self, _t: f64, _q: &Vector<N>) -> Option<f64> {
+        None
+    }
 
     /// Inverse dynamics: the generalised forces `M qdd - f` that must act besides the
     /// model's own (gravity, springs, dampers, loads) for the accelerations `qdd` (before

@@ -273,6 +273,34 @@ fn closure_check(eq: &Equations, n: usize) -> Option<TokenStream> {
     Some(quote!({ #s #(#checks)* }))
 }
 
+/// `Mechanism::chart_margin` and its `OdeSystem` twin for minimal coordinates of a closed
+/// loop: `min (1 - |u|)` over the closed forms' `asin`/`acos` arguments `u` (see
+/// [`closure_check`]), which fixed-step integrators watch for a limit position.
+fn chart_margin(eq: &Equations, n: usize) -> Option<(TokenStream, TokenStream)> {
+    let domain = eq.closure_domain.as_ref().filter(|d| !d.is_empty())?;
+    let args: Vec<Expr> = domain.iter().map(|d| d.arg).collect();
+    let b = Block::new(eq, &args);
+    let s = b.stmts();
+    let margins = domain.iter().map(|d| {
+        let arg = b.leaf(d.arg);
+        quote!(1.0 - f64::abs(#arg))
+    });
+    let v = quote!(::mbd::__private::Vector);
+    let mechanism = quote! {
+        fn chart_margin(&self, t: f64, q: &#v<#n>) -> ::std::option::Option<f64> {
+            #s
+            Some(f64::INFINITY #(.min(#margins))*)
+        }
+    };
+    let d = 2 * n;
+    let ode = quote! {
+        fn chart_margin(&self, t: f64, y: &#v<#d>) -> ::std::option::Option<f64> {
+            ::mbd::__private::Mechanism::<#n>::chart_margin(self, t, &y.fixed_rows::<#n>(0).into_owned())
+        }
+    };
+    Some((mechanism, ode))
+}
+
 /// Reorders a schedule so that the nodes of parameters and constants alone come first (a
 /// stable partition, so children still precede parents): they do not wait for the state,
 /// so a quotient of parameters overlaps a `sin` call instead of following it, and a loop's

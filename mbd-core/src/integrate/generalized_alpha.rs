@@ -31,6 +31,7 @@
 use super::{Integrator, positive_finite, second_order_end_packed, stack};
 use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
 use crate::banded::SaddleLu;
+use crate::closure::{ChartWatch, passed_limit};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
 use crate::integrate::solution::Flow;
@@ -175,7 +176,26 @@ impl GeneralizedAlpha {
             z0: q0,
         };
         const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
-        self.run::<N, N, D>(start, t1, events, observer, stack, residual, no_structure())
+        let chart = Chart {
+            margin: |t: f64, y: &Vector<D>| sys.chart_margin(t, &y.fixed_rows::<N>(0).into_owned()),
+            explain: |t: f64, y: &Vector<D>| {
+                let (q, qd) = (
+                    y.fixed_rows::<N>(0).into_owned(),
+                    y.fixed_rows::<N>(N).into_owned(),
+                );
+                sys.acceleration(t, &q, &qd).err()
+            },
+        };
+        self.run::<N, N, D>(
+            start,
+            t1,
+            events,
+            observer,
+            stack,
+            residual,
+            no_structure(),
+            chart,
+        )
     }
 
     /// Integrate a closed loop in index-3 form (`A = N + M` unknowns `(q1, lambda1)` per
@@ -264,6 +284,7 @@ impl GeneralizedAlpha {
                 r
             },
             Some(structure),
+            no_chart(),
         )
     }
 
@@ -286,6 +307,10 @@ impl GeneralizedAlpha {
         pack: impl Fn(&Vector<N>, &Vector<N>) -> Vector<D>,
         residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
         structure: Option<impl Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>>,
+        chart: Chart<
+            impl Fn(f64, &Vector<D>) -> Option<f64>,
+            impl Fn(f64, &Vector<D>) -> Option<Error>,
+        >,
     ) -> Result<Solution<D>> {
         let Start {
             t0,
@@ -329,6 +354,7 @@ impl GeneralizedAlpha {
             structure,
             structured: true,
         };
+        let mut watch = ChartWatch::<D>::default();
         for k in 0..steps {
             let t = t0 + k as f64 * h;
             let t_next = if k + 1 == steps {
@@ -359,19 +385,31 @@ impl GeneralizedAlpha {
                 c1: (1.0 - c.alpha_m) / (1.0 - c.alpha_f),
                 v_gain: c.gamma / (c.beta * h),
             };
-            z = self.newton(
+            let solved = self.newton(
                 &mut newton,
                 &step,
                 z,
                 |d| kinematics(d),
                 &residual,
                 &mut stats,
-            )?;
+            );
+            // Newton failing on its way to a limit position (within the next step): the
+            // position, not the solver.
+            z = solved.map_err(|e| {
+                let margin = |y: &Vector<D>| (chart.margin)(t_next, y);
+                match watch.passed(t_next + h, &margin) {
+                    Some((ts, yb)) => passed_limit(ts, &yb, (chart.explain)(ts, &yb)),
+                    None => e,
+                }
+            })?;
             let (q1, a1, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
             let (y1, seg) =
                 second_order_end_packed(&pack, t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
             stats.n_steps += 1;
             stats.n_accepted += 1;
+            if let Some((ts, yb)) = watch.accept(t_next, &y1, |y| (chart.margin)(t_next, y)) {
+                return Err(passed_limit(ts, &yb, (chart.explain)(ts, &yb)));
+            }
             (q, qd, qdd, a) = (q1, qd1, qdd1, a1);
             if recorder.accept(seg, &y1) == Flow::Stop {
                 break;
@@ -500,6 +538,23 @@ const STALL: f64 = 1e3;
 /// Saddle-point systems larger than this (`N + M`) are factored banded
 /// ([`crate::banded::SaddleLu`]), smaller ones dense.
 const BANDED_FROM: usize = 24;
+
+/// A minimal loop's closed-form chart, watched for a limit position stepped over
+/// ([`ChartWatch`]): its margin at a state `y = [q; qd]`, and the model's own error there.
+struct Chart<M, E> {
+    margin: M,
+    explain: E,
+}
+
+/// No chart: constrained (index-3) loops keep all their coordinates.
+#[allow(clippy::type_complexity, reason = "the two closures' types")]
+fn no_chart<const D: usize>()
+-> Chart<impl Fn(f64, &Vector<D>) -> Option<f64>, impl Fn(f64, &Vector<D>) -> Option<Error>> {
+    Chart {
+        margin: |_: f64, _: &Vector<D>| None,
+        explain: |_: f64, _: &Vector<D>| None,
+    }
+}
 
 /// No structure: the forward-difference matrix.
 #[allow(clippy::type_complexity, reason = "the structure argument's type")]
@@ -688,7 +743,20 @@ impl Integrator for GeneralizedAlpha {
             qdd0,
             z0: q0,
         };
-        let run = self.run::<D, D, D>(start, t1, events, observer, pack, residual, no_structure());
+        let chart = Chart {
+            margin: |t: f64, y: &Vector<D>| sys.chart_margin(t, y),
+            explain: |t: f64, y: &Vector<D>| sys.rhs(t, y).err(),
+        };
+        let run = self.run::<D, D, D>(
+            start,
+            t1,
+            events,
+            observer,
+            pack,
+            residual,
+            no_structure(),
+            chart,
+        );
         match (run, failure.take()) {
             (Err(_), Some(e)) => Err(e),
             (run, _) => run.map(|mut s| {

@@ -11,7 +11,8 @@ use crate::model::{OdeSystem, Vector};
 /// Classic RK4 with a fixed step `h` (the last step is shortened to end exactly at `t1`)
 /// and cubic Hermite dense output ([`Segment::hermite`]). The end derivative of one step is
 /// the first stage of the next, so the dense output costs one extra `rhs` call per run.
-/// [`OdeSystem::project`] is called after every step (its default does nothing).
+/// [`OdeSystem::project`] is called after every step (its default does nothing); a limit
+/// position of a loop's closed forms stepped over stops the run ([`crate::closure::ChartWatch`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rk4 {
     /// Step size.
@@ -79,6 +80,7 @@ impl Integrator for Rk4 {
         let (mut t, mut y) = (t0, y0);
         let mut k = [Vector::<D>::zeros(); 4];
         let mut z = [Vector::<D>::zeros(); 4];
+        let mut chart = crate::closure::ChartWatch::<D>::default();
         if n > 0 {
             k[0] = sys.rhs(t0, &y0)?;
             stats.n_rhs += 1;
@@ -112,6 +114,14 @@ impl Integrator for Rk4 {
             stats.n_rhs += 1;
             if non_finite(&f1) {
                 return Err(Error::NonFinite { t: t_new });
+            }
+            // A limit position stepped over (stages inside the domain) stops the run.
+            if let Some((ts, yb)) = chart.accept(t_new, &y1, |y| sys.chart_margin(t_new, y)) {
+                return Err(crate::closure::passed_limit(
+                    ts,
+                    &yb,
+                    sys.rhs(ts, &yb).err(),
+                ));
             }
             let flow = rec.accept_with(t_new, &y1, || Segment::hermite(t, h, &y, &k[0], &y1, &f1));
             (t, y, k[0]) = (t_new, y1, f1);

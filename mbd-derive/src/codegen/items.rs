@@ -2,7 +2,9 @@
 //! impls, outputs, events, the friction views, the typed state and `GENERATED`. Each
 //! function builds one item from the equations and the shared `Shape`.
 
-use super::{Block, closure_check, mass_matrix_body, parameter_checks, rolled_recursion, uses};
+use super::{
+    Block, chart_margin, closure_check, mass_matrix_body, parameter_checks, rolled_recursion, uses,
+};
 use crate::model::{Equations, Role};
 use crate::parse::{Direction, Mechanism};
 use crate::sym::Expr;
@@ -31,6 +33,8 @@ struct Shape<'a> {
     nf: usize,
     split: TokenStream,
     check: Option<TokenStream>,
+    /// `chart_margin` for `Mechanism` and `OdeSystem` (minimal closed loops).
+    margin: Option<(TokenStream, TokenStream)>,
     direction: Option<TokenStream>,
     solve_qdd_lambda: TokenStream,
     parts: Parts,
@@ -123,6 +127,7 @@ impl<'a> Shape<'a> {
             nf,
             split,
             check,
+            margin: chart_margin(eq, n),
             direction,
             solve_qdd_lambda,
             parts,
@@ -272,6 +277,7 @@ fn mechanism_impl(
     let (ident, n) = (sh.ident, sh.n);
     let coord_names: Vec<String> = eq.free.iter().map(|c| c.to_string()).collect();
     let (check, direction) = (&sh.check, &sh.direction);
+    let margin = sh.margin.as_ref().map(|(m, _)| m);
     let (mass_matrix, forces_body, energy) = (&accel.mass_matrix, &accel.forces, &accel.energy);
     let (acceleration, inverse) = (&accel.body, &accel.inverse);
     // A one-coordinate acceleration is a few operations: called out of line from another
@@ -300,6 +306,7 @@ fn mechanism_impl(
             fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
                 #energy
             }
+            #margin
             #inverse
         }
     }
@@ -417,6 +424,7 @@ fn ode_impl(
         quote!(::mbd::__private::analysis::projection::project_state::<Self, #n, #m, #d>(self, t, y)?;)
     });
     let charts = &sh.charts;
+    let margin = sh.margin.as_ref().map(|(_, o)| o);
     let project = (constrained || charts.is_some()).then(|| {
         quote! {
             fn project(&self, t: f64, y: &mut ::mbd::__private::Vector<#d>) -> ::mbd::__private::Result<()> {
@@ -424,6 +432,11 @@ fn ode_impl(
                 #onto_constraints
                 Ok(())
             }
+        }
+    });
+    // Only a model with constraints is its own bridge (a ball joint's charts alone are not).
+    let passage = constrained.then(|| {
+        quote! {
             fn passage(&self) -> ::core::option::Option<&dyn ::mbd::__private::passage::Bridge<#d>> {
                 ::core::option::Option::Some(self)
             }
@@ -470,6 +483,8 @@ fn ode_impl(
             }
             #jacobian
             #project
+            #passage
+            #margin
         }
         #bridge
     }
