@@ -28,8 +28,9 @@
 //! integrator was asked, also when it stepped across without noticing
 //! ([`crate::analysis::check_passages`]).
 
+use crate::analysis::projection::metric_correction;
 use crate::analysis::redundancy::{pivot_remainders, rank_with};
-use crate::analysis::{check_passages, rank_and_redundant};
+use crate::analysis::{check_passages, max_norm, rank_and_redundant};
 use crate::error::{Error, Num, Result};
 use crate::integrate::{
     Dopri5, Event, Flow, GeneralizedAlpha, Integrator, Options, Record, Recorder, Segment,
@@ -246,6 +247,7 @@ where
     const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
     crate::integrate::positive_finite("tol", settings.tol)?;
     crate::integrate::validate_problem(t0, &y0, t1)?;
+    check_start::<S, N, M, D>(sys, t0, &y0)?;
     let (rank0, redundant0) = rank_and_redundant(&sys.phi_q(t0, &split::<N, D>(&y0).0));
     let mut out: Option<Solution<D>> = None;
     let mut passages: Vec<Passage> = Vec::new();
@@ -634,6 +636,40 @@ fn add(s: &mut Stats, p: Stats) {
     s.n_steps += p.n_steps;
     s.n_accepted += p.n_accepted;
     s.n_rejected += p.n_rejected;
+}
+
+/// How far off its constraints a start may be, relative to its size: a start further off is
+/// refused rather than projected after the first step, out of sight of the caller.
+const START_TOL: f64 = 1e-8;
+
+/// The start must lie on the position and velocity constraints: the least `M`-norm
+/// correction that would put it there is at most [`START_TOL`] of its size.
+fn check_start<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+) -> Result<()> {
+    let (q, qd) = split::<N, D>(y);
+    let jac = sys.phi_q(t, &q);
+    let position = sys.phi(t, &q);
+    let velocity = jac * qd + sys.phi_t(t, &q);
+    for (what, r, x) in [("positions", position, q), ("velocities", velocity, qd)] {
+        let dx = metric_correction(sys, t, &q, &jac, &r)?;
+        let (off, size) = (max_norm(&dx), max_norm(&x));
+        if off > START_TOL * (1.0 + size) {
+            let row = r.iamax();
+            return Err(Error::InvalidInput {
+                what: "initial state",
+                detail: format!(
+                    "its {what} are off the constraints (row {row} by {:.3e}; a correction of \
+                     {off:.3e} against a size of {size:.3e}): assemble the start first \
+                     (`mbd::analysis::assemble`, or the model's `initial_state`)",
+                    r[row]
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 fn split<const N: usize, const D: usize>(y: &Vector<D>) -> (Vector<N>, Vector<N>) {

@@ -374,13 +374,10 @@ fn non_grashof_four_bar_stops_at_its_limit_position_with_a_typed_error() {
     }
 }
 
-/// Defect left for the lead: with RK4 at steps whose stages happen not to land past the
-/// limit, the state's crank angle turns back on the same branch (the rocker reverses with
-/// no cause) and the run returns `Ok` (h = 2e-2 ends at the limit, h = 1e-3 and 2e-3 run on
-/// to the opposite limit at t = 3.3 .. 6.3 s); generalized-alpha ends with `NewtonFailed`,
-/// which does not name the position.
+/// Fixed steps whose stages happen not to land past the limit would turn the crank back on
+/// the same branch (the rocker reversing with no cause): RK4 and generalized-alpha must stop
+/// at the limit with the same typed error as the adaptive methods.
 #[test]
-#[ignore = "defect: fixed-step methods reflect silently at a minimal loop's limit position"]
 fn non_grashof_four_bar_fixed_step_methods_stop_at_the_limit_too() {
     let y0 = TRIPLE.initial_state();
     for h in [2e-2, 2e-3, 1e-3] {
