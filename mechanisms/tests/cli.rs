@@ -20,10 +20,16 @@ fn validate_refuses_a_case_outside_the_manual() {
 
 #[test]
 fn validate_refuses_an_unwritable_output_directory_before_running() {
+    // A directory cannot be made under a regular file, on any platform.
+    let file = std::env::temp_dir().join(format!("mbd-cli-not-a-dir-{}", std::process::id()));
+    std::fs::write(&file, b"").expect("a scratch file");
+    let out_dir = file.join("report");
     let out = Command::new(env!("CARGO_BIN_EXE_validate"))
-        .args(["--out", "/proc/no-such-dir/report"])
+        .arg("--out")
+        .arg(&out_dir)
         .output()
         .expect("the binary runs");
+    std::fs::remove_file(&file).ok();
     assert_eq!(out.status.code(), Some(2));
     // No case ran: each prints a progress line `[i/30] case ..` first.
     let stderr = String::from_utf8_lossy(&out.stderr);

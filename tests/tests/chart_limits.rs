@@ -1,4 +1,4 @@
-//! Fixed-step methods at a limit position of a loop reduced to minimal coordinates by closed
+//! Every method at a limit position of a loop reduced to minimal coordinates by closed
 //! forms (issue 14: no silent branch switch; a typed error naming the position).
 //!
 //! Four-bar `(a, b, c, d)`: crank `th` about the origin, coupler `be`, rocker `ga` about
@@ -7,9 +7,8 @@
 //! `ga' = kg th'`; with one coordinate, Lagrange's equation is
 //! `J th'' + J'(th) th'^2 / 2 + V'(th) = 0`, `J = sum m |dp/dth|^2 + I (dphi/dth)^2` over the
 //! bodies, `V` gravity's potential; `J'` by a central difference of the analytic `J`.
-//! (Model and helpers as in the new-user loop tests.)
 
-use mbd::integrate::{GeneralizedAlpha, Integrator, Rk4};
+use mbd::integrate::{Dop853, Dopri5, GeneralizedAlpha, Integrator, Options, Radau5, Rk4};
 use mbd::prelude::*;
 use std::f64::consts::PI;
 
@@ -326,4 +325,31 @@ fn a_physical_turning_point_is_no_limit_position() {
         (th_max - th1).abs() < 1e-2,
         "generalized-alpha: turned at {th_max}, want {th1}"
     );
+}
+
+/// The adaptive methods stop at the limit because a stage lands past it.
+#[test]
+fn non_grashof_four_bar_stops_at_its_limit_position_with_a_typed_error() {
+    assert_eq!(TripleRocker::COORDINATES, ["th"]);
+    let (be, ga) = ROCKER.close(PI, 1.0);
+    assert!((be - 0.5235983011156989).abs() < 1e-12 && (ga - 2.0931125762773357).abs() < 1e-12);
+    let y0 = TRIPLE.initial_state();
+    for tol in [1e-6, 1e-10] {
+        let opts = Options {
+            rtol: tol,
+            atol: tol,
+            ..Options::default()
+        };
+        let t_tol = if tol > 1e-8 { 1e-2 } else { 1e-4 };
+        let dopri = Dopri5::new(opts.clone()).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(dopri, "DOPRI5", t_tol);
+        let dop853 = Dop853::new(opts.clone()).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(dop853, "DOP853", t_tol);
+        let radau = Radau5::new(opts).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(radau, "Radau5", t_tol);
+    }
+    for h in [1e-4, 5e-3] {
+        let rk4 = Rk4::new(h).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(rk4, "RK4", 1e-2);
+    }
 }
