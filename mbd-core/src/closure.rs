@@ -19,6 +19,52 @@ pub fn check_domain(t: f64, arg: f64, coord: &str, names: &[&str], q: &[f64]) ->
     }
 }
 
+/// A one-coordinate acceleration `a = f / m` of minimal coordinates with every check in one
+/// branch on values the body computed anyway: `m` positive and finite, `a` finite, each
+/// closed-form argument `args[k]` strictly inside `(-1, 1)`. Otherwise the error, in the
+/// order the separate checks gave it: the first argument outside its domain
+/// (`SingularPosition` naming `coords[k]`), then the mass, then `NonFinite`.
+#[inline(always)]
+pub fn one_coordinate_in_domain<const K: usize>(
+    t: f64,
+    m: f64,
+    a: f64,
+    args: [f64; K],
+    coords: [&str; K],
+    names: &[&str],
+    q: &[f64],
+) -> Result<Vector<1>> {
+    // `&` on the comparisons (not `&&`): one branch; NaN fails every comparison.
+    let inside = args.iter().fold(true, |ok, u| ok & (u.abs() < 1.0));
+    if inside & (m > 0.0) & (m < f64::INFINITY) & (a.abs() < f64::INFINITY) {
+        Ok(Vector::<1>::new(a))
+    } else {
+        Err(one_coordinate_failure(t, m, a, &args, &coords, names, q))
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn one_coordinate_failure(
+    t: f64,
+    m: f64,
+    a: f64,
+    args: &[f64],
+    coords: &[&str],
+    names: &[&str],
+    q: &[f64],
+) -> Error {
+    for (&u, coord) in args.iter().zip(coords) {
+        if let Err(e) = check_domain(t, u, coord, names, q) {
+            return e;
+        }
+    }
+    match crate::solve::one_coordinate(t, m, a) {
+        Err(e) => e,
+        Ok(_) => Error::NonFinite { t },
+    }
+}
+
 #[cold]
 fn singular(t: f64, arg: f64, coord: &str, names: &[&str], q: &[f64]) -> Error {
     let config: Vec<String> = names

@@ -261,7 +261,22 @@ fn closure_check(eq: &Equations, n: usize) -> Option<TokenStream> {
     let domain = eq.closure_domain.as_ref().filter(|d| !d.is_empty())?;
     let args: Vec<Expr> = domain.iter().map(|d| d.arg).collect();
     let b = Block::new(eq, &args);
-    let s = b.stmts();
+    let (s, checks) = (b.stmts(), domain_checks(&b, domain, n));
+    Some(quote!({ #s #checks }))
+}
+
+/// The closed loop's domain arguments when `acceleration`'s body checks them itself
+/// (`inline`: its block computes them beside `M` and `f`, so that a dependent angle's
+/// `sin u` is not evaluated again, apart, by the platform's `sin`); else none.
+fn closure_domain(eq: &Equations, inline: bool) -> &[crate::closure::Domain] {
+    match &eq.closure_domain {
+        Some(d) if inline => d,
+        _ => &[],
+    }
+}
+
+/// [`closure_check`]'s checks on the arguments `b` bound (`q` in scope), before the solve.
+fn domain_checks(b: &Block<'_>, domain: &[crate::closure::Domain], n: usize) -> TokenStream {
     let checks = domain.iter().map(|d| {
         let (arg, coord) = (b.leaf(d.arg), &d.coord);
         quote! {
@@ -270,7 +285,7 @@ fn closure_check(eq: &Equations, n: usize) -> Option<TokenStream> {
                 .map_err(|e| self.diagnose(e))?;
         }
     });
-    Some(quote!({ #s #(#checks)* }))
+    quote!(#(#checks)*)
 }
 
 /// `Mechanism::chart_margin` and its `OdeSystem` twin for minimal coordinates of a closed

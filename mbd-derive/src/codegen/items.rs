@@ -3,7 +3,8 @@
 //! function builds one item from the equations and the shared `Shape`.
 
 use super::{
-    Block, chart_margin, closure_check, mass_matrix_body, parameter_checks, rolled_recursion, uses,
+    Block, chart_margin, closure_check, closure_domain, domain_checks, mass_matrix_body,
+    parameter_checks, rolled_recursion, uses,
 };
 use crate::model::{Equations, Role};
 use crate::parse::{Direction, Mechanism};
@@ -147,6 +148,9 @@ struct Acceleration {
     recursion: Option<TokenStream>,
     friction_acceleration: Option<TokenStream>,
     body: TokenStream,
+    /// Whether `body` makes the closed loop's domain checks itself (else `acceleration`
+    /// appends [`closure_check`]'s).
+    checked: bool,
     /// Statements of `mass_matrix`, `forces` and `energy`.
     statements: usize,
     /// `inverse_dynamics` by recursive Newton-Euler (a pure joint tree).
@@ -166,13 +170,18 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
         .collect();
     // (Only where the acceleration is a mass-matrix solve.)
     let mass_solve = eq.recursive_qdd.is_none() && eq.single_qdd.is_none() && !constrained;
-    let (mf_stmts, mass_fill, force_fill) = if mass_solve {
-        let mf = Block::new(eq, &mf_roots);
+    // A closed loop's domain checks, on the arguments the body computes anyway.
+    let domain = closure_domain(eq, mass_solve || eq.single_qdd.is_some());
+    let args: Vec<Expr> = domain.iter().map(|d| d.arg).collect();
+    let (mf_stmts, mass_fill, force_fill, domain_checks) = if mass_solve {
+        let roots: Vec<Expr> = mf_roots.iter().chain(&args).copied().collect();
+        let mf = Block::new(eq, &roots);
         parts.statements += mf.len();
         (
             mf.stmts(),
             mf.matrix("mass", n, n, &eq.mass),
             mf.vector("f", n, &eq.forces),
+            domain_checks(&mf, domain, n),
         )
     } else {
         Default::default()
@@ -215,17 +224,27 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
         }
     } else if let Some(qdd) = eq.single_qdd {
         let mass = eq.mass[0][0];
-        let b = Block::new(eq, &[mass, qdd]);
+        let roots: Vec<Expr> = [mass, qdd].into_iter().chain(args).collect();
+        let b = Block::new(eq, &roots);
         let (s, m, a) = (b.stmts(), b.leaf(mass), b.leaf(qdd));
-        quote! {
-            #s
-            ::mbd::__private::solve::one_coordinate(t, #m, #a).map_err(|e| self.diagnose(e))
-        }
+        let solve = if domain.is_empty() {
+            quote!(::mbd::__private::solve::one_coordinate(t, #m, #a))
+        } else {
+            // Every check in one branch (see `closure::one_coordinate_in_domain`).
+            let args = domain.iter().map(|d| b.leaf(d.arg));
+            let coords = domain.iter().map(|d| &d.coord);
+            quote! {
+                ::mbd::__private::closure::one_coordinate_in_domain(t, #m, #a, [#(#args),*], [#(#coords),*],
+                    &<Self as ::mbd::__private::Mechanism<#n>>::COORDINATES, q.as_slice())
+            }
+        };
+        quote!(#s #solve.map_err(|e| self.diagnose(e)))
     } else {
         quote! {
             #mf_stmts
             #mass_fill
             #force_fill
+            #domain_checks
             ::mbd::__private::solve::solve_mass::<#n>(t, &mass, &f).map_err(|e| self.diagnose(e))
         }
     };
@@ -242,6 +261,7 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
         recursion,
         friction_acceleration,
         body: acceleration,
+        checked: !domain.is_empty(),
         statements: mass_len + force_only.len() + energy.len(),
         inverse: inverse_dynamics(eq, sh),
     }
@@ -276,7 +296,7 @@ fn mechanism_impl(
 ) -> TokenStream {
     let (ident, n) = (sh.ident, sh.n);
     let coord_names: Vec<String> = eq.free.iter().map(|c| c.to_string()).collect();
-    let (check, direction) = (&sh.check, &sh.direction);
+    let (check, direction) = (sh.check.as_ref().filter(|_| !accel.checked), &sh.direction);
     let margin = sh.margin.as_ref().map(|(m, _)| m);
     let (mass_matrix, forces_body, energy) = (&accel.mass_matrix, &accel.forces, &accel.energy);
     let (acceleration, inverse) = (&accel.body, &accel.inverse);
@@ -297,8 +317,6 @@ fn mechanism_impl(
                 -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
                 #check_elements
                 #direction
-                // The domain check after the body: its `sin` shares the body's basic block
-                // with the `cos`, so the two become one `sincos` call.
                 let qdd = { #acceleration };
                 #check
                 qdd
