@@ -291,7 +291,7 @@ fn single(
 }
 
 /// `sqrt(1 - u^2)`, built as the derivative of `asin` builds it (so the two share it).
-fn cofactor(g: &mut Graph, u: Expr) -> Expr {
+pub(crate) fn cofactor(g: &mut Graph, u: Expr) -> Expr {
     let one = g.one();
     let u2 = g.powi(u, 2);
     let r = g.sub(one, u2);

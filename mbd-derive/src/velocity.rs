@@ -18,7 +18,7 @@
 //! (computed once and shared), as the expert computes `beta` once.
 
 use crate::closure::{Domain, Form, eliminate};
-use crate::sym::{Expr, Graph, Sym};
+use crate::sym::{Expr, Graph, Node, Sym};
 use std::collections::HashMap;
 
 /// A model in minimal coordinates: what the generated code checks and how each dependent
@@ -50,7 +50,7 @@ impl Minimal {
         Minimal { domain, forms }
     }
 
-    /// `rows` with every dependent coordinate replaced by its closed form.
+    /// `rows` with every dependent coordinate replaced by its closed form, then [`tidy`].
     pub fn close(&self, g: &mut Graph, rows: &[Expr]) -> Vec<Expr> {
         let mut out = rows.to_vec();
         for &(x, form) in &self.forms {
@@ -59,8 +59,99 @@ impl Minimal {
                 *e = eliminate(g, *e, x, form, &mut memo);
             }
         }
+        let nonzero = self.nonzero(g);
+        tidy(g, &out, &nonzero)
+    }
+
+    /// What is non-zero wherever the domain check passes (`-1 < u < 1`, `u` finite): each
+    /// `asin`/`acos` argument's denominator (else `u` is infinite or NaN) and `sqrt(1 - u^2)`.
+    fn nonzero(&self, g: &mut Graph) -> Vec<Expr> {
+        let mut out = Vec::new();
+        for d in &self.domain {
+            if let Node::Div(_, den) = g.node(d.arg) {
+                out.push(den);
+            }
+            out.push(crate::closure::cofactor(g, d.arg));
+        }
         out
     }
+}
+
+/// `roots` rebuilt bottom-up with rewrites the constructors do not make, for the shapes the
+/// closed forms leave (their terms meet only after the substitution):
+/// - a monomial of symbols in one order (`r (r m)` and `m (r r)` become one node: the
+///   inertia written `m r r / 12` and the kinematics' `m r^2` share it);
+/// - a sum of two terms with one power-of-two coefficient `k` up to sign as
+///   `k (x ± y)`, exact in binary (`0.5 a - 0.5 b`, `2 a + 2 b`): the constants then float
+///   outwards and cancel (`0.5 (qd^2 (2 x))`); with other coefficients and a shared
+///   operand, `a x p + b x r = (a p + b r) x` (a few ulps);
+/// - `d (n / d) = n` and `d (n (1 / d)) = n` for `d` in `nonzero` (non-zero wherever the
+///   closed form is valid, checked at run time): `l sin(beta)` is `r sin(theta)` again.
+pub fn tidy(g: &mut Graph, roots: &[Expr], nonzero: &[Expr]) -> Vec<Expr> {
+    let mut map: HashMap<Expr, Expr> = HashMap::new();
+    for e in crate::sym::schedule(g, roots) {
+        let node = g.node(e).with_children(|c| map.get(&c).copied().unwrap_or(c));
+        let rebuilt = match node {
+            Node::Mul(a, b) => cancelled(g, a, b, nonzero).or_else(|| monomial(g, node)),
+            Node::Add(a, b) => {
+                common_power_of_two(g, a, b).or_else(|| common_operand(g, a, b))
+            }
+            _ => None,
+        };
+        let new = rebuilt.unwrap_or_else(|| g.build(node));
+        map.insert(e, new);
+    }
+    roots
+        .iter()
+        .map(|r| map.get(r).copied().unwrap_or(*r))
+        .collect()
+}
+
+/// A product of symbols, their positive powers and constants (`node`'s operands rebuilt
+/// already), in the order of the symbols' ids; `None` for any other product.
+fn monomial(g: &mut Graph, node: Node) -> Option<Expr> {
+    let (mut k, mut factors) = (1.0, Vec::<(Expr, i32)>::new());
+    let mut stack: Vec<Expr> = node.children().collect();
+    while let Some(x) = stack.pop() {
+        match g.node(x) {
+            Node::Mul(a, b) => stack.extend([a, b]),
+            Node::Const(c) => k *= c.value(),
+            Node::Sym(_) => factors.push((x, 1)),
+            Node::Powi(b, n) if n > 0 && g.as_sym(b).is_some() => factors.push((b, n)),
+            _ => return None,
+        }
+    }
+    factors.sort_unstable();
+    let mut merged: Vec<(Expr, i32)> = Vec::new();
+    for (b, n) in factors {
+        match merged.last_mut() {
+            Some((last, m)) if *last == b => *m += n,
+            _ => merged.push((b, n)),
+        }
+    }
+    let mut p = g.constant(k);
+    for (b, n) in merged {
+        let f = g.powi(b, n);
+        p = g.mul(p, f);
+    }
+    Some(p)
+}
+
+/// `k (x ± y)` for `a = k x`, `b = ±k y` with `|k|` a power of two other than 1 (then
+/// `k x ± k y` and `k (x ± y)` round alike); `None` otherwise.
+fn common_power_of_two(g: &mut Graph, a: Expr, b: Expr) -> Option<Expr> {
+    let split = |g: &Graph, e: Expr| match g.node(e) {
+        Node::Mul(c, r) => g.as_const(c).map(|k| (k, r)),
+        _ => None,
+    };
+    let ((ka, x), (kb, y)) = (split(g, a)?, split(g, b)?);
+    let power_of_two = |k: f64| k.is_normal() && k.to_bits() & ((1 << 52) - 1) == 0;
+    if ka.abs() != kb.abs() || ka.abs() == 1.0 || !power_of_two(ka) {
+        return None;
+    }
+    let sum = if ka == kb { g.add(x, y) } else { g.sub(x, y) };
+    let k = g.constant(ka);
+    Some(g.mul(k, sum))
 }
 
 /// The dependent coordinates' rates, each in the other coordinates' rates and the
@@ -396,4 +487,60 @@ fn collected(g: &mut Graph, f: Expr, rates: &[(Sym, Expr)], qd: &[Sym]) -> Optio
     }
     let cost = |g: &Graph, r: Expr| crate::sym::schedule(g, &[r]).len();
     (cost(g, out) < cost(g, e)).then_some(out)
+}
+
+/// `n` for `d (n / d)` or `d (n (1 / d))` (either operand order) with `d` non-zero.
+fn cancelled(g: &Graph, a: Expr, b: Expr, nonzero: &[Expr]) -> Option<Expr> {
+    let over = |q: Expr, d: Expr| match g.node(q) {
+        Node::Div(n, e) if e == d => Some(n),
+        _ => None,
+    };
+    [(a, b), (b, a)].into_iter().find_map(|(d, q)| {
+        if !is_nonzero(g, d, nonzero) {
+            return None;
+        }
+        over(q, d).or_else(|| match g.node(q) {
+            Node::Mul(x, y) => match (over(x, d), over(y, d)) {
+                (Some(n), _) if g.as_const(n) == Some(1.0) => Some(y),
+                (_, Some(n)) if g.as_const(n) == Some(1.0) => Some(x),
+                _ => None,
+            },
+            _ => None,
+        })
+    })
+}
+
+/// Whether `e` is one of `nonzero`, or a product, power or negation of such.
+fn is_nonzero(g: &Graph, e: Expr, nonzero: &[Expr]) -> bool {
+    nonzero.contains(&e)
+        || match g.node(e) {
+            Node::Mul(a, b) => is_nonzero(g, a, nonzero) && is_nonzero(g, b, nonzero),
+            Node::Neg(a) | Node::Powi(a, _) => is_nonzero(g, a, nonzero),
+            _ => false,
+        }
+}
+
+/// `(k_a p + k_b r) x` for `a = k_a (x p)`, `b = k_b (x r)` (one shared operand `x`, the
+/// coefficients of different size: equal ones the constructors factor already).
+fn common_operand(g: &mut Graph, a: Expr, b: Expr) -> Option<Expr> {
+    let split = |g: &Graph, e: Expr| match g.node(e) {
+        Node::Neg(t) => (-1.0, t),
+        Node::Mul(c, r) if g.as_const(c).is_some() => (g.as_const(c).unwrap_or(1.0), r),
+        _ => (1.0, e),
+    };
+    let ((ka, ta), (kb, tb)) = (split(g, a), split(g, b));
+    let (Node::Mul(a0, a1), Node::Mul(b0, b1)) = (g.node(ta), g.node(tb)) else {
+        return None;
+    };
+    if ka.abs() == kb.abs() || [a0, a1, b0, b1].iter().any(|&e| g.as_const(e).is_some()) {
+        return None;
+    }
+    let (x, p, r) = [(a0, a1, b0, b1), (a0, a1, b1, b0), (a1, a0, b0, b1), (a1, a0, b1, b0)]
+        .into_iter()
+        .find(|&(x, _, y, _)| x == y)
+        .map(|(x, p, _, r)| (x, p, r))?;
+    let (ka, kb) = (g.constant(ka), g.constant(kb));
+    let (kp, kr) = (g.mul(ka, p), g.mul(kb, r));
+    let sum = g.add(kp, kr);
+    Some(g.mul(sum, x))
 }
