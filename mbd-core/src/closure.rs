@@ -230,6 +230,36 @@ mod tests {
         }
     }
 
+    /// The folded check gives what the separate ones gave, in their order: the first
+    /// argument outside its domain, then the mass, then a non-finite acceleration.
+    #[test]
+    fn folded_one_coordinate_check_keeps_the_order_of_the_errors() {
+        let run = |m: f64, a: f64, args: [f64; 2]| {
+            one_coordinate_in_domain(1.5, m, a, args, ["beta", "x"], &["theta"], &[0.3])
+        };
+        assert_eq!(run(2.0, -3.0, [0.5, -0.9]).unwrap()[0], -3.0);
+        let singular_at = |r: Result<Vector<1>>| match r {
+            Err(Error::SingularPosition { t, detail }) => {
+                assert_eq!(t, 1.5);
+                assert!(detail.contains("theta = 0.3"));
+                ["`beta`", "`x`"].into_iter().find(|c| detail.contains(c))
+            }
+            other => panic!("{other:?}"),
+        };
+        // Outside the domain wins over a bad mass or a NaN acceleration.
+        assert_eq!(singular_at(run(-1.0, f64::NAN, [0.5, 1.0])), Some("`x`"));
+        assert_eq!(singular_at(run(2.0, 1.0, [f64::NAN, -1.0])), Some("`beta`"));
+        // Inside it, the one-coordinate solve's own errors (a bad mass before a bad `a`).
+        for (m, a) in [(0.0, 1.0), (-1.0, f64::NAN), (f64::INFINITY, 1.0), (f64::NAN, 1.0)] {
+            let separate = crate::solve::one_coordinate(1.5, m, a);
+            assert!(separate.is_err());
+            assert_eq!(format!("{:?}", run(m, a, [0.0, 0.0])), format!("{separate:?}"));
+        }
+        for a in [f64::NAN, f64::INFINITY] {
+            assert!(matches!(run(1.0, a, [0.0, 0.0]), Err(Error::NonFinite { t }) if t == 1.5));
+        }
+    }
+
     /// A path that touches the chart's edge and reflects (`m = (t - 1)^2`, `y = 1 + m`
     /// with the margin `y - 1`) is caught at `t = 1` with the state at the edge; a turn
     /// whose margin stays at `0.5` is not, at the same steps.

@@ -544,3 +544,95 @@ fn common_operand(g: &mut Graph, a: Expr, b: Expr) -> Option<Expr> {
     let sum = g.add(kp, kr);
     Some(g.mul(sum, x))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sym::Func;
+
+    /// `e` at one set of values of its symbols (by name).
+    fn at(g: &Graph, e: Expr) -> f64 {
+        g.eval(e, &|s| match g.sym_name(s) {
+            "x" => 0.7,
+            "y" | "r" => -1.3,
+            "l" | "m" => 0.35,
+            "p" => 2.9,
+            _ => -0.45,
+        })
+    }
+
+    #[test]
+    fn power_of_two_coefficients_come_out_of_a_sum_exactly() {
+        let mut g = Graph::new();
+        let (x, y) = (g.symbol("x"), g.symbol("y"));
+        let (sx, cy) = (g.call(Func::Sin, x), g.call(Func::Cos, y));
+        let (half, minus_half) = (g.constant(0.5), g.constant(-0.5));
+        let (a, b) = (g.mul(half, sx), g.mul(minus_half, cy));
+        let sum = g.add(a, b);
+        let [t] = tidy(&mut g, &[sum], &[])[..] else {
+            panic!("one root")
+        };
+        let Node::Mul(k, rest) = g.node(t) else {
+            panic!("{}", g.display(t))
+        };
+        assert_eq!(g.as_const(k), Some(0.5));
+        assert!(matches!(g.node(rest), Node::Add(..)));
+        assert_eq!(at(&g, t).to_bits(), at(&g, sum).to_bits());
+    }
+
+    #[test]
+    fn monomials_of_one_set_of_symbols_become_one_node() {
+        let mut g = Graph::new();
+        let (m, r) = (g.symbol("m"), g.symbol("r"));
+        let rm = g.mul(r, m);
+        let r_rm = g.mul(r, rm);
+        let rr = g.mul(r, r);
+        let m_rr = g.mul(m, rr);
+        assert_ne!(r_rm, m_rr);
+        let out = tidy(&mut g, &[r_rm, m_rr], &[]);
+        assert_eq!(out[0], out[1]);
+        assert!((at(&g, out[0]) - at(&g, r_rm)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_factor_cancels_only_where_it_is_known_non_zero() {
+        let mut g = Graph::new();
+        let (l, x, c) = (g.symbol("l"), g.symbol("x"), g.symbol("c"));
+        let sx = g.call(Func::Sin, x);
+        let u = g.div(sx, l);
+        let lu = g.mul(l, u);
+        let one = g.one();
+        let inv = g.div(one, l);
+        let c_inv = g.mul(c, inv);
+        let l_c_inv = g.mul(l, c_inv);
+        // Unknown sign of `l`: kept (`l = 0` must stay NaN).
+        assert_eq!(tidy(&mut g, &[lu, l_c_inv], &[]), vec![lu, l_c_inv]);
+        // `l` non-zero (the domain check's denominator), and a product of non-zeros.
+        assert_eq!(tidy(&mut g, &[lu, l_c_inv], &[l]), vec![sx, c]);
+        let ll = g.mul(l, l);
+        let over_ll = g.div(sx, ll);
+        let cancelled = g.mul(ll, over_ll);
+        assert_eq!(tidy(&mut g, &[cancelled], &[l]), vec![sx]);
+    }
+
+    #[test]
+    fn a_shared_operand_comes_out_with_unequal_coefficients() {
+        let mut g = Graph::new();
+        let (x, p, r) = (g.symbol("x"), g.symbol("p"), g.symbol("r"));
+        let cx = g.call(Func::Cos, x);
+        let (cp, cr) = (g.mul(cx, p), g.mul(cx, r));
+        let k = g.constant(-0.5);
+        let a = g.mul(k, cp);
+        let b = g.neg(cr);
+        let sum = g.add(a, b);
+        let [t] = tidy(&mut g, &[sum], &[])[..] else {
+            panic!("one root")
+        };
+        let Node::Mul(f, h) = g.node(t) else {
+            panic!("{}", g.display(t))
+        };
+        assert!(f == cx || h == cx, "{}", g.display(t));
+        let (new, old) = (at(&g, t), at(&g, sum));
+        assert!((new - old).abs() <= 4.0 * f64::EPSILON * old.abs());
+    }
+}
