@@ -250,10 +250,18 @@ mod tests {
         assert_eq!(singular_at(run(-1.0, f64::NAN, [0.5, 1.0])), Some("`x`"));
         assert_eq!(singular_at(run(2.0, 1.0, [f64::NAN, -1.0])), Some("`beta`"));
         // Inside it, the one-coordinate solve's own errors (a bad mass before a bad `a`).
-        for (m, a) in [(0.0, 1.0), (-1.0, f64::NAN), (f64::INFINITY, 1.0), (f64::NAN, 1.0)] {
+        for (m, a) in [
+            (0.0, 1.0),
+            (-1.0, f64::NAN),
+            (f64::INFINITY, 1.0),
+            (f64::NAN, 1.0),
+        ] {
             let separate = crate::solve::one_coordinate(1.5, m, a);
             assert!(separate.is_err());
-            assert_eq!(format!("{:?}", run(m, a, [0.0, 0.0])), format!("{separate:?}"));
+            assert_eq!(
+                format!("{:?}", run(m, a, [0.0, 0.0])),
+                format!("{separate:?}")
+            );
         }
         for a in [f64::NAN, f64::INFINITY] {
             assert!(matches!(run(1.0, a, [0.0, 0.0]), Err(Error::NonFinite { t }) if t == 1.5));

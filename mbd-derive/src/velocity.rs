@@ -90,12 +90,12 @@ impl Minimal {
 pub fn tidy(g: &mut Graph, roots: &[Expr], nonzero: &[Expr]) -> Vec<Expr> {
     let mut map: HashMap<Expr, Expr> = HashMap::new();
     for e in crate::sym::schedule(g, roots) {
-        let node = g.node(e).with_children(|c| map.get(&c).copied().unwrap_or(c));
+        let node = g
+            .node(e)
+            .with_children(|c| map.get(&c).copied().unwrap_or(c));
         let rebuilt = match node {
             Node::Mul(a, b) => cancelled(g, a, b, nonzero).or_else(|| monomial(g, node)),
-            Node::Add(a, b) => {
-                common_power_of_two(g, a, b).or_else(|| common_operand(g, a, b))
-            }
+            Node::Add(a, b) => common_power_of_two(g, a, b).or_else(|| common_operand(g, a, b)),
             _ => None,
         };
         let new = rebuilt.unwrap_or_else(|| g.build(node));
@@ -535,10 +535,15 @@ fn common_operand(g: &mut Graph, a: Expr, b: Expr) -> Option<Expr> {
     if ka.abs() == kb.abs() || [a0, a1, b0, b1].iter().any(|&e| g.as_const(e).is_some()) {
         return None;
     }
-    let (x, p, r) = [(a0, a1, b0, b1), (a0, a1, b1, b0), (a1, a0, b0, b1), (a1, a0, b1, b0)]
-        .into_iter()
-        .find(|&(x, _, y, _)| x == y)
-        .map(|(x, p, _, r)| (x, p, r))?;
+    let (x, p, r) = [
+        (a0, a1, b0, b1),
+        (a0, a1, b1, b0),
+        (a1, a0, b0, b1),
+        (a1, a0, b1, b0),
+    ]
+    .into_iter()
+    .find(|&(x, _, y, _)| x == y)
+    .map(|(x, p, _, r)| (x, p, r))?;
     let (ka, kb) = (g.constant(ka), g.constant(kb));
     let (kp, kr) = (g.mul(ka, p), g.mul(kb, r));
     let sum = g.add(kp, kr);
