@@ -85,7 +85,7 @@ impl Minimal {
 ///   `k (x ± y)`, exact in binary (`0.5 a - 0.5 b`, `2 a + 2 b`): the constants then float
 ///   outwards and cancel (`0.5 (qd^2 (2 x))`); with other coefficients and a shared
 ///   operand, `a x p + b x r = (a p + b r) x` (a few ulps);
-/// - `d (n / d) = n` and `d (n (1 / d)) = n` for `d` in `nonzero` (non-zero wherever the
+/// - `d (n / d) = n` and `(x (1 / d)) (d y) = x y` for `d` in `nonzero` (non-zero wherever the
 ///   closed form is valid, checked at run time): `l sin(beta)` is `r sin(theta)` again.
 pub fn tidy(g: &mut Graph, roots: &[Expr], nonzero: &[Expr]) -> Vec<Expr> {
     let mut map: HashMap<Expr, Expr> = HashMap::new();
@@ -489,25 +489,27 @@ fn collected(g: &mut Graph, f: Expr, rates: &[(Sym, Expr)], qd: &[Sym]) -> Optio
     (cost(g, out) < cost(g, e)).then_some(out)
 }
 
-/// `n` for `d (n / d)` or `d (n (1 / d))` (either operand order) with `d` non-zero.
-fn cancelled(g: &Graph, a: Expr, b: Expr, nonzero: &[Expr]) -> Option<Expr> {
-    let over = |q: Expr, d: Expr| match g.node(q) {
-        Node::Div(n, e) if e == d => Some(n),
-        _ => None,
-    };
-    [(a, b), (b, a)].into_iter().find_map(|(d, q)| {
-        if !is_nonzero(g, d, nonzero) {
-            return None;
+/// The product `a b` with one factor `n / d` and one factor `d` cancelled to `n` (factors
+/// read two levels deep: `(x (1 / d)) (d y)` is `x y`), `d` non-zero.
+fn cancelled(g: &mut Graph, a: Expr, b: Expr, nonzero: &[Expr]) -> Option<Expr> {
+    let mut fs = Vec::with_capacity(4);
+    for x in [a, b] {
+        match g.node(x) {
+            Node::Mul(p, q) => fs.extend([p, q]),
+            _ => fs.push(x),
         }
-        over(q, d).or_else(|| match g.node(q) {
-            Node::Mul(x, y) => match (over(x, d), over(y, d)) {
-                (Some(n), _) if g.as_const(n) == Some(1.0) => Some(y),
-                (_, Some(n)) if g.as_const(n) == Some(1.0) => Some(x),
-                _ => None,
-            },
-            _ => None,
-        })
-    })
+    }
+    let (i, j, n) = (0..fs.len()).find_map(|i| {
+        let Node::Div(n, d) = g.node(fs[i]) else {
+            return None;
+        };
+        let j = (0..fs.len()).find(|&j| j != i && fs[j] == d)?;
+        is_nonzero(g, d, nonzero).then_some((i, j, n))
+    })?;
+    fs[i] = n;
+    fs.remove(j);
+    let one = g.one();
+    Some(fs.into_iter().fold(one, |p, f| g.mul(p, f)))
 }
 
 /// Whether `e` is one of `nonzero`, or a product, power or negation of such.
