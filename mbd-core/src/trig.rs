@@ -66,6 +66,42 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     if quadrant & 2 == 0 { (s, c) } else { (-s, -c) }
 }
 
+/// `(sin x_i, cos x_i)` for every `x_i`: the same operations as [`sin_cos`] (the same
+/// values, bit for bit), with the quadrant's swap and signs chosen by bit masks instead of
+/// branches, so that the compiler evaluates several arguments per vector instruction. A
+/// joint tree's right-hand side takes all its joint angles' sines and cosines in one
+/// call: on the 8-link chain they were a third of its time one at a time. Any argument
+/// outside the reduced range sends the whole batch through [`sin_cos`].
+#[inline(always)]
+pub fn sin_cos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    // NaN fails the comparison too.
+    if !x.iter().all(|v| v.abs() < REDUCED_BELOW) {
+        let both = x.map(sin_cos);
+        return (both.map(|p| p.0), both.map(|p| p.1));
+    }
+    let (mut sines, mut cosines) = ([0.0; N], [0.0; N]);
+    for ((&x, s_out), c_out) in x.iter().zip(&mut sines).zip(&mut cosines) {
+        let shifted = x * TWO_OVER_PI + ROUND;
+        let quadrant = shifted.to_bits();
+        let k = shifted - ROUND;
+        let t1 = x - k * P1;
+        let w2 = k * P2;
+        let t2 = t1 - w2;
+        let e2 = (t1 - t2) - w2;
+        let w3 = k * P3;
+        let r = t2 - w3;
+        let y = (((t2 - r) - w3) + e2) - k * P3_TAIL;
+        let (s, c) = (kernel_sin(r, y).to_bits(), kernel_cos(r, y).to_bits());
+        // Odd quadrant: (c, -s); then quadrants 2 and 3 flip both signs.
+        let odd = (quadrant & 1).wrapping_neg();
+        let flip = (quadrant & 2) << 62;
+        let minus_s = s ^ (1 << 63);
+        *s_out = f64::from_bits(((s & !odd) | (c & odd)) ^ flip);
+        *c_out = f64::from_bits(((c & !odd) | (minus_s & odd)) ^ flip);
+    }
+    (sines, cosines)
+}
+
 /// `sin x`; [`sin_cos`]'s first half (a `cos` of the same argument shares the reduction
 /// once both are inlined).
 #[inline(always)]
@@ -151,6 +187,42 @@ mod tests {
             worst_s <= 1.0 && worst_c <= 1.0,
             "sin {worst_s} ulp, cos {worst_c} ulp"
         );
+    }
+
+    /// The batch gives the scalar function's values bit for bit, in every quadrant, at the
+    /// multiples of `pi/4`, and through the fallback (a large or NaN argument in the batch).
+    #[test]
+    fn batch_equals_scalar() {
+        let mut x = [0.0f64; 64];
+        for (i, v) in x.iter_mut().enumerate() {
+            let k = i as f64 - 32.0;
+            *v = k * 0.41
+                + if i % 3 == 0 {
+                    k * std::f64::consts::FRAC_PI_4
+                } else {
+                    0.0
+                };
+        }
+        x[5] = -0.0;
+        x[7] = 3.0e5;
+        let same = |x: &[f64], s: &[f64], c: &[f64]| {
+            x.iter().zip(s).zip(c).all(|((&x, &s), &c)| {
+                let (s0, c0) = sin_cos(x);
+                s.to_bits() == s0.to_bits() && c.to_bits() == c0.to_bits()
+            })
+        };
+        let (s, c) = sin_cos_array(x);
+        assert!(same(&x, &s, &c));
+        for bad in [f64::NAN, 1e9, f64::NEG_INFINITY] {
+            let mut y = [0.3, -2.0, 7.5];
+            y[1] = bad;
+            let (s, c) = sin_cos_array(y);
+            assert_eq!(s[0], sin_cos(0.3).0);
+            assert_eq!(c[2], sin_cos(7.5).1);
+            let (s1, c1) = sin_cos(bad);
+            assert!(s[1].to_bits() == s1.to_bits() || (s[1].is_nan() && s1.is_nan()));
+            assert!(c[1].to_bits() == c1.to_bits() || (c[1].is_nan() && c1.is_nan()));
+        }
     }
 
     /// Outside the reduced range and for non-finite arguments: the platform's values.

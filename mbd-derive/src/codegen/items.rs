@@ -203,10 +203,11 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
         Some(code)
     } else if let Some(qdd) = &eq.recursive_qdd {
         parts.names.push("articulated_body");
-        let b = Block::new(eq, qdd);
+        let (angles, known) = super::batched_trig(eq, qdd, None);
+        let b = Block::after(eq, qdd, &known, 0);
         parts.statements += b.len();
         let (s, fill) = (b.stmts(), b.sets("qdd", qdd));
-        Some(quote!(#s #fill))
+        Some(quote!(#angles #s #fill))
     } else {
         None
     };
