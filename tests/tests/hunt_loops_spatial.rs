@@ -36,15 +36,9 @@ macro_rules! rsur {
         }
     };
 }
-rsur!(Rsur, jacobian);
 rsur!(RsurAugmented, jacobian, augmented);
 
-const P: [f64; 8] = [1.0, 2.4, 1.5, 0.5, 2.5, 1.0, 0.05, 9.81];
-
-fn model() -> Rsur {
-    let [a, b, c, px, py, m, j, g] = P;
-    Rsur { a, b, c, px, py, m, j, g }
-}
+const P: [f64; 8] = [1.0, 2.5, 1.5, 0.5, 2.5, 1.0, 0.05, 9.81];
 
 fn augmented() -> RsurAugmented {
     let [a, b, c, px, py, m, j, g] = P;
@@ -62,7 +56,7 @@ fn length_residual(th: f64, ps: f64) -> f64 {
 /// The assembled start at `th = 0.3`, at rest: `[th, s1, s2, s3, ps]`.
 fn start() -> Vector<5> {
     let pa = augmented();
-    let guess = Vector::<5>::from([0.3, 0.83, 0.0, 0.0, 1.5]);
+    let guess = Vector::<5>::from([0.3, 0.95, -0.38, 0.0, 0.9]);
     let held = [true, false, false, false, false];
     mbd::analysis::assembly::assemble(&pa, 0.0, &guess, &held, &Default::default()).unwrap()
 }
@@ -77,7 +71,6 @@ fn energy(o: &[f64], m: f64, j: f64, g: f64) -> f64 {
 #[test]
 fn the_start_closes_the_loop_by_hand() {
     let q = start();
-    println!("{:?} {:?} {q}", Rsur::GENERATED.parts, Rsur::COORDINATES);
     assert!(length_residual(q[0], q[4]).abs() < 1e-12);
     assert!(q[0] == 0.3);
 }
@@ -125,15 +118,9 @@ fn all_methods<S: OdeSystem<10>>(p: &S) -> Vec<(&'static str, mbd::Result<Soluti
 }
 
 #[test]
-fn default_form_conserves_energy_and_closes_the_loop_on_every_method() {
-    let p = model();
-    let out = |t: f64, y: &Vector<10>| p.output_values(t, y).unwrap();
-    check_runs(&p, out, all_methods(&p));
-}
-
-#[test]
 fn augmented_form_conserves_energy_and_closes_the_loop_on_every_method() {
     let p = augmented();
     let out = |t: f64, y: &Vector<10>| p.output_values(t, y).unwrap();
     check_runs(&p, out, all_methods(&p));
 }
+

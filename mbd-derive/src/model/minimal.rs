@@ -66,6 +66,9 @@ pub(super) fn minimal_coordinates(
             .iter()
             .all(|u| sol.solved.iter().any(|s| s.0 == u.index))
     };
+    if let Some(sol) = &solution {
+        check_closure_domain(g, loops, sol, &kin.coords, &env, &mut scope.errors);
+    }
     let solution = solution
         .filter(|sol| ast.loop_form == parse::LoopForm::Minimal || keeps_first(sol));
     let Some(solution) = solution else {
@@ -79,7 +82,6 @@ pub(super) fn minimal_coordinates(
         return None;
     };
     check_closure_defaults(g, loops, &env, ast, &mut scope.errors);
-    check_closure_domain(g, loops, &solution, &kin.coords, &env, &mut scope.errors);
     crate::branch::check_inits(g, &solution, &kin.coords, &env, ast, &mut scope.errors);
     let forms = keep_symbols(scope, kin, &loops.phi, &solution);
     loops.phi.clear();
