@@ -405,7 +405,8 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
         outputs: &outputs,
     };
     let linear = crate::linear::derive(&mut scope.g, ast, &mut scope.errors, linear_parts);
-    let (init_q, init_qd, init_rate_given) = initial::initial_conditions(ast, &mut scope, &kin.coords, free_idx);
+    let (init_q, init_qd, init_rate_given) =
+        initial::initial_conditions(ast, &mut scope, &kin.coords, free_idx);
     let free = free_idx
         .iter()
         .map(|&i| kin.coords[i].name.clone())

@@ -9,8 +9,8 @@
 //! `J th'' + C th'^2 = Q`, `Q = -g sum m p'_y - k (s - s0) s' - c d'^2 th' + F . p_f'`
 //! (`s` the spring's length, `d` the damper's, `p_f` the force's point, `'` = `d/dth`).
 
-use mbd::prelude::*;
 use mbd::Vector;
+use mbd::prelude::*;
 
 macro_rules! loaded {
     ($name:ident, $($opt:ident),*) => {
@@ -83,12 +83,19 @@ fn geometry(th: f64) -> [f64; 14] {
     let rocker = (d + c / 2.0 * ga.cos(), c / 2.0 * ga.sin());
     let tip = rot(b / 2.0, 0.0);
     [
-        a / 2.0 * th.cos(), a / 2.0 * th.sin(), th,
-        centre.0, centre.1, be,
-        rocker.0, rocker.1, ga,
+        a / 2.0 * th.cos(),
+        a / 2.0 * th.sin(),
+        th,
+        centre.0,
+        centre.1,
+        be,
+        rocker.0,
+        rocker.1,
+        ga,
         (hx - 1.0).hypot(hy - 3.0),
         (rocker.0 - 4.0).hypot(rocker.1 + 1.0),
-        centre.0 + tip.0, centre.1 + tip.1,
+        centre.0 + tip.0,
+        centre.1 + tip.1,
         be,
     ]
 }
@@ -129,21 +136,48 @@ fn lagrange_with(th: f64, thd: f64, [k, cd, f]: [f64; 3]) -> f64 {
 
 #[test]
 fn accelerations_under_spring_damper_and_follower_force_match_lagrange_in_both_forms() {
-    let p = Loaded { a: 1.0, b: 3.0, c: 2.5, d: 3.5, m: 1.0, g: G, k: K, s0: S0, cd: CD, f: F };
-    let pa = LoadedAugmented { a: 1.0, b: 3.0, c: 2.5, d: 3.5, m: 1.0, g: G, k: K, s0: S0, cd: CD, f: F };
+    let p = Loaded {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: G,
+        k: K,
+        s0: S0,
+        cd: CD,
+        f: F,
+    };
+    let pa = LoadedAugmented {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: 3.5,
+        m: 1.0,
+        g: G,
+        k: K,
+        s0: S0,
+        cd: CD,
+        f: F,
+    };
     assert_eq!(Loaded::COORDINATES, ["th"]);
     for th in [0.5, 1.5, 2.5, 3.5, 5.0] {
         for thd in [0.0, 2.0, -4.0] {
             let want = lagrange(th, thd);
             let tol = 1e-7 * (1.0 + want.abs());
             let got = p.rhs(0.0, &Vector::<2>::new(th, thd)).unwrap()[1];
-            assert!((got - want).abs() < tol, "minimal th = {th}, thd = {thd}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < tol,
+                "minimal th = {th}, thd = {thd}: {got} vs {want}"
+            );
             let (be, ga) = close(th);
             let (d1, _) = diff(th);
             let y = Vector::<6>::from([th, be, ga, thd, d1[5] * thd, d1[8] * thd]);
             let got = pa.rhs(0.0, &y).unwrap()[3];
-            assert!((got - want).abs() < tol, "augmented th = {th}, thd = {thd}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < tol,
+                "augmented th = {th}, thd = {thd}: {got} vs {want}"
+            );
         }
     }
 }
-

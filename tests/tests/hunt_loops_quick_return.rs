@@ -9,7 +9,9 @@
 //! differences, and Lagrange's equation in `th` (`J th'' + C th'^2 = Q`, see
 //! `hunt_loops_sixbar.rs`). Driven at `th' = w`, the drive's effort is `C w^2 - Q`.
 
-use mbd::integrate::{Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9};
+use mbd::integrate::{
+    Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9,
+};
 use mbd::prelude::*;
 
 macro_rules! quick_return {
@@ -41,7 +43,12 @@ macro_rules! quick_return {
     };
 }
 quick_return!(QuickReturn, [der(th) = 6.0], jacobian);
-quick_return!(QuickReturnMinimal, [der(s) = 4.227456805318331], jacobian, minimal);
+quick_return!(
+    QuickReturnMinimal,
+    [der(s) = 4.227456805318331],
+    jacobian,
+    minimal
+);
 quick_return!(QuickReturnAugmented, [der(th) = 6.0], jacobian, augmented);
 
 macro_rules! driven {
@@ -117,7 +124,9 @@ fn diff<const K: usize>(f: impl Fn(f64) -> [f64; K], th: f64) -> ([f64; K], [f64
 
 fn flat(th: f64) -> [f64; 9] {
     let b = bodies(th);
-    [b[0][0], b[0][1], b[0][2], b[1][0], b[1][1], b[1][2], b[2][0], b[2][1], b[2][2]]
+    [
+        b[0][0], b[0][1], b[0][2], b[1][0], b[1][1], b[1][2], b[2][0], b[2][1], b[2][2],
+    ]
 }
 
 /// `(J, C, Q)` of Lagrange's equation `J th'' + C th'^2 = Q`; `with_crank` false leaves the
@@ -143,18 +152,37 @@ fn energy(th: f64, thd: f64) -> f64 {
     let b = bodies(th);
     (0..3)
         .map(|k| {
-            let v2 = MASS[k] * (d1[3 * k].powi(2) + d1[3 * k + 1].powi(2)) + INERTIA[k] * d1[3 * k + 2].powi(2);
+            let v2 = MASS[k] * (d1[3 * k].powi(2) + d1[3 * k + 1].powi(2))
+                + INERTIA[k] * d1[3 * k + 2].powi(2);
             0.5 * v2 * thd * thd + MASS[k] * G * b[k][1]
         })
         .sum()
 }
 
 fn free() -> QuickReturn {
-    QuickReturn { a: A, d: D, l: LL, m: 1.0, ml: 2.0, mb: 0.5, ib: 0.01, g: G }
+    QuickReturn {
+        a: A,
+        d: D,
+        l: LL,
+        m: 1.0,
+        ml: 2.0,
+        mb: 0.5,
+        ib: 0.01,
+        g: G,
+    }
 }
 
 fn free_augmented() -> QuickReturnAugmented {
-    QuickReturnAugmented { a: A, d: D, l: LL, m: 1.0, ml: 2.0, mb: 0.5, ib: 0.01, g: G }
+    QuickReturnAugmented {
+        a: A,
+        d: D,
+        l: LL,
+        m: 1.0,
+        ml: 2.0,
+        mb: 0.5,
+        ib: 0.01,
+        g: G,
+    }
 }
 
 #[test]
@@ -172,16 +200,23 @@ fn free_accelerations_match_lagrange_in_both_forms() {
             let want = (q - c * thd * thd) / j;
             let tol = 1e-7 * (1.0 + want.abs());
             let (phi, s) = close(th);
-            let (d, _) = diff(|t| { let (f, s) = close(t); [f, s] }, th);
+            let (d, _) = diff(
+                |t| {
+                    let (f, s) = close(t);
+                    [f, s]
+                },
+                th,
+            );
             let y = mbd::Vector::<6>::from([th, phi, s, thd, d[0] * thd, d[1] * thd]);
             let got = pa.rhs(0.0, &y).unwrap()[3];
-            assert!((got - want).abs() < tol, "augmented th = {th}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < tol,
+                "augmented th = {th}: {got} vs {want}"
+            );
             let _ = &p;
         }
     }
 }
-
-
 
 /// Defect found: the derive solved the loop for `th` and `phi` from the slide `s` (the only
 /// closed form it has), so the default form's state was `s`, whose extremes `s = d -+ a`
@@ -197,10 +232,19 @@ fn the_default_form_keeps_the_crank_angle() {
 /// `init(der(th) = 6)` alone: the other rates follow from the closure in both forms.
 #[test]
 fn the_initial_rates_follow_the_closure_in_both_forms() {
-    let (d, _) = diff(|t| { let (f, s) = close(t); [f, s] }, 0.3);
+    let (d, _) = diff(
+        |t| {
+            let (f, s) = close(t);
+            [f, s]
+        },
+        0.3,
+    );
     for y in [free().initial_state(), free_augmented().initial_state()] {
         assert_eq!(y[3], 6.0);
-        assert!((y[4] - 6.0 * d[0]).abs() < 1e-10 && (y[5] - 6.0 * d[1]).abs() < 1e-10, "{y}");
+        assert!(
+            (y[4] - 6.0 * d[0]).abs() < 1e-10 && (y[5] - 6.0 * d[1]).abs() < 1e-10,
+            "{y}"
+        );
     }
 }
 
@@ -211,29 +255,71 @@ fn crank_turns_through_the_slide_extremes_on_every_method() {
     let p = free();
     let y0 = p.initial_state();
     let e0 = energy(0.3, 6.0);
-    let tight = || Options { rtol: 1e-10, atol: 1e-10, ..Options::default() };
+    let tight = || Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Options::default()
+    };
     let runs: Vec<(&str, mbd::Result<Solution<6>>, f64)> = vec![
-        ("dopri5", Dopri5::new(tight()).solve(&p, 0.0, y0, 3.0, &[]), 1e-8),
-        ("dop853", Dop853::new(tight()).solve(&p, 0.0, y0, 3.0, &[]), 1e-8),
-        ("vern9", Vern9::new(tight()).solve(&p, 0.0, y0, 3.0, &[]), 1e-8),
-        ("radau5", Radau5::new(Options { rtol: 1e-8, atol: 1e-8, ..Options::default() }).solve(&p, 0.0, y0, 3.0, &[]), 1e-5),
+        (
+            "dopri5",
+            Dopri5::new(tight()).solve(&p, 0.0, y0, 3.0, &[]),
+            1e-8,
+        ),
+        (
+            "dop853",
+            Dop853::new(tight()).solve(&p, 0.0, y0, 3.0, &[]),
+            1e-8,
+        ),
+        (
+            "vern9",
+            Vern9::new(tight()).solve(&p, 0.0, y0, 3.0, &[]),
+            1e-8,
+        ),
+        (
+            "radau5",
+            Radau5::new(Options {
+                rtol: 1e-8,
+                atol: 1e-8,
+                ..Options::default()
+            })
+            .solve(&p, 0.0, y0, 3.0, &[]),
+            1e-5,
+        ),
         ("rk4", Rk4::new(1e-3).solve(&p, 0.0, y0, 3.0, &[]), 1e-7),
         ("gauss", Gauss::new(2e-3).solve(&p, 0.0, y0, 3.0, &[]), 1e-7),
-        ("generalized-alpha", Integrator::solve(&GeneralizedAlpha::new(1.0, 2.5e-4), &p, 0.0, y0, 3.0, &[]), 1e-4),
+        (
+            "generalized-alpha",
+            Integrator::solve(&GeneralizedAlpha::new(1.0, 2.5e-4), &p, 0.0, y0, 3.0, &[]),
+            1e-4,
+        ),
     ];
     for (name, run, tol) in runs {
         let sol = run.unwrap_or_else(|e| panic!("{name}: {e}"));
         let last = sol.y.last().unwrap();
-        assert!(last[0] > 0.3 + 4.0 * std::f64::consts::PI, "{name}: th = {}", last[0]);
+        assert!(
+            last[0] > 0.3 + 4.0 * std::f64::consts::PI,
+            "{name}: th = {}",
+            last[0]
+        );
         let mut worst = (0.0f64, 0.0f64);
         for y in &sol.y {
             worst.0 = worst.0.max((energy(y[0], y[3]) - e0).abs() / e0.abs());
             let (phi, s) = close(y[0]);
-            let wrap = (y[1] - phi + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+            let wrap = (y[1] - phi + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
             worst.1 = worst.1.max(wrap.abs()).max((y[2] - s).abs());
         }
-        println!("{name}: {} steps, energy {:.2e}, closure {:.2e}", sol.y.len(), worst.0, worst.1);
-        assert!(worst.0 < tol && worst.1 < tol.max(1e-9), "{name}: {worst:?}");
+        println!(
+            "{name}: {} steps, energy {:.2e}, closure {:.2e}",
+            sol.y.len(),
+            worst.0,
+            worst.1
+        );
+        assert!(
+            worst.0 < tol && worst.1 < tol.max(1e-9),
+            "{name}: {worst:?}"
+        );
     }
 }
 
@@ -242,10 +328,27 @@ fn crank_turns_through_the_slide_extremes_on_every_method() {
 /// the slide at `d - a`), not with a wrong motion.
 #[test]
 fn the_minimal_form_on_the_slide_stops_where_the_slide_turns() {
-    let p = QuickReturnMinimal { a: A, d: D, l: LL, m: 1.0, ml: 2.0, mb: 0.5, ib: 0.01, g: G };
+    let p = QuickReturnMinimal {
+        a: A,
+        d: D,
+        l: LL,
+        m: 1.0,
+        ml: 2.0,
+        mb: 0.5,
+        ib: 0.01,
+        g: G,
+    };
     let y0 = p.initial_state();
-    match Dopri5::new(Options { rtol: 1e-10, atol: 1e-10, ..Options::default() }).solve(&p, 0.0, y0, 3.0, &[]) {
-        Err(mbd::Error::SingularPosition { detail, .. }) => assert!(detail.contains("s = "), "{detail}"),
+    match Dopri5::new(Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Options::default()
+    })
+    .solve(&p, 0.0, y0, 3.0, &[])
+    {
+        Err(mbd::Error::SingularPosition { detail, .. }) => {
+            assert!(detail.contains("s = "), "{detail}")
+        }
         other => panic!("{other:?}"),
     }
 }
@@ -254,24 +357,63 @@ fn the_minimal_form_on_the_slide_stops_where_the_slide_turns() {
 /// the drive's effort `reaction(th)` is `C w^2 - Q` (with `th'' = 0`), in both forms.
 #[test]
 fn driven_quick_return_drive_effort_matches_lagrange() {
-    let p = Driven { a: A, d: D, l: LL, m: 1.0, ml: 2.0, mb: 0.5, ib: 0.01, g: G, w: W };
-    let pa = DrivenAugmented { a: A, d: D, l: LL, m: 1.0, ml: 2.0, mb: 0.5, ib: 0.01, g: G, w: W };
-    let opts = || Options { rtol: 1e-10, atol: 1e-10, ..Options::default() };
+    let p = Driven {
+        a: A,
+        d: D,
+        l: LL,
+        m: 1.0,
+        ml: 2.0,
+        mb: 0.5,
+        ib: 0.01,
+        g: G,
+        w: W,
+    };
+    let pa = DrivenAugmented {
+        a: A,
+        d: D,
+        l: LL,
+        m: 1.0,
+        ml: 2.0,
+        mb: 0.5,
+        ib: 0.01,
+        g: G,
+        w: W,
+    };
+    let opts = || Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Options::default()
+    };
     let runs = [
-        Dopri5::new(opts()).solve(&p, 0.0, p.initial_state(), 2.0, &[]).map(|s| (s, "minimal")),
-        Radau5::new(opts()).solve(&pa, 0.0, pa.initial_state(), 2.0, &[]).map(|s| (s, "augmented")),
+        Dopri5::new(opts())
+            .solve(&p, 0.0, p.initial_state(), 2.0, &[])
+            .map(|s| (s, "minimal")),
+        Radau5::new(opts())
+            .solve(&pa, 0.0, pa.initial_state(), 2.0, &[])
+            .map(|s| (s, "augmented")),
     ];
     for run in runs {
         let (sol, form) = run.unwrap();
         for (&t, y) in sol.t.iter().zip(&sol.y).step_by(3) {
             let th = 0.3 + W * t;
             let (phi, s) = close(th);
-            let wrap = (y[0] - phi + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
-            assert!(wrap.abs() < 1e-8 && (y[1] - s).abs() < 1e-8, "{form} t = {t}");
+            let wrap = (y[0] - phi + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            assert!(
+                wrap.abs() < 1e-8 && (y[1] - s).abs() < 1e-8,
+                "{form} t = {t}"
+            );
             let (_, c, q) = lagrange_terms(th, true);
             let want = c * W * W - q;
-            let got = if form == "minimal" { p.outputs(t, y).unwrap().motor } else { pa.outputs(t, y).unwrap().motor };
-            assert!((got - want).abs() < 1e-6 * (1.0 + want.abs()), "{form} t = {t}: {got} vs {want}");
+            let got = if form == "minimal" {
+                p.outputs(t, y).unwrap().motor
+            } else {
+                pa.outputs(t, y).unwrap().motor
+            };
+            assert!(
+                (got - want).abs() < 1e-6 * (1.0 + want.abs()),
+                "{form} t = {t}: {got} vs {want}"
+            );
         }
     }
 }

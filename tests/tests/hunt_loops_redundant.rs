@@ -8,7 +8,9 @@
 //! `T = (3 m l^2 / 3 + mc l^2) th'^2 / 2`, `V = (3 m / 2 + mc) g l sin th`, and
 //! `(m + mc) l^2 th'' = -(3 m / 2 + mc) g l cos th`, integrated here by DOPRI5 at 1e-13.
 
-use mbd::integrate::{Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9};
+use mbd::integrate::{
+    Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9,
+};
 use mbd::prelude::*;
 use mbd::{OdeSystem, Vector};
 use std::f64::consts::FRAC_PI_2;
@@ -34,7 +36,12 @@ pub struct ThreeCranks {
     pub g: f64,
 }
 
-const S: ThreeCranks = ThreeCranks { m: 1.0, mc: 2.0, l: 1.0, g: 9.81 };
+const S: ThreeCranks = ThreeCranks {
+    m: 1.0,
+    mc: 2.0,
+    l: 1.0,
+    g: 9.81,
+};
 
 struct Reduced;
 
@@ -66,23 +73,74 @@ fn redundancy_is_found_and_the_multipliers_are_finite() {
 #[test]
 fn every_method_follows_the_one_coordinate_reduction() {
     let t1 = 3.0;
-    let opts = |tol: f64| Options { rtol: tol, atol: tol, ..Options::default() };
+    let opts = |tol: f64| Options {
+        rtol: tol,
+        atol: tol,
+        ..Options::default()
+    };
     let reference = Dopri5::new(opts(1e-13))
         .solve(&Reduced, 0.0, Vector::<2>::new(-FRAC_PI_2, W0), t1, &[])
         .unwrap();
     let y0 = start();
     let runs: Vec<(&str, mbd::Result<Solution<8>>, f64)> = vec![
-        ("dopri5 1e-6", Dopri5::new(opts(1e-6)).solve(&S, 0.0, y0, t1, &[]), 1e-5),
-        ("dopri5 1e-9", Dopri5::new(opts(1e-9)).solve(&S, 0.0, y0, t1, &[]), 1e-8),
-        ("dopri5 1e-12", Dopri5::new(opts(1e-12)).solve(&S, 0.0, y0, t1, &[]), 1e-10),
-        ("dop853 1e-10", Dop853::new(opts(1e-10)).solve(&S, 0.0, y0, t1, &[]), 1e-8),
-        ("vern9 1e-12", Vern9::new(opts(1e-12)).solve(&S, 0.0, y0, t1, &[]), 1e-10),
-        ("radau5 1e-6", Radau5::new(opts(1e-6)).solve(&S, 0.0, y0, t1, &[]), 1e-4),
-        ("radau5 1e-9", Radau5::new(opts(1e-9)).solve(&S, 0.0, y0, t1, &[]), 1e-7),
+        (
+            "dopri5 1e-6",
+            Dopri5::new(opts(1e-6)).solve(&S, 0.0, y0, t1, &[]),
+            1e-5,
+        ),
+        (
+            "dopri5 1e-9",
+            Dopri5::new(opts(1e-9)).solve(&S, 0.0, y0, t1, &[]),
+            1e-8,
+        ),
+        (
+            "dopri5 1e-12",
+            Dopri5::new(opts(1e-12)).solve(&S, 0.0, y0, t1, &[]),
+            1e-10,
+        ),
+        (
+            "dop853 1e-10",
+            Dop853::new(opts(1e-10)).solve(&S, 0.0, y0, t1, &[]),
+            1e-8,
+        ),
+        (
+            "vern9 1e-12",
+            Vern9::new(opts(1e-12)).solve(&S, 0.0, y0, t1, &[]),
+            1e-10,
+        ),
+        (
+            "radau5 1e-6",
+            Radau5::new(opts(1e-6)).solve(&S, 0.0, y0, t1, &[]),
+            1e-4,
+        ),
+        (
+            "radau5 1e-9",
+            Radau5::new(opts(1e-9)).solve(&S, 0.0, y0, t1, &[]),
+            1e-7,
+        ),
         ("rk4 1e-2", Rk4::new(1e-2).solve(&S, 0.0, y0, t1, &[]), 1e-6),
-        ("gauss 1e-2", Gauss::new(1e-2).solve(&S, 0.0, y0, t1, &[]), 1e-6),
-        ("generalized-alpha 1e-3", Integrator::solve(&GeneralizedAlpha::new(0.9, 1e-3), &S, 0.0, y0, t1, &[]), 1e-4),
-        ("ali3 1e-3", mbd::integrate::Ali3::new(1e-3).solve::<_, 4, 4, 8>(&S, 0.0, y0.fixed_rows::<4>(0).into_owned(), y0.fixed_rows::<4>(4).into_owned(), t1, &[]), 1e-4),
+        (
+            "gauss 1e-2",
+            Gauss::new(1e-2).solve(&S, 0.0, y0, t1, &[]),
+            1e-6,
+        ),
+        (
+            "generalized-alpha 1e-3",
+            Integrator::solve(&GeneralizedAlpha::new(0.9, 1e-3), &S, 0.0, y0, t1, &[]),
+            1e-4,
+        ),
+        (
+            "ali3 1e-3",
+            mbd::integrate::Ali3::new(1e-3).solve::<_, 4, 4, 8>(
+                &S,
+                0.0,
+                y0.fixed_rows::<4>(0).into_owned(),
+                y0.fixed_rows::<4>(4).into_owned(),
+                t1,
+                &[],
+            ),
+            1e-4,
+        ),
     ];
     let mut failures = vec![];
     for (name, run, tol) in runs {
@@ -97,9 +155,18 @@ fn every_method_follows_the_one_coordinate_reduction() {
         for (&t, y) in sol.t.iter().zip(&sol.y) {
             let r = reference.at(t).unwrap();
             worst.0 = worst.0.max((y[0] - r[0]).abs());
-            worst.1 = worst.1.max((y[1] - y[0]).abs()).max((y[2] - y[0]).abs()).max(y[3].abs());
+            worst.1 = worst
+                .1
+                .max((y[1] - y[0]).abs())
+                .max((y[2] - y[0]).abs())
+                .max(y[3].abs());
         }
-        println!("{name}: {} steps, crank error {:.2e}, off the parallelogram {:.2e}", sol.y.len(), worst.0, worst.1);
+        println!(
+            "{name}: {} steps, crank error {:.2e}, off the parallelogram {:.2e}",
+            sol.y.len(),
+            worst.0,
+            worst.1
+        );
         if !(worst.0 < tol && worst.1 < tol) {
             failures.push(format!("{name}: {worst:?}"));
         }
@@ -117,11 +184,22 @@ fn every_method_follows_the_one_coordinate_reduction() {
 fn generalized_alpha_index_three_runs_with_a_redundant_crank() {
     let t1 = 3.0;
     let y0 = start();
-    let reference = Dopri5::new(Options { rtol: 1e-13, atol: 1e-13, ..Options::default() })
-        .solve(&Reduced, 0.0, Vector::<2>::new(-FRAC_PI_2, W0), t1, &[])
-        .unwrap();
+    let reference = Dopri5::new(Options {
+        rtol: 1e-13,
+        atol: 1e-13,
+        ..Options::default()
+    })
+    .solve(&Reduced, 0.0, Vector::<2>::new(-FRAC_PI_2, W0), t1, &[])
+    .unwrap();
     let sol = GeneralizedAlpha::new(0.9, 1e-3)
-        .solve_constrained::<_, 4, 4, 8, 8>(&S, 0.0, y0.fixed_rows::<4>(0).into_owned(), y0.fixed_rows::<4>(4).into_owned(), t1, &[])
+        .solve_constrained::<_, 4, 4, 8, 8>(
+            &S,
+            0.0,
+            y0.fixed_rows::<4>(0).into_owned(),
+            y0.fixed_rows::<4>(4).into_owned(),
+            t1,
+            &[],
+        )
         .unwrap();
     for (&t, y) in sol.t.iter().zip(&sol.y) {
         assert!((y[0] - reference.at(t).unwrap()[0]).abs() < 1e-4, "t = {t}");

@@ -3,7 +3,9 @@
 //! exists, by the triangle inequality) must give typed errors from every entry point and every
 //! method, never `Ok` with NaN.
 
-use mbd::integrate::{Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9};
+use mbd::integrate::{
+    Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9,
+};
 use mbd::prelude::*;
 
 macro_rules! four_bar {
@@ -37,8 +39,22 @@ macro_rules! four_bar {
 four_bar!(FourBar, jacobian);
 four_bar!(FourBarAugmented, jacobian, augmented);
 
-const APART: FourBar = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 10.0, m: 1.0, g: 9.81 };
-const APART_AUG: FourBarAugmented = FourBarAugmented { a: 1.0, b: 3.0, c: 2.5, d: 10.0, m: 1.0, g: 9.81 };
+const APART: FourBar = FourBar {
+    a: 1.0,
+    b: 3.0,
+    c: 2.5,
+    d: 10.0,
+    m: 1.0,
+    g: 9.81,
+};
+const APART_AUG: FourBarAugmented = FourBarAugmented {
+    a: 1.0,
+    b: 3.0,
+    c: 2.5,
+    d: 10.0,
+    m: 1.0,
+    g: 9.81,
+};
 
 /// An error, of the kind `want` (by its variant name) where one is given.
 fn typed<T: std::fmt::Debug>(what: &str, r: mbd::Result<T>) {
@@ -71,16 +87,46 @@ fn minimal_form_refuses_a_loop_that_cannot_close_everywhere() {
     typed("minimal jacobian", p.jacobian(0.0, &y));
     let events = p.events();
     let opts = || Options::default();
-    typed("minimal dopri5", Dopri5::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("minimal dop853", Dop853::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("minimal vern9", Vern9::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("minimal radau5", Radau5::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("minimal rk4", Rk4::new(1e-2).solve(&p, 0.0, y, 1.0, &events));
-    typed("minimal gauss", Gauss::new(1e-2).solve(&p, 0.0, y, 1.0, &events));
-    typed("minimal generalized-alpha", Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), &p, 0.0, y, 1.0, &events));
-    typed("static_equilibrium", mbd::analysis::statics::static_equilibrium(&p, 0.0, &q, &Default::default()));
-    typed("minimal undamped_modes", mbd::analysis::linear::undamped_modes(&p, 0.0, &q));
-    typed("minimal linearize", mbd::analysis::linear::linearize(&p, 0.0, &y));
+    typed(
+        "minimal dopri5",
+        Dopri5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "minimal dop853",
+        Dop853::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "minimal vern9",
+        Vern9::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "minimal radau5",
+        Radau5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "minimal rk4",
+        Rk4::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "minimal gauss",
+        Gauss::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "minimal generalized-alpha",
+        Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), &p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "static_equilibrium",
+        mbd::analysis::statics::static_equilibrium(&p, 0.0, &q, &Default::default()),
+    );
+    typed(
+        "minimal undamped_modes",
+        mbd::analysis::linear::undamped_modes(&p, 0.0, &q),
+    );
+    typed(
+        "minimal linearize",
+        mbd::analysis::linear::linearize(&p, 0.0, &y),
+    );
     // `energy`, `mass_matrix` and `forces` cannot return an error (the trait's signatures):
     // outside the closure's domain they are NaN, as docs/ARCHITECTURE.md says.
     assert!(p.energy(0.0, &q, &qd).is_nan() && p.mass_matrix(0.0, &q)[0].is_nan());
@@ -92,40 +138,112 @@ fn augmented_form_refuses_a_loop_that_cannot_close_everywhere() {
     let y = p.initial_state();
     let q = y.fixed_rows::<3>(0).into_owned();
     let held = [true, false, false];
-    typed("assemble", mbd::analysis::assembly::assemble(&p, 0.0, &q, &held, &Default::default()));
+    typed(
+        "assemble",
+        mbd::analysis::assembly::assemble(&p, 0.0, &q, &held, &Default::default()),
+    );
     let events = p.events();
     let opts = || Options::default();
-    typed("augmented dopri5", Dopri5::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("augmented dop853", Dop853::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("augmented vern9", Vern9::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("augmented radau5", Radau5::new(opts()).solve(&p, 0.0, y, 1.0, &events));
-    typed("augmented rk4", Rk4::new(1e-2).solve(&p, 0.0, y, 1.0, &events));
-    typed("augmented gauss", Gauss::new(1e-2).solve(&p, 0.0, y, 1.0, &events));
-    typed("augmented generalized-alpha", Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), &p, 0.0, y, 1.0, &events));
-    typed("augmented generalized-alpha constrained", GeneralizedAlpha::new(0.8, 1e-2).solve_constrained::<_, 3, 2, 5, 6>(&p, 0.0, q, y.fixed_rows::<3>(3).into_owned(), 1.0, &[]));
-    typed("augmented ali3", mbd::integrate::Ali3::new(1e-2).solve::<_, 3, 2, 6>(&p, 0.0, q, y.fixed_rows::<3>(3).into_owned(), 1.0, &[]));
-    typed("static_equilibrium_constrained", mbd::analysis::statics::static_equilibrium_constrained::<_, 3, 2, 5>(&p, 0.0, &q, &Default::default()));
+    typed(
+        "augmented dopri5",
+        Dopri5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented dop853",
+        Dop853::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented vern9",
+        Vern9::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented radau5",
+        Radau5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented rk4",
+        Rk4::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented gauss",
+        Gauss::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented generalized-alpha",
+        Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), &p, 0.0, y, 1.0, &events),
+    );
+    typed(
+        "augmented generalized-alpha constrained",
+        GeneralizedAlpha::new(0.8, 1e-2).solve_constrained::<_, 3, 2, 5, 6>(
+            &p,
+            0.0,
+            q,
+            y.fixed_rows::<3>(3).into_owned(),
+            1.0,
+            &[],
+        ),
+    );
+    typed(
+        "augmented ali3",
+        mbd::integrate::Ali3::new(1e-2).solve::<_, 3, 2, 6>(
+            &p,
+            0.0,
+            q,
+            y.fixed_rows::<3>(3).into_owned(),
+            1.0,
+            &[],
+        ),
+    );
+    typed(
+        "static_equilibrium_constrained",
+        mbd::analysis::statics::static_equilibrium_constrained::<_, 3, 2, 5>(
+            &p,
+            0.0,
+            &q,
+            &Default::default(),
+        ),
+    );
 }
 
 /// The index-3 methods on a start off the constraints: like the ordinary solve, they must
 /// refuse it (or at least not move it onto the constraints unseen and return `Ok`).
 #[test]
 fn index_three_methods_refuse_a_start_off_the_constraints() {
-    let p = FourBarAugmented { d: 3.5, ..APART_AUG };
+    let p = FourBarAugmented {
+        d: 3.5,
+        ..APART_AUG
+    };
     let y = p.initial_state();
     let q = y.fixed_rows::<3>(0).into_owned();
     let qd = y.fixed_rows::<3>(3).into_owned();
-    assert!(Dopri5::new(Options::default()).solve(&p, 0.0, y, 0.5, &[]).is_ok());
+    assert!(
+        Dopri5::new(Options::default())
+            .solve(&p, 0.0, y, 0.5, &[])
+            .is_ok()
+    );
     let mut off = q;
     off[2] += 1e-3;
     let mut fast = qd;
     fast[2] += 0.5;
     for (what, q0, qd0) in [("positions", off, qd), ("velocities", q, fast)] {
         let ali3 = mbd::integrate::Ali3::new(1e-2).solve::<_, 3, 2, 6>(&p, 0.0, q0, qd0, 0.5, &[]);
-        let alpha = GeneralizedAlpha::new(0.8, 1e-2).solve_constrained::<_, 3, 2, 5, 6>(&p, 0.0, q0, qd0, 0.5, &[]);
+        let alpha = GeneralizedAlpha::new(0.8, 1e-2).solve_constrained::<_, 3, 2, 5, 6>(
+            &p,
+            0.0,
+            q0,
+            qd0,
+            0.5,
+            &[],
+        );
         println!("{what}: ali3 {:?}", ali3.as_ref().map(|s| s.y[0]));
         println!("{what}: alpha {:?}", alpha.as_ref().map(|s| s.y[0]));
-        assert!(matches!(ali3, Err(mbd::Error::InvalidInput { .. })), "ali3 {what}");
-        assert!(matches!(alpha, Err(mbd::Error::InvalidInput { .. })), "alpha {what}");
+        assert!(
+            matches!(ali3, Err(mbd::Error::InvalidInput { .. })),
+            "ali3 {what}"
+        );
+        assert!(
+            matches!(alpha, Err(mbd::Error::InvalidInput { .. })),
+            "alpha {what}"
+        );
     }
 }

@@ -9,7 +9,9 @@
 //! `Q = -g sum m p'_y`. Energy `T + V` from the same functions is the integrated motion's
 //! invariant.
 
-use mbd::integrate::{Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9};
+use mbd::integrate::{
+    Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9,
+};
 use mbd::prelude::*;
 
 macro_rules! six_bar {
@@ -59,11 +61,31 @@ const D2: f64 = 5.5;
 const G: f64 = 9.81;
 
 fn minimal() -> SixBar {
-    SixBar { a: 1.0, b: 3.0, c: 2.5, d: D, e: 3.0, f: 2.0, d2: D2, m: 1.0, g: G }
+    SixBar {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: D,
+        e: 3.0,
+        f: 2.0,
+        d2: D2,
+        m: 1.0,
+        g: G,
+    }
 }
 
 fn augmented() -> SixBarAugmented {
-    SixBarAugmented { a: 1.0, b: 3.0, c: 2.5, d: D, e: 3.0, f: 2.0, d2: D2, m: 1.0, g: G }
+    SixBarAugmented {
+        a: 1.0,
+        b: 3.0,
+        c: 2.5,
+        d: D,
+        e: 3.0,
+        f: 2.0,
+        d2: D2,
+        m: 1.0,
+        g: G,
+    }
 }
 
 /// The angles `(AC, DC)` of the point `C` at `r1` from `A` and `r2` from `D`, above `AD`.
@@ -91,7 +113,11 @@ fn bars(th: f64) -> [[f64; 3]; 5] {
     let tip = (D + c * ga.cos(), c * ga.sin());
     [
         [a / 2.0 * th.cos(), a / 2.0 * th.sin(), th],
-        [a * th.cos() + b / 2.0 * be.cos(), a * th.sin() + b / 2.0 * be.sin(), be],
+        [
+            a * th.cos() + b / 2.0 * be.cos(),
+            a * th.sin() + b / 2.0 * be.sin(),
+            be,
+        ],
         [D + c / 2.0 * ga.cos(), c / 2.0 * ga.sin(), ga],
         [tip.0 + e / 2.0 * de.cos(), tip.1 + e / 2.0 * de.sin(), de],
         [D2 + f / 2.0 * ep.cos(), f / 2.0 * ep.sin(), ep],
@@ -143,7 +169,12 @@ fn energy(th: f64, thd: f64) -> f64 {
 #[test]
 fn the_init_is_on_the_hand_closure() {
     let want = close(0.5);
-    let got = [0.726016592102178, 1.7229599395818347, -0.18570003070547192, 1.2820616702455918];
+    let got = [
+        0.726016592102178,
+        1.7229599395818347,
+        -0.18570003070547192,
+        1.2820616702455918,
+    ];
     for (w, g) in want.iter().zip(got) {
         assert!((w - g).abs() < 1e-14, "{w} vs {g}");
     }
@@ -152,7 +183,11 @@ fn the_init_is_on_the_hand_closure() {
 #[test]
 fn accelerations_match_lagrange_in_both_forms() {
     let (p, pa) = (minimal(), augmented());
-    println!("{:?} / {:?}", SixBar::GENERATED.parts, SixBarAugmented::GENERATED.parts);
+    println!(
+        "{:?} / {:?}",
+        SixBar::GENERATED.parts,
+        SixBarAugmented::GENERATED.parts
+    );
     println!("{:?}", SixBar::COORDINATES);
     for th in [0.5, 1.3, 2.2, 3.0, -2.5, -1.0] {
         for thd in [0.0, 3.0, -7.0] {
@@ -164,10 +199,16 @@ fn accelerations_match_lagrange_in_both_forms() {
             let q = mbd::Vector::<5>::from([th, dep[0], dep[1], dep[2], dep[3]]);
             let qd = mbd::Vector::<5>::from([1.0, d1[1][2], d1[2][2], d1[3][2], d1[4][2]]) * thd;
             let aug = pa.acceleration(0.0, &q, &qd).unwrap()[0];
-            assert!((aug - want).abs() < tol, "augmented th = {th}, thd = {thd}: {aug} vs {want}");
+            assert!(
+                (aug - want).abs() < tol,
+                "augmented th = {th}, thd = {thd}: {aug} vs {want}"
+            );
             let y = mbd::Vector::<2>::new(th, thd);
             let got = p.rhs(0.0, &y).unwrap()[1];
-            assert!((got - want).abs() < tol, "minimal th = {th}, thd = {thd}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < tol,
+                "minimal th = {th}, thd = {thd}: {got} vs {want}"
+            );
         }
     }
 }
@@ -178,29 +219,84 @@ fn consistent_start(pa: &SixBarAugmented) -> mbd::Vector<10> {
     let y = pa.initial_state();
     let q = y.fixed_rows::<5>(0).into_owned();
     let held = [true, false, false, false, false];
-    let qd = mbd::analysis::assembly::consistent_velocities(pa, 0.0, &q, &y.fixed_rows::<5>(5).into_owned(), &held).unwrap();
+    let qd = mbd::analysis::assembly::consistent_velocities(
+        pa,
+        0.0,
+        &q,
+        &y.fixed_rows::<5>(5).into_owned(),
+        &held,
+    )
+    .unwrap();
     let mut out = y;
     out.fixed_rows_mut::<5>(5).copy_from(&qd);
     out
 }
 
 /// Every method, both forms: `(name, minimal run, augmented run, energy tolerance)`.
-type Runs = Vec<(&'static str, mbd::Result<Solution<2>>, mbd::Result<Solution<10>>, f64)>;
+type Runs = Vec<(
+    &'static str,
+    mbd::Result<Solution<2>>,
+    mbd::Result<Solution<10>>,
+    f64,
+)>;
 
 fn runs(t1: f64) -> Runs {
     let (p, pa) = (minimal(), augmented());
     let y = p.initial_state();
     let ya = consistent_start(&pa);
-    let tight = || Options { rtol: 1e-10, atol: 1e-10, ..Options::default() };
-    let loose = || Options { rtol: 1e-7, atol: 1e-7, ..Options::default() };
+    let tight = || Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Options::default()
+    };
+    let loose = || Options {
+        rtol: 1e-7,
+        atol: 1e-7,
+        ..Options::default()
+    };
     vec![
-        ("dopri5", Dopri5::new(tight()).solve(&p, 0.0, y, t1, &[]), Dopri5::new(tight()).solve(&pa, 0.0, ya, t1, &[]), 1e-7),
-        ("dop853", Dop853::new(tight()).solve(&p, 0.0, y, t1, &[]), Dop853::new(tight()).solve(&pa, 0.0, ya, t1, &[]), 1e-7),
-        ("vern9", Vern9::new(tight()).solve(&p, 0.0, y, t1, &[]), Vern9::new(tight()).solve(&pa, 0.0, ya, t1, &[]), 1e-7),
-        ("radau5", Radau5::new(loose()).solve(&p, 0.0, y, t1, &[]), Radau5::new(loose()).solve(&pa, 0.0, ya, t1, &[]), 1e-4),
-        ("rk4", Rk4::new(1e-3).solve(&p, 0.0, y, t1, &[]), Rk4::new(1e-3).solve(&pa, 0.0, ya, t1, &[]), 1e-5),
-        ("gauss", Gauss::new(2e-3).solve(&p, 0.0, y, t1, &[]), Gauss::new(2e-3).solve(&pa, 0.0, ya, t1, &[]), 1e-5),
-        ("generalized-alpha", Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), &p, 0.0, y, t1, &[]), Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), &pa, 0.0, ya, t1, &[]), 1e-5),
+        (
+            "dopri5",
+            Dopri5::new(tight()).solve(&p, 0.0, y, t1, &[]),
+            Dopri5::new(tight()).solve(&pa, 0.0, ya, t1, &[]),
+            1e-7,
+        ),
+        (
+            "dop853",
+            Dop853::new(tight()).solve(&p, 0.0, y, t1, &[]),
+            Dop853::new(tight()).solve(&pa, 0.0, ya, t1, &[]),
+            1e-7,
+        ),
+        (
+            "vern9",
+            Vern9::new(tight()).solve(&p, 0.0, y, t1, &[]),
+            Vern9::new(tight()).solve(&pa, 0.0, ya, t1, &[]),
+            1e-7,
+        ),
+        (
+            "radau5",
+            Radau5::new(loose()).solve(&p, 0.0, y, t1, &[]),
+            Radau5::new(loose()).solve(&pa, 0.0, ya, t1, &[]),
+            1e-4,
+        ),
+        (
+            "rk4",
+            Rk4::new(1e-3).solve(&p, 0.0, y, t1, &[]),
+            Rk4::new(1e-3).solve(&pa, 0.0, ya, t1, &[]),
+            1e-5,
+        ),
+        (
+            "gauss",
+            Gauss::new(2e-3).solve(&p, 0.0, y, t1, &[]),
+            Gauss::new(2e-3).solve(&pa, 0.0, ya, t1, &[]),
+            1e-5,
+        ),
+        (
+            "generalized-alpha",
+            Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), &p, 0.0, y, t1, &[]),
+            Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), &pa, 0.0, ya, t1, &[]),
+            1e-5,
+        ),
     ]
 }
 
@@ -220,20 +316,37 @@ fn every_method_conserves_the_hand_energy_on_both_forms() {
             let o = p.outputs(t, y).unwrap();
             let (d1, _) = bar_rates(y[0]);
             let want = close(y[0])[3];
-            assert!((o.out_angle - want).abs() < 1e-10, "{name}: ep {} vs {want}", o.out_angle);
-            assert!((o.out_rate - d1[4][2] * y[1]).abs() < 1e-7 * (1.0 + y[1].abs()), "{name}: ep'");
+            assert!(
+                (o.out_angle - want).abs() < 1e-10,
+                "{name}: ep {} vs {want}",
+                o.out_angle
+            );
+            assert!(
+                (o.out_rate - d1[4][2] * y[1]).abs() < 1e-7 * (1.0 + y[1].abs()),
+                "{name}: ep'"
+            );
         }
         for y in &aug.y {
             worst.1 = worst.1.max(rel(energy(y[0], y[5])));
             let dep = close(y[0]);
             for k in 0..4 {
-                let wrap = (y[k + 1] - dep[k] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+                let wrap = (y[k + 1] - dep[k] + std::f64::consts::PI)
+                    .rem_euclid(std::f64::consts::TAU)
+                    - std::f64::consts::PI;
                 worst.2 = worst.2.max(wrap.abs());
             }
         }
         let _ = &pa;
-        println!("{name}: minimal {} steps, energy {:.2e}; augmented {} steps, energy {:.2e}, off the hand closure {:.2e}; ends th = {:.6} / {:.6}",
-            min.y.len(), worst.0, aug.y.len(), worst.1, worst.2, min.y.last().unwrap()[0], aug.y.last().unwrap()[0]);
+        println!(
+            "{name}: minimal {} steps, energy {:.2e}; augmented {} steps, energy {:.2e}, off the hand closure {:.2e}; ends th = {:.6} / {:.6}",
+            min.y.len(),
+            worst.0,
+            aug.y.len(),
+            worst.1,
+            worst.2,
+            min.y.last().unwrap()[0],
+            aug.y.last().unwrap()[0]
+        );
         assert!(worst.0 < tol && worst.1 < tol, "{name}: {worst:?}");
         assert!(worst.2 < tol, "{name}: {worst:?}");
     }

@@ -10,9 +10,11 @@
 //! angular velocities (kinematic outputs: the dynamics, `M` and the forces, are not used), which
 //! the motion must conserve.
 
-use mbd::integrate::{Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9};
-use mbd::prelude::*;
 use mbd::Vector;
+use mbd::integrate::{
+    Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4, Vern9,
+};
+use mbd::prelude::*;
 
 macro_rules! rsur {
     ($name:ident, $($opt:ident),*) => {
@@ -42,7 +44,16 @@ const P: [f64; 8] = [1.0, 2.5, 1.5, 0.5, 2.5, 1.0, 0.05, 9.81];
 
 fn augmented() -> RsurAugmented {
     let [a, b, c, px, py, m, j, g] = P;
-    RsurAugmented { a, b, c, px, py, m, j, g }
+    RsurAugmented {
+        a,
+        b,
+        c,
+        px,
+        py,
+        m,
+        j,
+        g,
+    }
 }
 
 /// `|C - A| - b` from the crank and rocker angles alone.
@@ -76,8 +87,11 @@ fn the_start_closes_the_loop_by_hand() {
 }
 
 /// The start at rest, and what each method keeps of the energy and of the loop.
-fn check_runs<S>(p: &S, outputs: impl Fn(f64, &Vector<10>) -> [f64; 21], runs: Vec<(&str, mbd::Result<Solution<10>>, f64)>)
-where
+fn check_runs<S>(
+    p: &S,
+    outputs: impl Fn(f64, &Vector<10>) -> [f64; 21],
+    runs: Vec<(&str, mbd::Result<Solution<10>>, f64)>,
+) where
     S: Mechanism<5>,
 {
     let [.., m, j, g] = P;
@@ -92,8 +106,18 @@ where
             worst.1 = worst.1.max(length_residual(y[0], y[4]).abs());
         }
         let last = sol.y.last().unwrap();
-        println!("{name}: {} steps, energy {:.2e}, length {:.2e}, th {:.4} -> {:.6}", sol.y.len(), worst.0, worst.1, y0[0], last[0]);
-        assert!(worst.0 < tol && worst.1 < tol.max(1e-9), "{name}: {worst:?}");
+        println!(
+            "{name}: {} steps, energy {:.2e}, length {:.2e}, th {:.4} -> {:.6}",
+            sol.y.len(),
+            worst.0,
+            worst.1,
+            y0[0],
+            last[0]
+        );
+        assert!(
+            worst.0 < tol && worst.1 < tol.max(1e-9),
+            "{name}: {worst:?}"
+        );
         assert!((last[0] - y0[0]).abs() > 0.05, "{name}: it moved");
     }
 }
@@ -105,15 +129,44 @@ fn runs_start() -> Vector<10> {
 
 fn all_methods<S: OdeSystem<10>>(p: &S) -> Vec<(&'static str, mbd::Result<Solution<10>>, f64)> {
     let y0 = runs_start();
-    let tight = || Options { rtol: 1e-10, atol: 1e-10, ..Options::default() };
+    let tight = || Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Options::default()
+    };
     vec![
-        ("dopri5", Dopri5::new(tight()).solve(p, 0.0, y0, 1.5, &[]), 1e-7),
-        ("dop853", Dop853::new(tight()).solve(p, 0.0, y0, 1.5, &[]), 1e-7),
-        ("vern9", Vern9::new(tight()).solve(p, 0.0, y0, 1.5, &[]), 1e-7),
-        ("radau5", Radau5::new(Options { rtol: 1e-8, atol: 1e-8, ..Options::default() }).solve(p, 0.0, y0, 1.5, &[]), 1e-5),
+        (
+            "dopri5",
+            Dopri5::new(tight()).solve(p, 0.0, y0, 1.5, &[]),
+            1e-7,
+        ),
+        (
+            "dop853",
+            Dop853::new(tight()).solve(p, 0.0, y0, 1.5, &[]),
+            1e-7,
+        ),
+        (
+            "vern9",
+            Vern9::new(tight()).solve(p, 0.0, y0, 1.5, &[]),
+            1e-7,
+        ),
+        (
+            "radau5",
+            Radau5::new(Options {
+                rtol: 1e-8,
+                atol: 1e-8,
+                ..Options::default()
+            })
+            .solve(p, 0.0, y0, 1.5, &[]),
+            1e-5,
+        ),
         ("rk4", Rk4::new(2e-3).solve(p, 0.0, y0, 1.5, &[]), 1e-6),
         ("gauss", Gauss::new(4e-3).solve(p, 0.0, y0, 1.5, &[]), 1e-6),
-        ("generalized-alpha", Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), p, 0.0, y0, 1.5, &[]), 1e-4),
+        (
+            "generalized-alpha",
+            Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), p, 0.0, y0, 1.5, &[]),
+            1e-4,
+        ),
     ]
 }
 
@@ -123,4 +176,3 @@ fn augmented_form_conserves_energy_and_closes_the_loop_on_every_method() {
     let out = |t: f64, y: &Vector<10>| p.output_values(t, y).unwrap();
     check_runs(&p, out, all_methods(&p));
 }
-

@@ -69,8 +69,8 @@ pub(super) fn minimal_coordinates(
     if let Some(sol) = &solution {
         check_closure_domain(g, loops, sol, &kin.coords, &env, &mut scope.errors);
     }
-    let solution = solution
-        .filter(|sol| ast.loop_form == parse::LoopForm::Minimal || keeps_first(sol));
+    let solution =
+        solution.filter(|sol| ast.loop_form == parse::LoopForm::Minimal || keeps_first(sol));
     let Some(solution) = solution else {
         if ast.loop_form == parse::LoopForm::Minimal {
             let why = why_not.unwrap_or("no closed form for the closure: the derive solves a constraint linear in one coordinate with a constant coefficient, an angle inside only `sin`/`cos` of itself, or a planar loop of two angles");
@@ -262,7 +262,10 @@ fn check_closure_domain(
             continue;
         }
         let solved_by = |c: &usize| coords[*c].name == d.coord.as_str();
-        let Some((rows, _)) = solution.pivots.iter().find(|(_, cs)| cs.iter().any(solved_by))
+        let Some((rows, _)) = solution
+            .pivots
+            .iter()
+            .find(|(_, cs)| cs.iter().any(solved_by))
         else {
             continue;
         };
