@@ -43,7 +43,7 @@ const LIMIT: f64 = 1.369_438_406_004_566; // acos(0.2)
 /// Kinetic energy from the full state `[th, be, ga, th', be', ga']`, all bars of mass 1.
 fn kinetic(y: &Vector<6>) -> f64 {
     let (a, b, c) = (2.5, 1.0, 2.5);
-    let (th, be, ga, w1, w2, w3) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+    let (th, be, w1, w2, w3) = (y[0], y[1], y[3], y[4], y[5]);
     let v1 = (a / 2.0 * w1).powi(2);
     let (vx, vy) = (
         -a * th.sin() * w1 - b / 2.0 * be.sin() * w2,
