@@ -48,7 +48,7 @@
 //! | `generalized_force` | along the coordinate | positive increases it | |
 //! | `potential` | an energy (J); its force is `-dV/dq` | | |
 //! | `reaction(u)` | the generalised force along `u` that keeps `u` on its law; for `body(.., reaction)` the joint's force on the body, ground frame | positive along `u` | |
-//! | `init` | | | every coordinate and rate `0` |
+//! | `init` | | | every coordinate and rate `0`; in the augmented form of a closed loop the rates not given follow from the velocity constraints (the given ones held) |
 //! | spring or damper end naming a body | its mass centre (a `point(.., on = b)` for another point) | | |
 //! | `event` | a zero of the expression | `rising`: from negative to positive | both directions, not terminal |
 //! | `mechanism` | | | planar unless `gravity` has 3 components; articulated-body recursion for a tree of 2 or more bodies; `minimal` where the closure has a closed form |

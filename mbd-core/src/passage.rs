@@ -644,7 +644,7 @@ const START_TOL: f64 = 1e-8;
 
 /// The start must lie on the position and velocity constraints: the least `M`-norm
 /// correction that would put it there is at most [`START_TOL`] of its size.
-fn check_start<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
+pub(crate) fn check_start<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
     sys: &S,
     t: f64,
     y: &Vector<D>,

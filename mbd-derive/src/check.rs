@@ -4,7 +4,7 @@
 //! two contradicting flags winning) and on the AST. Three kinds of checks, each a spanned
 //! error that says what to write instead:
 //! - contradictions and repetitions: two `#[gravity]`, `planar` with `spatial`, `recursive`
-//!   with `mass_matrix`, `rising` with `falling`, a flag or a `#[default]` given twice;
+//!   with `mass_matrix`, `augmented` with `minimal`, `rising` with `falling`, a flag or a `#[default]` given twice;
 //! - names the macro generates (`chain(link, ..)`: `link_1 ..`, `link_q1 ..`;
 //!   `body(b, .., reaction)`: `b_rx`, `b_ry`, `b_rz`; the state's `x_dot`) used for something
 //!   else;
@@ -73,7 +73,7 @@ fn key(e: &Expr) -> Option<(&Ident, &Expr)> {
 fn repetitions(input: &DeriveInput, errors: &mut Errors) {
     let mut gravity = false;
     let mut seen: HashMap<String, Span> = HashMap::new();
-    const EXCLUSIVE: [(&str, &str, &str); 2] = [
+    const EXCLUSIVE: [(&str, &str, &str); 3] = [
         (
             "planar",
             "spatial",
@@ -83,6 +83,11 @@ fn repetitions(input: &DeriveInput, errors: &mut Errors) {
             "recursive",
             "mass_matrix",
             "a tree is evaluated either `recursive`ly or through its `mass_matrix`",
+        ),
+        (
+            "augmented",
+            "minimal",
+            "a closed loop is kept either `augmented` or in `minimal` coordinates",
         ),
     ];
     for attr in &input.attrs {

@@ -47,6 +47,12 @@ pub type Lower3<'a> = dyn FnMut(&mut Graph, &mut Errors, &Term) -> Option<Vec<Ex
 
 /// The arguments a joint kind takes beyond the points, and which it requires.
 fn check_keys(cl: &Closure<Term>, dim: Dim, errors: &mut Errors) -> Option<CloseJoint> {
+    if let (Some(a), Some(b)) = (&cl.a, &cl.b)
+        && a == b
+    {
+        errors.at(b.span(), format!("`{b}` closed on itself: two points of one body never move relative to each other, so the joint either always holds or never does; close it on another body or `ground`"));
+        return None;
+    }
     let given = [
         ("axis_a", &cl.axis_a),
         ("axis_b", &cl.axis_b),

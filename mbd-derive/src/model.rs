@@ -166,6 +166,8 @@ pub struct Equations {
     /// Initial positions and velocities of the free coordinates (parameters allowed).
     pub init_q: Vec<Expr>,
     pub init_qd: Vec<Expr>,
+    /// Which of `init_qd` an `init` gives (the augmented form completes the others).
+    pub init_rate_given: Vec<bool>,
     /// Minimal coordinates of a closed loop (closure.rs): the `asin`/`acos` arguments the
     /// generated code checks, `None` when the model is not one (no loop, or augmented).
     pub closure_domain: Option<Vec<closure::Domain>>,
@@ -403,7 +405,8 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
         outputs: &outputs,
     };
     let linear = crate::linear::derive(&mut scope.g, ast, &mut scope.errors, linear_parts);
-    let (init_q, init_qd) = initial::initial_conditions(ast, &mut scope, &kin.coords, free_idx);
+    let (init_q, init_qd, init_rate_given) =
+        initial::initial_conditions(ast, &mut scope, &kin.coords, free_idx);
     let free = free_idx
         .iter()
         .map(|&i| kin.coords[i].name.clone())
@@ -443,6 +446,7 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
         rolled: red.rolled,
         init_q,
         init_qd,
+        init_rate_given,
         closure_domain: minimal.map(|m| m.domain),
         checks,
     };

@@ -62,7 +62,8 @@ impl Ali3 {
     }
 
     /// Integrate from a state `(q0, qd0)` that satisfies the position and velocity
-    /// constraints; the solution's states are `y = [q; qd]` (`D = 2 N`).
+    /// constraints (else [`Error::InvalidInput`], as the ordinary solve); the solution's
+    /// states are `y = [q; qd]` (`D = 2 N`).
     pub fn solve<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
         &self,
         sys: &S,
@@ -78,6 +79,8 @@ impl Ali3 {
         positive_finite("tol", self.tol)?;
         let y0 = stack(&q0, &qd0);
         validate_problem(t0, &y0, t1)?;
+        // Its projections would move a start off the constraints unseen: refused instead.
+        crate::passage::check_start::<S, N, M, D>(sys, t0, &y0)?;
         let steps = ((t1 - t0) / self.h).ceil().max(1.0);
         if steps > self.max_steps as f64 {
             return Err(Error::TooManySteps {

@@ -717,6 +717,26 @@ fn frictions(
     })
 }
 
+/// In the augmented form, the rates `init` does not give follow from the velocity
+/// constraints (the least-norm consistent ones, the given rates held), as the closure gives
+/// them in minimal coordinates: `init(der(th) = 2.0)` means the same in both forms. Left as
+/// given where the held rates do not determine them (the solve then refuses the start).
+fn complete_rates(eq: &Equations, sh: &Shape<'_>) -> TokenStream {
+    let (n, m) = (sh.n, sh.m);
+    if !sh.constrained || eq.init_rate_given.iter().all(|&g| g) {
+        return TokenStream::new();
+    }
+    let held = &eq.init_rate_given;
+    quote! {
+        let held: [bool; #n] = [#(#held),*];
+        let q = y.fixed_rows::<#n>(0).into_owned();
+        let qd = y.fixed_rows::<#n>(#n).into_owned();
+        if let Ok(qd) = ::mbd::__private::analysis::assembly::consistent_velocities::<Self, #n, #m>(self, t, &q, &qd, &held) {
+            y.fixed_rows_mut::<#n>(#n).copy_from(&qd);
+        }
+    }
+}
+
 /// The typed state, `GENERATED`, the parameter checks, the initial state, and the items.
 fn state(
     eq: &Equations,
@@ -729,6 +749,7 @@ fn state(
     let init_roots: Vec<Expr> = eq.init_q.iter().chain(&eq.init_qd).copied().collect();
     let init = Block::new(eq, &init_roots);
     let (init_s, init_v) = (init.stmts(), init.vector("y", d, &init_roots));
+    let init_rates = complete_rates(eq, &sh);
     let state_struct = format_ident!("{}State", ident);
     let q_ids: Vec<_> = eq.free.clone();
     let qd_ids: Vec<_> = eq.free.iter().map(|c| format_ident!("{}_dot", c)).collect();
@@ -768,11 +789,13 @@ fn state(
                 constraints: #m,
             };
             #check_parameters
-            /// The initial state `[q; qd]` given by `#[init(..)]` (zero where not given).
+            /// The initial state `[q; qd]` given by `#[init(..)]` (zero where not given; in the
+            /// augmented form the rates not given follow from the velocity constraints).
             pub fn initial_state(&self) -> ::mbd::__private::Vector<#d> {
                 let t = 0.0_f64;
                 #init_s
                 #init_v
+                #init_rates
                 y
             }
         }

@@ -10,8 +10,8 @@ use crate::close;
 use crate::closure;
 use crate::lower::{Context, Lowerer};
 use crate::lowered::Term;
-use crate::parse::Dim;
-use crate::sym::{Expr, Sym};
+use crate::parse::{Dim, Errors};
+use crate::sym::{Expr, Graph, Sym};
 use crate::tree;
 use proc_macro2::TokenStream;
 use syn::Ident;
@@ -186,6 +186,31 @@ pub(super) fn in_free_coordinates(
     }
 }
 
+/// A row equal to an earlier one or to its negative (a pin or a constraint written twice,
+/// whatever its shape): its Jacobian rows repeat at every configuration. Rows already told
+/// (constant-coefficient dependence) or over-determining are skipped.
+fn repeated_rows(
+    g: &mut Graph,
+    errors: &mut Errors,
+    phi: &[Expr],
+    tokens: &[&TokenStream],
+    told: &[usize],
+    n: usize,
+) {
+    for k in 0..phi.len().min(n) {
+        if told.contains(&k) {
+            continue;
+        }
+        let repeats = (0..k).any(|j| {
+            let (d, s) = (g.sub(phi[k], phi[j]), g.add(phi[k], phi[j]));
+            g.is_zero(d) || g.is_zero(s)
+        });
+        if repeats {
+            errors.over(tokens[k], "this constraint repeats an earlier one (the same equation, or a joint closing the same points twice): the constraint Jacobian would be singular everywhere; remove it");
+        }
+    }
+}
+
 /// Constraints that over-determine, repeat, contradict or miss the coordinates, and free
 /// coordinates that neither move a mass nor are constrained.
 pub(super) fn check(
@@ -203,7 +228,10 @@ pub(super) fn check(
             errors.over(tokens, format!("more constraints ({m_con}) than free coordinates ({n}): this one over-determines the mechanism"));
         }
     }
-    for (k, how) in closure::constant_dependence(g, phi, qsyms) {
+    let dependence = closure::constant_dependence(g, phi, qsyms);
+    let told: Vec<usize> = dependence.iter().map(|d| d.0).collect();
+    repeated_rows(g, errors, phi, tokens, &told, n);
+    for (k, how) in dependence {
         if m_con > n && k >= n {
             continue; // already an over-determining constraint
         }

@@ -1,5 +1,6 @@
 //! Initial positions and velocities of the free coordinates (parameters allowed); a
-//! dependent coordinate's follow from the closure.
+//! dependent coordinate's follow from the closure. Which rates `init` gives is kept: the
+//! augmented form completes the others from the velocity constraints (codegen/items.rs).
 
 use super::Ast;
 use super::scope::Scope;
@@ -12,11 +13,12 @@ pub(super) fn initial_conditions(
     scope: &mut Scope,
     coords: &[Coord],
     free_idx: &[usize],
-) -> (Vec<Expr>, Vec<Expr>) {
+) -> (Vec<Expr>, Vec<Expr>, Vec<bool>) {
     let zero = scope.g.zero();
     let n = free_idx.len();
     let mut init_q = vec![zero; n];
     let mut init_qd = vec![zero; n];
+    let mut rate_given = vec![false; n];
     for i in &ast.inits {
         let dependent = |c: &Coord| matches!(c.kind, CoordKind::Dependent(_));
         if coords.iter().any(|c| c.name == i.coord && dependent(c)) {
@@ -31,11 +33,12 @@ pub(super) fn initial_conditions(
         };
         if let Some(v) = scope.lowerer(None).scalar(&i.value, Context::Constant) {
             if i.velocity {
-                init_qd[a] = v
+                init_qd[a] = v;
+                rate_given[a] = true;
             } else {
                 init_q[a] = v
             }
         }
     }
-    (init_q, init_qd)
+    (init_q, init_qd, rate_given)
 }

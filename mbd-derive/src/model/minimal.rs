@@ -57,6 +57,20 @@ pub(super) fn minimal_coordinates(
         Some(_) => None,
         None => closure::solve(g, &loops.phi, &free, &env),
     };
+    // The state is the first-listed coordinates: a closed form that keeps others (the
+    // quick-return's slide `s` for its crank `th`) may meet limit positions of its own where
+    // the mechanism is regular, so the augmented form serves unless `minimal` is asked for.
+    let keeps_first = |sol: &closure::Solution| {
+        let dependent = free.len() - loops.phi.len();
+        free[dependent..]
+            .iter()
+            .all(|u| sol.solved.iter().any(|s| s.0 == u.index))
+    };
+    if let Some(sol) = &solution {
+        check_closure_domain(g, loops, sol, &kin.coords, &env, &mut scope.errors);
+    }
+    let solution =
+        solution.filter(|sol| ast.loop_form == parse::LoopForm::Minimal || keeps_first(sol));
     let Some(solution) = solution else {
         if ast.loop_form == parse::LoopForm::Minimal {
             let why = why_not.unwrap_or("no closed form for the closure: the derive solves a constraint linear in one coordinate with a constant coefficient, an angle inside only `sin`/`cos` of itself, or a planar loop of two angles");
@@ -228,6 +242,46 @@ fn default_values(ast: &Ast, g: &mut Graph, coords: &[Coord], names: &Names) -> 
     }
     env.extend(values);
     env
+}
+
+/// The closed form's `asin`/`acos` arguments where they are known at compile time (constants,
+/// or the parameter defaults and `init` positions): one outside `[-1, 1]` means the loop
+/// cannot close there (`sin(x) == 2.0`, a rod shorter than the crank's reach), refused at
+/// the constraints that fix the coordinate rather than left to a run-time error.
+fn check_closure_domain(
+    g: &Graph,
+    loops: &Constraints<'_>,
+    solution: &closure::Solution,
+    coords: &[Coord],
+    env: &HashMap<Sym, f64>,
+    errors: &mut Errors,
+) {
+    for d in &solution.domain {
+        let u = g.eval(d.arg, &|s| env.get(&s).copied().unwrap_or(f64::NAN));
+        if !(u.is_finite() && u.abs() > 1.0 + 1e-12) {
+            continue;
+        }
+        let solved_by = |c: &usize| coords[*c].name == d.coord.as_str();
+        let Some((rows, _)) = solution
+            .pivots
+            .iter()
+            .find(|(_, cs)| cs.iter().any(solved_by))
+        else {
+            continue;
+        };
+        let when = if g.eval(d.arg, &|_| f64::NAN).is_finite() {
+            "for any values"
+        } else {
+            "at the default configuration (parameter defaults and `init` positions at t = 0)"
+        };
+        errors.over(
+            loops.tokens[rows[0]],
+            format!(
+                "the loop cannot close {when}: `{}` would need the sine or cosine {u:.6}, beyond 1",
+                d.coord
+            ),
+        );
+    }
 }
 
 /// The closure's equations at the default configuration, when it is complete (as
