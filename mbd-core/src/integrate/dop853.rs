@@ -1,19 +1,16 @@
 //! Dormand–Prince 8(5,3) with Hairer's step control, dense output and stiffness detection.
 
-use super::control::{PiController, StiffnessDetector};
+use super::control::PiController;
 use super::dop853_tableau::{DOP853, DOP853_BHH, DOP853_DENSE_A, DOP853_DENSE_C, DOP853_DENSE_D};
-use super::dopri5::first_stage;
-use super::non_finite;
+use super::explicit::{self, Pair, extra_stages};
 use super::tableau::Erk;
-use super::{
-    Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
-    validate_problem,
-};
-use crate::error::{Error, Result};
+use super::{Event, Integrator, Observer, Options, Segment, Solution};
+use crate::error::Result;
 use crate::model::{OdeSystem, Vector};
 
 /// The explicit Dormand–Prince 8(5,3) pair run as Hairer's `dop853.f` runs it
-/// (Hairer–Nørsett–Wanner I, Sect. II.5, II.6 and IV.2): twelve stages, the error of the
+/// (Hairer–Nørsett–Wanner I, Sect. II.5, II.6 and IV.2), by the shared explicit step loop:
+/// twelve stages, the error of the
 /// fifth-order estimate corrected by the third-order one ([`dop853_error`]), the PI
 /// controller with `dop853.f`'s constants ([`Dop853::controller`]), Hairer's initial step,
 /// stiffness detection every [`Options::stiffness_check`] accepted steps, and a
@@ -93,20 +90,7 @@ fn dense_segment<S: OdeSystem<D>, const D: usize>(
     y1: &Vector<D>,
     k: &mut [Vector<D>; 16],
 ) -> Result<Segment<D>> {
-    for (j, (a, c)) in DOP853_DENSE_A.iter().zip(DOP853_DENSE_C).enumerate() {
-        let s = 13 + j;
-        let mut acc = Vector::<D>::zeros();
-        for (aj, kj) in a[..s].iter().zip(k.iter()) {
-            if *aj != 0.0 {
-                acc += kj * *aj;
-            }
-        }
-        let t = t0 + c * h;
-        k[s] = sys.rhs(t, &(y0 + acc * h))?;
-        if non_finite(&k[s]) {
-            return Err(Error::NonFinite { t });
-        }
-    }
+    extra_stages((sys, t0, h, y0), k, 13, &DOP853_DENSE_A, &DOP853_DENSE_C)?;
     let r1 = y1 - y0;
     let r2 = k[0] * h - r1;
     let r3 = r1 - k[12] * h - r2;
@@ -144,102 +128,49 @@ impl Integrator for Dop853 {
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
-        let opts = &self.opts;
-        opts.validate()?;
-        validate_problem(t0, &y0, t1)?;
-        let mut rec = Recorder::new(events, t0, y0, opts).observed(observer);
-        let mut stats = Stats::default();
-        if t1 == t0 {
-            return rec.finish(stats);
-        }
-        let (rtol, atol) = (opts.rtol, opts.atol);
-        let h_max = opts.h_max.unwrap_or(t1 - t0);
+        explicit::solve::<Self, S, D, 12, 16>(&self.opts, sys, (t0, y0, t1), events, observer)
+    }
+}
 
-        // k[0..12] the step's stages, k[12] = f(t + h, y1), k[13..16] the dense stages.
-        let mut k = [Vector::<D>::zeros(); 16];
-        let mut z = [Vector::<D>::zeros(); 12];
-        let mut h;
-        (k[0], h) = first_stage(sys, t0, &y0, 8, opts, h_max, &mut stats)?;
+/// `k[0..12]` the step's stages, `k[12] = f(t + h, y1)`, `k[13..16]` the dense stages.
+impl Pair<12, 16> for Dop853 {
+    const TABLEAU: &'static Erk<12> = &DOP853;
+    const ORDER: i32 = 8;
+    const STIFF_LIMIT: f64 = Self::STIFF_HLAMBDA;
+    const STIFF_FROM_END: bool = true;
+    const DENSE_CALLS: usize = DOP853_DENSE_C.len();
+    const ERROR_SQUARED: bool = false;
 
-        let mut control = Self::controller();
-        let (mut t, mut y) = (t0, y0);
-        let mut last = false;
-        let mut stiff = StiffnessDetector::new(opts.stiffness_check, Self::STIFF_HLAMBDA);
-        loop {
-            if stats.n_steps >= opts.max_steps {
-                return Err(Error::TooManySteps {
-                    t,
-                    steps: stats.n_steps,
-                });
-            }
-            if 0.1 * h <= t.abs() * f64::EPSILON || h.is_nan() {
-                return Err(Error::StepSizeUnderflow { t, h });
-            }
-            if t + 1.01 * h - t1 > 0.0 {
-                h = t1 - t;
-                last = true;
-            }
-            stats.n_steps += 1;
-            let stages: &mut [Vector<D>; 12] = (&mut k[..12]).try_into().expect("12 stages");
-            DOP853.stages(sys, t, &y, h, stages, &mut z)?;
-            stats.n_rhs += 11;
-            let y1 = DOP853.advance(&y, stages, h);
-            let t_new = if last { t1 } else { t + h };
-            let err = dop853_error(stages, &y, &y1, h, rtol, atol);
-            if !err.is_finite() || non_finite(&y1) {
-                return Err(Error::NonFinite { t: t_new });
-            }
-            if err > 1.0 {
-                h = control.reject(h, err);
-                last = false;
-                stats.n_rejected += 1;
-                continue;
-            }
-            stats.n_accepted += 1;
-            // f(t + h, y1) first: it and the controller both wait for the step's last
-            // stage, and the call overlaps the controller's `ln` and `exp` when it comes
-            // first.
-            k[12] = sys.rhs(t + h, &y1)?;
-            stats.n_rhs += 1;
-            if non_finite(&k[12]) {
-                return Err(Error::NonFinite { t: t_new });
-            }
-            let h_new = control.accept(h, err).min(h_max);
-            // h |lambda| ~ h ||f(y1) - f(z11)|| / ||y1 - z11||: both at t + h.
-            if stiff.due(stats.n_accepted) && stiff.stiff_after(h, &k[12], &k[11], &y1, &z[11]) {
-                return Err(Error::Stiff { t });
-            }
+    fn controller() -> PiController {
+        Self::controller()
+    }
 
-            let mut y_acc = y1;
-            let mut f_acc = k[12];
-            if opts.project {
-                sys.project(t_new, &mut y_acc)?;
-                if non_finite(&y_acc) {
-                    return Err(Error::NonFinite { t: t_new });
-                }
-                if y_acc != y1 {
-                    f_acc = sys.rhs(t_new, &y_acc)?;
-                    stats.n_rhs += 1;
-                    if non_finite(&f_acc) {
-                        return Err(Error::NonFinite { t: t_new });
-                    }
-                }
-            }
-            // The segment interpolates the step as computed (before any projection).
-            let flow = if rec.needs_segment_to(t_new) {
-                stats.n_rhs += 3;
-                let seg = dense_segment(sys, t, h, &y, &y1, &mut k)?;
-                rec.accept(seg, &y_acc)
-            } else {
-                rec.accept_point(t_new, &y_acc)
-            };
-            k[0] = f_acc;
-            (t, y) = (t_new, y_acc);
-            if flow == Flow::Stop || last {
-                break;
-            }
-            h = h_new;
-        }
-        rec.finish(stats)
+    #[inline]
+    fn underflow(h: f64, t: f64) -> bool {
+        0.1 * h <= t.abs() * f64::EPSILON
+    }
+
+    #[inline]
+    fn error<const D: usize>(
+        k: &[Vector<D>; 12],
+        y: &Vector<D>,
+        y1: &Vector<D>,
+        h: f64,
+        rtol: f64,
+        atol: f64,
+    ) -> f64 {
+        dop853_error(k, y, y1, h, rtol, atol)
+    }
+
+    #[inline]
+    fn segment<F: OdeSystem<D>, const D: usize>(
+        sys: &F,
+        t: f64,
+        h: f64,
+        y: &Vector<D>,
+        y1: &Vector<D>,
+        k: &mut [Vector<D>; 16],
+    ) -> Result<Segment<D>> {
+        dense_segment(sys, t, h, y, y1, k)
     }
 }

@@ -1,17 +1,20 @@
 //! Dormand–Prince 5(4) with Hairer's step control, dense output and stiffness detection.
 
-use super::control::{PiController, StiffnessDetector, error_norm_sq};
-use super::non_finite;
+#[cfg(doc)]
+use super::control::error_norm_sq;
+use super::control::{PiController, StiffnessDetector};
+use super::explicit::{self, Pair};
 use super::tableau::{DOPRI5, DOPRI5_DENSE, Erk};
-use super::{
-    Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
-    validate_problem,
-};
-use crate::error::{Error, Result};
+use super::{Event, Integrator, Observer, Options, Segment, Solution};
+#[cfg(doc)]
+use crate::error::Error;
+use crate::error::Result;
 use crate::model::{OdeSystem, Vector};
 
+pub use super::explicit::initial_step;
+
 /// The explicit Dormand–Prince 5(4) pair run as Hairer's `dopri5.f` runs it (Hairer–Nørsett–
-/// Wanner I, Sect. II.5 and II.6): FSAL, local extrapolation, the scaled RMS
+/// Wanner I, Sect. II.5 and II.6), by the shared explicit step loop: FSAL, local extrapolation, the scaled RMS
 /// [`error_norm`](super::control::error_norm) (taken squared, [`error_norm_sq`]), the
 /// [`PiController`], Hairer's initial step guess ([`initial_step`]), Shampine's
 /// fourth-order dense output, and stiffness detection every [`Options::stiffness_check`]
@@ -43,92 +46,6 @@ impl Dopri5 {
     pub fn new(opts: Options) -> Self {
         Dopri5 { opts }
     }
-}
-
-/// Hairer's initial step guess `HINIT` (Hairer–Nørsett–Wanner I, Sect. II.4, p. 169;
-/// `dopri5.f`), for a method of order `order`, with `sk = atol + rtol |y0_i|`:
-///
-/// 1. `d0 = ||y0 / sk||`, `d1 = ||f0 / sk||` (2-norms); `h = 0.01 d0 / d1`, or `1e-6` when
-///    either is below `1e-5`; `h = min(h, h_max)`.
-/// 2. One explicit Euler step gives `f1 = f(t0 + h, y0 + h f0)` and `d2 = ||(f1 - f0) / sk|| / h`.
-/// 3. `h1 = (0.01 / max(d1, d2))^(1/order)`, or `max(1e-6, 1e-3 h)` when that max is below
-///    `1e-15`; the guess is `min(100 h, h1, h_max)`, raised to `1024 eps |t0|` (a state
-///    that is nearly zero against `atol`, such as a position left at 1e-13 by a stop, would
-///    otherwise give a guess below the `16 eps |t|` at which the methods stop with
-///    `StepSizeUnderflow`; the step control takes it from there).
-///
-/// Makes one `rhs` call.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "the arguments of HINIT, all needed"
-)]
-pub fn initial_step<S: OdeSystem<D>, const D: usize>(
-    sys: &S,
-    t0: f64,
-    y0: &Vector<D>,
-    f0: &Vector<D>,
-    order: i32,
-    h_max: f64,
-    rtol: f64,
-    atol: f64,
-) -> Result<f64> {
-    let (mut dnf, mut dny) = (0.0, 0.0);
-    for i in 0..D {
-        let sk = atol + rtol * y0[i].abs();
-        dnf += (f0[i] / sk).powi(2);
-        dny += (y0[i] / sk).powi(2);
-    }
-    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
-        1e-6
-    } else {
-        (dny / dnf).sqrt() * 0.01
-    };
-    h = h.min(h_max);
-    let y1 = y0 + f0 * h;
-    let f1 = sys.rhs(t0 + h, &y1)?;
-    if non_finite(&f1) {
-        return Err(Error::NonFinite { t: t0 + h });
-    }
-    let mut der2 = 0.0;
-    for i in 0..D {
-        let sk = atol + rtol * y0[i].abs();
-        der2 += ((f1[i] - f0[i]) / sk).powi(2);
-    }
-    let der2 = der2.sqrt() / h;
-    let der12 = der2.abs().max(dnf.sqrt());
-    let h1 = if der12 <= 1e-15 {
-        (h * 1e-3).max(1e-6)
-    } else {
-        (0.01 / der12).powf(1.0 / order as f64)
-    };
-    let floor = (1024.0 * f64::EPSILON * t0.abs()).min(h_max);
-    Ok((100.0 * h).min(h1).min(h_max).max(floor))
-}
-
-/// The first stage `f(t0, y0)` of an explicit pair of order `order`, and its first step:
-/// `Options::h0` where given, else [`initial_step`]. Counts its `rhs` calls in `stats`.
-pub(super) fn first_stage<S: OdeSystem<D>, const D: usize>(
-    sys: &S,
-    t0: f64,
-    y0: &Vector<D>,
-    order: i32,
-    opts: &Options,
-    h_max: f64,
-    stats: &mut Stats,
-) -> Result<(Vector<D>, f64)> {
-    let f0 = sys.rhs(t0, y0)?;
-    stats.n_rhs += 1;
-    if non_finite(&f0) {
-        return Err(Error::NonFinite { t: t0 });
-    }
-    let h = match opts.h0 {
-        Some(h0) => h0.min(h_max),
-        None => {
-            stats.n_rhs += 1;
-            initial_step(sys, t0, y0, &f0, order, h_max, opts.rtol, opts.atol)?
-        }
-    };
-    Ok((f0, h))
 }
 
 /// Hairer's continuous extension of a DOPRI5 step (`dopri5.f` `CONTD5`),
@@ -173,89 +90,33 @@ impl Integrator for Dopri5 {
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
-        let opts = &self.opts;
-        opts.validate()?;
-        validate_problem(t0, &y0, t1)?;
-        let mut rec = Recorder::new(events, t0, y0, opts).observed(observer);
-        let mut stats = Stats::default();
-        if t1 == t0 {
-            return rec.finish(stats);
-        }
-        let (rtol, atol) = (opts.rtol, opts.atol);
-        let h_max = opts.h_max.unwrap_or(t1 - t0);
+        explicit::solve::<Self, S, D, 7, 7>(&self.opts, sys, (t0, y0, t1), events, observer)
+    }
+}
 
-        let mut k = [Vector::<D>::zeros(); 7];
-        let mut z = [Vector::<D>::zeros(); 7];
-        let mut h;
-        (k[0], h) = first_stage(sys, t0, &y0, 5, opts, h_max, &mut stats)?;
+impl Pair<7, 7> for Dopri5 {
+    const TABLEAU: &'static Erk<7> = &DOPRI5;
+    const ORDER: i32 = 5;
+    const STIFF_LIMIT: f64 = Self::STIFF_HLAMBDA;
 
-        let mut control = PiController::new();
-        let (mut t, mut y) = (t0, y0);
-        let mut last = false;
-        let mut stiff = StiffnessDetector::new(opts.stiffness_check, Self::STIFF_HLAMBDA);
-        loop {
-            if stats.n_steps >= opts.max_steps {
-                return Err(Error::TooManySteps {
-                    t,
-                    steps: stats.n_steps,
-                });
-            }
-            if h < 16.0 * f64::EPSILON * t.abs() || h.is_nan() {
-                return Err(Error::StepSizeUnderflow { t, h });
-            }
-            if t + 1.01 * h - t1 > 0.0 {
-                h = t1 - t;
-                last = true;
-            }
-            stats.n_steps += 1;
-            DOPRI5.stages(sys, t, &y, h, &mut k, &mut z)?;
-            stats.n_rhs += 6;
-            let y1 = z[6];
-            let t_new = if last { t1 } else { t + h };
-            let err2 = error_norm_sq(&Erk::combine(&DOPRI5.e, &k, 1.0), h, &y, &y1, rtol, atol);
-            if !err2.is_finite() || non_finite(&y1) {
-                return Err(Error::NonFinite { t: t_new });
-            }
-            let ln_err = 0.5 * err2.ln();
-            if err2 > 1.0 {
-                h = control.reject_ln(h, ln_err);
-                last = false;
-                stats.n_rejected += 1;
-                continue;
-            }
-            let h_new = control.accept_ln(h, ln_err).min(h_max);
-            stats.n_accepted += 1;
+    fn controller() -> PiController {
+        PiController::new()
+    }
 
-            // h |lambda| ~ h ||f(y1) - f(z6)|| / ||y1 - z6||: both are at t + h.
-            if stiff.due(stats.n_accepted) && stiff.stiff_after(h, &k[6], &k[5], &y1, &z[5]) {
-                return Err(Error::Stiff { t });
-            }
+    #[inline]
+    fn underflow(h: f64, t: f64) -> bool {
+        h < 16.0 * f64::EPSILON * t.abs()
+    }
 
-            let mut y_acc = y1;
-            let mut f_acc = None;
-            if opts.project {
-                sys.project(t_new, &mut y_acc)?;
-                if non_finite(&y_acc) {
-                    return Err(Error::NonFinite { t: t_new });
-                }
-                if y_acc != y1 {
-                    let f = sys.rhs(t_new, &y_acc)?;
-                    stats.n_rhs += 1;
-                    if non_finite(&f) {
-                        return Err(Error::NonFinite { t: t_new });
-                    }
-                    f_acc = Some(f);
-                }
-            }
-            // The segment interpolates the step as computed (before any projection).
-            let flow = rec.accept_with(t_new, &y_acc, || dense_segment(t, h, &y, &y1, &k));
-            k[0] = f_acc.unwrap_or(k[6]);
-            (t, y) = (t_new, y_acc);
-            if flow == Flow::Stop || last {
-                break;
-            }
-            h = h_new;
-        }
-        rec.finish(stats)
+    #[inline]
+    fn segment<F: OdeSystem<D>, const D: usize>(
+        _sys: &F,
+        t: f64,
+        h: f64,
+        y: &Vector<D>,
+        y1: &Vector<D>,
+        k: &mut [Vector<D>; 7],
+    ) -> Result<Segment<D>> {
+        Ok(dense_segment(t, h, y, y1, k))
     }
 }

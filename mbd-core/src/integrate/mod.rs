@@ -17,6 +17,7 @@ pub mod dop853;
 pub mod dop853_tableau;
 pub mod dopri5;
 pub mod events;
+mod explicit;
 pub mod gauss;
 pub mod generalized_alpha;
 pub mod radau5;

@@ -1,0 +1,333 @@
+//! The one step loop of the explicit embedded Runge–Kutta pairs (DOPRI5, DOP853, Vern9).
+//!
+//! A pair is a [`Pair`]: its tableau and the few things that differ between pairs (error
+//! measure, controller, stiffness limit, continuous extension). [`solve`] is generic over
+//! it and monomorphised per pair, so the step loop has no runtime dispatch and each pair
+//! runs exactly the operations its own loop ran.
+
+use super::control::{PiController, StiffnessDetector, error_norm_sq};
+use super::non_finite;
+use super::tableau::Erk;
+use super::{Event, Flow, Observer, Options, Recorder, Segment, Solution, Stats, validate_problem};
+use crate::error::{Error, Result};
+use crate::model::{OdeSystem, Vector};
+
+/// An explicit embedded pair of `S` stages run by [`solve`], with `K >= S` stage slots:
+/// `k[0..S]` the step's stages, then (for a pair that is not FSAL) `k[S] = f(t + h, y1)`,
+/// then the extra stages of the continuous extension.
+pub(crate) trait Pair<const S: usize, const K: usize> {
+    /// Stages, weights, error weights `e`, and whether the last stage is `f(t + h, y1)`.
+    const TABLEAU: &'static Erk<S>;
+    /// Order for Hairer's initial step guess ([`initial_step`]).
+    const ORDER: i32;
+    /// `h |lambda|` above which a step counts as stiff ([`StiffnessDetector`]).
+    const STIFF_LIMIT: f64;
+    /// The stiffness estimate compares `f(t + h, y1)` with the last stage (DOP853), not
+    /// the last two stages (both at `t + h`: DOPRI5, whose last is `f(t + h, y1)`, Vern9).
+    const STIFF_FROM_END: bool = false;
+    /// `rhs` calls made by [`Self::segment`].
+    const DENSE_CALLS: usize = 0;
+    /// [`Self::error`] is the square of the error (its `ln` is halved), not the error.
+    const ERROR_SQUARED: bool = true;
+
+    /// The step-size controller, fresh.
+    fn controller() -> PiController;
+
+    /// Whether the step `h` at `t` is too small to advance `t` (then
+    /// [`Error::StepSizeUnderflow`]).
+    fn underflow(h: f64, t: f64) -> bool;
+
+    /// The error measure of a step from `y` to `y1` (accepted when `<= 1`): by default the
+    /// square of the scaled RMS norm of `h sum_i e_i k_i` ([`error_norm_sq`]).
+    #[inline]
+    fn error<const D: usize>(
+        k: &[Vector<D>; S],
+        y: &Vector<D>,
+        y1: &Vector<D>,
+        h: f64,
+        rtol: f64,
+        atol: f64,
+    ) -> f64 {
+        error_norm_sq(
+            &Erk::combine(&Self::TABLEAU.e, k, 1.0),
+            h,
+            y,
+            y1,
+            rtol,
+            atol,
+        )
+    }
+
+    /// The continuous extension of an accepted step from `(t, y)` to `y1` of size `h`,
+    /// making [`Self::DENSE_CALLS`] more `rhs` calls into `k`'s extra slots.
+    fn segment<F: OdeSystem<D>, const D: usize>(
+        sys: &F,
+        t: f64,
+        h: f64,
+        y: &Vector<D>,
+        y1: &Vector<D>,
+        k: &mut [Vector<D>; K],
+    ) -> Result<Segment<D>>;
+}
+
+/// Hairer's initial step guess `HINIT` (Hairer–Nørsett–Wanner I, Sect. II.4, p. 169;
+/// `dopri5.f`), for a method of order `order`, with `sk = atol + rtol |y0_i|`:
+///
+/// 1. `d0 = ||y0 / sk||`, `d1 = ||f0 / sk||` (2-norms); `h = 0.01 d0 / d1`, or `1e-6` when
+///    either is below `1e-5`; `h = min(h, h_max)`.
+/// 2. One explicit Euler step gives `f1 = f(t0 + h, y0 + h f0)` and `d2 = ||(f1 - f0) / sk|| / h`.
+/// 3. `h1 = (0.01 / max(d1, d2))^(1/order)`, or `max(1e-6, 1e-3 h)` when that max is below
+///    `1e-15`; the guess is `min(100 h, h1, h_max)`, raised to `1024 eps |t0|` (a state
+///    that is nearly zero against `atol`, such as a position left at 1e-13 by a stop, would
+///    otherwise give a guess below the `16 eps |t|` at which the methods stop with
+///    `StepSizeUnderflow`; the step control takes it from there).
+///
+/// Makes one `rhs` call.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the arguments of HINIT, all needed"
+)]
+pub fn initial_step<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t0: f64,
+    y0: &Vector<D>,
+    f0: &Vector<D>,
+    order: i32,
+    h_max: f64,
+    rtol: f64,
+    atol: f64,
+) -> Result<f64> {
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for i in 0..D {
+        let sk = atol + rtol * y0[i].abs();
+        dnf += (f0[i] / sk).powi(2);
+        dny += (y0[i] / sk).powi(2);
+    }
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        (dny / dnf).sqrt() * 0.01
+    };
+    h = h.min(h_max);
+    let y1 = y0 + f0 * h;
+    let f1 = sys.rhs(t0 + h, &y1)?;
+    if non_finite(&f1) {
+        return Err(Error::NonFinite { t: t0 + h });
+    }
+    let mut der2 = 0.0;
+    for i in 0..D {
+        let sk = atol + rtol * y0[i].abs();
+        der2 += ((f1[i] - f0[i]) / sk).powi(2);
+    }
+    let der2 = der2.sqrt() / h;
+    let der12 = der2.abs().max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / order as f64)
+    };
+    let floor = (1024.0 * f64::EPSILON * t0.abs()).min(h_max);
+    Ok((100.0 * h).min(h1).min(h_max).max(floor))
+}
+
+/// The first stage `f(t0, y0)` of an explicit pair of order `order`, and its first step:
+/// `Options::h0` where given, else [`initial_step`]. Counts its `rhs` calls in `stats`.
+fn first_stage<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    t0: f64,
+    y0: &Vector<D>,
+    order: i32,
+    opts: &Options,
+    h_max: f64,
+    stats: &mut Stats,
+) -> Result<(Vector<D>, f64)> {
+    let f0 = sys.rhs(t0, y0)?;
+    stats.n_rhs += 1;
+    if non_finite(&f0) {
+        return Err(Error::NonFinite { t: t0 });
+    }
+    let h = match opts.h0 {
+        Some(h0) => h0.min(h_max),
+        None => {
+            stats.n_rhs += 1;
+            initial_step(sys, t0, y0, &f0, order, h_max, opts.rtol, opts.atol)?
+        }
+    };
+    Ok((f0, h))
+}
+
+/// `f(t, y)`, or [`Error::NonFinite`] at `t_err` when it is not finite.
+#[inline]
+fn rhs_finite<F: OdeSystem<D>, const D: usize>(
+    sys: &F,
+    t: f64,
+    y: &Vector<D>,
+    t_err: f64,
+) -> Result<Vector<D>> {
+    let f = sys.rhs(t, y)?;
+    if non_finite(&f) {
+        return Err(Error::NonFinite { t: t_err });
+    }
+    Ok(f)
+}
+
+/// The extra stages of a continuous extension: `k[first + j] = f(t + c_j h, y + h sum_i
+/// a_ji k_i)` over `i < first + j`, for each row `a_j` (Hairer–Nørsett–Wanner I,
+/// Sect. II.6). Makes `R` calls of `rhs`.
+#[inline]
+pub(crate) fn extra_stages<
+    F: OdeSystem<D>,
+    const D: usize,
+    const K: usize,
+    const R: usize,
+    const L: usize,
+>(
+    (sys, t, h, y): (&F, f64, f64, &Vector<D>),
+    k: &mut [Vector<D>; K],
+    first: usize,
+    a: &[[f64; L]; R],
+    c: &[f64; R],
+) -> Result<()> {
+    for (j, (a, c)) in a.iter().zip(c).enumerate() {
+        let s = first + j;
+        let mut acc = Vector::<D>::zeros();
+        for (aj, kj) in a[..s].iter().zip(k.iter()) {
+            if *aj != 0.0 {
+                acc += kj * *aj;
+            }
+        }
+        let ts = t + c * h;
+        k[s] = rhs_finite(sys, ts, &(y + acc * h), ts)?;
+    }
+    Ok(())
+}
+
+/// One raw run of the pair `M` (as `dopri5.f` and `dop853.f` run theirs; Hairer–Nørsett–
+/// Wanner I, Sect. II.4-II.6): FSAL or `f(t + h, y1)` after acceptance as the next step's
+/// first stage, local extrapolation, `M`'s error measure and [`PiController`], Hairer's
+/// initial step, stiffness detection every [`Options::stiffness_check`] accepted steps,
+/// projection after each accepted step (`f` evaluated again where it moved the state), and
+/// the continuous extension built only when the [`Recorder`] needs the step's segment
+/// (dense output, events, an output time inside the step). Stage storage is fixed arrays:
+/// a step allocates nothing.
+#[inline]
+pub(crate) fn solve<M, F, const D: usize, const S: usize, const K: usize>(
+    opts: &Options,
+    sys: &F,
+    (t0, y0, t1): (f64, Vector<D>, f64),
+    events: &[Event<'_, D>],
+    observer: Option<&mut Observer<'_, D>>,
+) -> Result<Solution<D>>
+where
+    M: Pair<S, K>,
+    F: OdeSystem<D>,
+{
+    const { assert!(S >= 2 && K >= S) };
+    opts.validate()?;
+    validate_problem(t0, &y0, t1)?;
+    let mut rec = Recorder::new(events, t0, y0, opts).observed(observer);
+    let mut stats = Stats::default();
+    if t1 == t0 {
+        return rec.finish(stats);
+    }
+    let (rtol, atol) = (opts.rtol, opts.atol);
+    let h_max = opts.h_max.unwrap_or(t1 - t0);
+    let tab = M::TABLEAU;
+
+    let mut k = [Vector::<D>::zeros(); K];
+    let mut z = [Vector::<D>::zeros(); S];
+    let mut h;
+    (k[0], h) = first_stage(sys, t0, &y0, M::ORDER, opts, h_max, &mut stats)?;
+
+    let mut control = M::controller();
+    let (mut t, mut y) = (t0, y0);
+    let mut last = false;
+    let mut stiff = StiffnessDetector::new(opts.stiffness_check, M::STIFF_LIMIT);
+    loop {
+        if stats.n_steps >= opts.max_steps {
+            return Err(Error::TooManySteps {
+                t,
+                steps: stats.n_steps,
+            });
+        }
+        if M::underflow(h, t) || h.is_nan() {
+            return Err(Error::StepSizeUnderflow { t, h });
+        }
+        if t + 1.01 * h - t1 > 0.0 {
+            h = t1 - t;
+            last = true;
+        }
+        stats.n_steps += 1;
+        let stages: &mut [Vector<D>; S] = (&mut k[..S]).try_into().expect("S <= K");
+        tab.stages(sys, t, &y, h, stages, &mut z)?;
+        stats.n_rhs += S - 1;
+        let y1 = if tab.fsal {
+            z[S - 1]
+        } else {
+            tab.advance(&y, stages, h)
+        };
+        let t_new = if last { t1 } else { t + h };
+        let err = M::error(stages, &y, &y1, h, rtol, atol);
+        if !err.is_finite() || non_finite(&y1) {
+            return Err(Error::NonFinite { t: t_new });
+        }
+        let ln_err = if M::ERROR_SQUARED {
+            0.5 * err.ln()
+        } else {
+            err.ln()
+        };
+        if err > 1.0 {
+            h = control.reject_ln(h, ln_err);
+            last = false;
+            stats.n_rejected += 1;
+            continue;
+        }
+        stats.n_accepted += 1;
+        // h |lambda| ~ h ||f(ya) - f(yb)|| / ||ya - yb|| for two arguments at t + h.
+        let test = stiff.due(stats.n_accepted);
+        if test
+            && !M::STIFF_FROM_END
+            && stiff.stiff_after(h, &k[S - 1], &k[S - 2], &z[S - 1], &z[S - 2])
+        {
+            return Err(Error::Stiff { t });
+        }
+        // f(t + h, y1) before the controller: the call overlaps its `exp`.
+        if !tab.fsal {
+            stats.n_rhs += 1;
+            k[S] = rhs_finite(sys, t + h, &y1, t_new)?;
+        }
+        let f1 = k[if tab.fsal { S - 1 } else { S }];
+        let h_new = control.accept_ln(h, ln_err).min(h_max);
+        if test && M::STIFF_FROM_END && stiff.stiff_after(h, &f1, &k[S - 1], &y1, &z[S - 1]) {
+            return Err(Error::Stiff { t });
+        }
+
+        let mut y_acc = y1;
+        let mut f_acc = f1;
+        if opts.project {
+            sys.project(t_new, &mut y_acc)?;
+            if non_finite(&y_acc) {
+                return Err(Error::NonFinite { t: t_new });
+            }
+            if y_acc != y1 {
+                stats.n_rhs += 1;
+                f_acc = rhs_finite(sys, t_new, &y_acc, t_new)?;
+            }
+        }
+        // The segment interpolates the step as computed (before any projection).
+        let flow = if rec.needs_segment_to(t_new) {
+            stats.n_rhs += M::DENSE_CALLS;
+            let seg = M::segment(sys, t, h, &y, &y1, &mut k)?;
+            rec.accept_with(t_new, &y_acc, || seg)
+        } else {
+            rec.accept_point(t_new, &y_acc)
+        };
+        k[0] = f_acc;
+        (t, y) = (t_new, y_acc);
+        if flow == Flow::Stop || last {
+            break;
+        }
+        h = h_new;
+    }
+    rec.finish(stats)
+}
