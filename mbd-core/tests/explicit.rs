@@ -3,30 +3,13 @@
 //! run on the Arenstorf orbit, and the asymptotic orders the theory predicts.
 
 use mbd_core::integrate::{Direction, Dopri5, Event, Integrator, Options, Rk4, Solution};
-use mbd_core::{Error, OdeSystem, Result, Vector};
+use mbd_core::{Error, Result, Vector};
 use std::cell::Cell;
 use std::f64::consts::PI;
 
-mod exact;
-use exact::{elliptic_k, jacobi_sn, pendulum_angle};
-
-/// `y' = f(t, y)` from a closure.
-struct Ode<F>(F);
-
-impl<const D: usize, F: Fn(f64, &Vector<D>) -> Vector<D>> OdeSystem<D> for Ode<F> {
-    fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>> {
-        Ok((self.0)(t, y))
-    }
-}
-
-/// x'' = -x as y = (x, x'): x = cos t, x' = -sin t from (1, 0).
-fn oscillator() -> Ode<impl Fn(f64, &Vector<2>) -> Vector<2>> {
-    Ode(|_t: f64, y: &Vector<2>| Vector::<2>::new(y[1], -y[0]))
-}
-
-fn oscillator_exact(t: f64) -> Vector<2> {
-    Vector::<2>::new(t.cos(), -t.sin())
-}
+mod pairs;
+use pairs::exact::{elliptic_k, jacobi_sn, pendulum_angle};
+use pairs::{Ode, log_log_slope, oscillator, oscillator_exact};
 
 fn dopri5(rtol: f64, atol: f64) -> Dopri5 {
     Dopri5::new(Options {
@@ -34,17 +17,6 @@ fn dopri5(rtol: f64, atol: f64) -> Dopri5 {
         atol,
         ..Options::default()
     })
-}
-
-/// Least-squares slope of log(err) against log(x).
-fn log_log_slope(x: &[f64], err: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
-    let le: Vec<f64> = err.iter().map(|v| v.ln()).collect();
-    let (mx, me) = (lx.iter().sum::<f64>() / n, le.iter().sum::<f64>() / n);
-    let sxy: f64 = lx.iter().zip(&le).map(|(a, b)| (a - mx) * (b - me)).sum();
-    let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
-    sxy / sxx
 }
 
 // ---------------------------------------------------------------------------------------

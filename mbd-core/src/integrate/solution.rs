@@ -261,6 +261,7 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
     }
 
     /// [`Self::accept`] with the segment built: events, then the record.
+    #[inline]
     fn accept_segment(&mut self, seg: Segment<D>, t1: f64, y1: &Vector<D>) -> Flow {
         let stop = self.locate_events(&seg, t1, y1);
         if self.failed.is_some() {
