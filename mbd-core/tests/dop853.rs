@@ -237,3 +237,10 @@ fn dop853_output_times_build_only_the_segments_they_need() {
     };
     pairs::output_times_build_only_the_segments_they_need(method, 3);
 }
+
+/// The run ends at `t1` exactly where the last step's `t + h` rounds past it
+/// ([`pairs::ends_exactly_at_t1`]).
+#[test]
+fn dop853_ends_exactly_at_t1() {
+    pairs::ends_exactly_at_t1(Dop853::new);
+}

@@ -533,3 +533,10 @@ fn dopri5_respects_h_max() {
     assert!(sol.stats.n_accepted >= 60);
     assert_eq!(sol.last().0, 3.0);
 }
+
+/// The run ends at `t1` exactly where the last step's `t + h` rounds past it
+/// ([`pairs::ends_exactly_at_t1`]).
+#[test]
+fn dopri5_ends_exactly_at_t1() {
+    pairs::ends_exactly_at_t1(Dopri5::new);
+}

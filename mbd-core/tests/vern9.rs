@@ -154,3 +154,10 @@ fn vern9_output_times_build_only_the_segments_they_need() {
 fn auto_picks_vern9_for_the_tightest_tolerances() {
     pairs::auto_picks(&[(1e-11, "VERN9"), (1e-12, "VERN9"), (1e-10, "DOP853")]);
 }
+
+/// The run ends at `t1` exactly where the last step's `t + h` rounds past it
+/// ([`pairs::ends_exactly_at_t1`]).
+#[test]
+fn vern9_ends_exactly_at_t1() {
+    pairs::ends_exactly_at_t1(Vern9::new);
+}

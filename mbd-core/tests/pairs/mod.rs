@@ -275,3 +275,25 @@ pub fn auto_picks(cases: &[(f64, &str)]) {
         assert_eq!(a.last(), b.last());
     }
 }
+
+/// A run ends at `t1` exactly, also where its last step builds a segment: `y' = (1, 0)` from
+/// 0 to `t1 = 0.7231300081617925` with a first step of `0.16846557934290035` has no error,
+/// so the second step grows to the whole rest and is cut to `t1 - t`, and there `t + (t1 -
+/// t)` rounds to one ulp above `t1`. The recorded times, the final state, the last
+/// segment's end and the state at `t1` from the dense output all say `t1`.
+pub fn ends_exactly_at_t1<I: Integrator>(method: impl Fn(Options) -> I) {
+    let (t, t1) = (0.16846557934290035, 0.7231300081617925);
+    assert_ne!(t + (t1 - t), t1, "the case must round");
+    let line = Ode(|_t: f64, _y: &Vector<2>| Vector::<2>::new(1.0, 0.0));
+    let sol = method(Options {
+        h0: Some(t),
+        ..Options::default()
+    })
+    .solve(&line, 0.0, Vector::<2>::new(0.0, 0.0), t1, &[])
+    .unwrap();
+    assert_eq!(sol.stats.n_accepted, 2);
+    assert_eq!(sol.t, [0.0, t, t1]);
+    assert_eq!(sol.last().0, t1);
+    assert!((sol.last().1[0] - t1).abs() <= 4.0 * f64::EPSILON);
+    assert!(sol.at(t1).is_some());
+}
