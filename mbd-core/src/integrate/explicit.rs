@@ -271,13 +271,17 @@ where
         if !err.is_finite() || non_finite(&y1) {
             return Err(Error::NonFinite { t: t_new });
         }
-        let ln_err = if M::ERROR_SQUARED {
-            0.5 * err.ln()
-        } else {
-            err.ln()
+        // ln err, taken where it is needed: after f(t + h, y1) on acceptance, so the
+        // call does not wait for it.
+        let ln_err = || {
+            if M::ERROR_SQUARED {
+                0.5 * err.ln()
+            } else {
+                err.ln()
+            }
         };
         if err > 1.0 {
-            h = control.reject_ln(h, ln_err);
+            h = control.reject_ln(h, ln_err());
             last = false;
             stats.n_rejected += 1;
             continue;
@@ -291,13 +295,13 @@ where
         {
             return Err(Error::Stiff { t });
         }
-        // f(t + h, y1) before the controller: the call overlaps its `exp`.
+        // f(t + h, y1) before the controller: the call overlaps its `ln` and `exp`.
         if !tab.fsal {
             stats.n_rhs += 1;
             k[S] = rhs_finite(sys, t + h, &y1, t_new)?;
         }
         let f1 = k[if tab.fsal { S - 1 } else { S }];
-        let h_new = control.accept_ln(h, ln_err).min(h_max);
+        let h_new = control.accept_ln(h, ln_err()).min(h_max);
         if test && M::STIFF_FROM_END && stiff.stiff_after(h, &f1, &k[S - 1], &y1, &z[S - 1]) {
             return Err(Error::Stiff { t });
         }
