@@ -58,6 +58,10 @@ pub struct Settings {
     pub record: Record,
     /// Keep the dense output of a bridged run.
     pub dense: bool,
+    /// Bridge at all: `false` ([`Options::passages`] off, [`Unbridged`]) is one raw run
+    /// that stops with the typed error at a singular position, after the same check of the
+    /// start against the constraints.
+    pub bridge: bool,
 }
 
 impl Settings {
@@ -70,6 +74,7 @@ impl Settings {
             max_halvings: 14,
             record: Record::Steps,
             dense: true,
+            bridge: true,
         }
     }
 
@@ -83,12 +88,13 @@ impl Settings {
         }
     }
 
-    /// The settings of an adaptive method's ordinary `solve`: its `rtol` and recording, or
-    /// `None` when [`Options::passages`] is off.
+    /// The settings of an adaptive method's ordinary `solve`: its `rtol` and recording;
+    /// no bridge when [`Options::passages`] is off (the start is still checked).
     pub fn of(opts: &Options) -> Option<Self> {
-        opts.passages.then(|| Settings {
+        Some(Settings {
             record: opts.record.clone(),
             dense: opts.dense,
+            bridge: opts.passages,
             ..Settings::new(opts.rtol)
         })
     }
@@ -132,6 +138,10 @@ pub fn pass<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize
 pub struct Unbridged<'a, S>(pub &'a S);
 
 impl<S: OdeSystem<D>, const D: usize> OdeSystem<D> for Unbridged<'_, S> {
+    /// Itself: no bridge, but the closed loop's start is checked ([`Settings::bridge`]).
+    fn passage(&self) -> Option<&dyn Bridge<D>> {
+        Some(self)
+    }
     fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>> {
         self.0.rhs(t, y)
     }
@@ -141,6 +151,27 @@ impl<S: OdeSystem<D>, const D: usize> OdeSystem<D> for Unbridged<'_, S> {
     const EXACT_JACOBIAN: bool = S::EXACT_JACOBIAN;
     fn project(&self, t: f64, y: &mut Vector<D>) -> Result<()> {
         self.0.project(t, y)
+    }
+}
+
+impl<S: OdeSystem<D>, const D: usize> Bridge<D> for Unbridged<'_, S> {
+    fn pass(
+        &self,
+        start: (f64, Vector<D>, f64),
+        events: &[Event<'_, D>],
+        settings: &Settings,
+        run: &mut Run<'_, D>,
+    ) -> Result<Solution<D>> {
+        match self.0.passage() {
+            Some(inner) => {
+                let raw = Settings {
+                    bridge: false,
+                    ..settings.clone()
+                };
+                inner.pass(start, events, &raw, run)
+            }
+            None => run(start.0, start.1, &mut |_| Flow::Continue),
+        }
     }
 }
 
@@ -248,6 +279,9 @@ where
     crate::integrate::positive_finite("tol", settings.tol)?;
     crate::integrate::validate_problem(t0, &y0, t1)?;
     check_start::<S, N, M, D>(sys, t0, &y0)?;
+    if !settings.bridge {
+        return run(t0, y0, &mut |_| Flow::Continue);
+    }
     let (rank0, redundant0) = rank_and_redundant(&sys.phi_q(t0, &split::<N, D>(&y0).0));
     let mut out: Option<Solution<D>> = None;
     let mut passages: Vec<Passage> = Vec::new();
