@@ -221,7 +221,11 @@ fn gauss_legendre(f: impl Fn(f64) -> f64, u: f64) -> f64 {
     (0..panels as usize)
         .map(|p| {
             let mid = (2.0 * p as f64 + 1.0) * half;
-            X.iter().zip(W).map(|(x, w)| w * f(mid + half * x)).sum::<f64>() * half
+            X.iter()
+                .zip(W)
+                .map(|(x, w)| w * f(mid + half * x))
+                .sum::<f64>()
+                * half
         })
         .sum()
 }

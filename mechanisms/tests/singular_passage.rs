@@ -207,10 +207,16 @@ fn quadrature_reference_is_the_reduction() {
         let t = T1 * i as f64 / 300.0;
         let (th, w) = r.exact(-1.0, t);
         let e = 0.5 * w * w + k * th.sin();
-        assert!((e - energy).abs() < 1e-13 * energy, "t = {t}: energy {e} vs {energy}");
+        assert!(
+            (e - energy).abs() < 1e-13 * energy,
+            "t = {t}: energy {e} vs {energy}"
+        );
         let d = 1e-5;
         let quotient = (r.exact(-1.0, t + d).0 - r.exact(-1.0, t - d).0) / (2.0 * d);
-        assert!((quotient - w).abs() < 1e-8 * w.abs().max(1.0), "t = {t}: {quotient} vs {w}");
+        assert!(
+            (quotient - w).abs() < 1e-8 * w.abs().max(1.0),
+            "t = {t}: {quotient} vs {w}"
+        );
         worst = worst.max((integrated.at(t).unwrap()[0] - th).abs());
     }
     assert!(worst < 1e-9, "{worst:e}");

@@ -205,40 +205,36 @@ fn main() {
     });
     for &tol in &dopri {
         let opts = args.options(tol);
-        row(
-            &args,
-            "DOPRI5",
-            &format!("{tol:.0e}"),
-            &a,
-            || {
-                passage::solve(
-                    &Dopri5::new(opts),
-                    &a,
-                    0.0,
-                    y0,
-                    args.t1,
-                    &[],
-                    &args.settings(tol),
-                )
-                .map(|p| (p.solution, p.passages))
-            },
-        );
+        row(&args, "DOPRI5", &format!("{tol:.0e}"), &a, || {
+            passage::solve(
+                &Dopri5::new(opts),
+                &a,
+                0.0,
+                y0,
+                args.t1,
+                &[],
+                &args.settings(tol),
+            )
+            .map(|p| (p.solution, p.passages))
+        });
     }
     // The other explicit methods at the settings that meet the benchmark's 1e-3 (or nearly).
     let explicit = args.tolerances(if quick { &[1e-6] } else { &[1e-6, 1e-7] });
     for &tol in &explicit {
         let opts = args.options(tol);
         let settings = args.settings(tol);
-        row(
-            &args,
-            "DOP853",
-            &format!("{tol:.0e}"),
-            &a,
-            || {
-                passage::solve(&Dop853::new(opts.clone()), &a, 0.0, y0, args.t1, &[], &settings)
-                    .map(|p| (p.solution, p.passages))
-            },
-        );
+        row(&args, "DOP853", &format!("{tol:.0e}"), &a, || {
+            passage::solve(
+                &Dop853::new(opts.clone()),
+                &a,
+                0.0,
+                y0,
+                args.t1,
+                &[],
+                &settings,
+            )
+            .map(|p| (p.solution, p.passages))
+        });
         row(&args, "Auto", &format!("{tol:.0e}"), &a, || {
             passage::solve(&Auto::new(opts), &a, 0.0, y0, args.t1, &[], &settings)
                 .map(|p| (p.solution, p.passages))
@@ -251,24 +247,18 @@ fn main() {
     });
     for &tol in &radau {
         let opts = args.options(tol);
-        row(
-            &args,
-            "Radau5",
-            &format!("{tol:.0e}"),
-            &a,
-            || {
-                passage::solve(
-                    &Radau5::new(opts),
-                    &a,
-                    0.0,
-                    y0,
-                    args.t1,
-                    &[],
-                    &args.settings(tol),
-                )
-                .map(|p| (p.solution, p.passages))
-            },
-        );
+        row(&args, "Radau5", &format!("{tol:.0e}"), &a, || {
+            passage::solve(
+                &Radau5::new(opts),
+                &a,
+                0.0,
+                y0,
+                args.t1,
+                &[],
+                &args.settings(tol),
+            )
+            .map(|p| (p.solution, p.passages))
+        });
     }
     let ali3: &[f64] = if quick {
         &[1e-2, 1e-3]
@@ -278,27 +268,16 @@ fn main() {
     for &h in ali3 {
         let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
         let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
-        row(
-            &args,
-            "ALI3-P",
-            &format!("h={h:.0e}"),
-            &a,
-            || {
-                Ali3::new(h)
-                    .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, args.t1, &[])
-                    .map(|s| (s, Vec::new()))
-            },
-        );
+        row(&args, "ALI3-P", &format!("h={h:.0e}"), &a, || {
+            Ali3::new(h)
+                .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, args.t1, &[])
+                .map(|s| (s, Vec::new()))
+        });
     }
     let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };
     for &h in alpha {
-        row(
-            &args,
-            "gen-a",
-            &format!("h={h:.0e}"),
-            &a,
-            || {
-                passage::solve_generalized_alpha::<
+        row(&args, "gen-a", &format!("h={h:.0e}"), &a, || {
+            passage::solve_generalized_alpha::<
                     _,
                     { fa::N },
                     { fa::M },
@@ -314,7 +293,6 @@ fn main() {
                     &args.settings(h * h),
                 )
                 .map(|p| (p.solution, p.passages))
-            },
-        );
+        });
     }
 }
