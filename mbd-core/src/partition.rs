@@ -71,6 +71,18 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
         })
     }
 
+    /// Forget the last rebuilt state: the next evaluation starts its Newton iteration at
+    /// the state it is given, not at a prediction from elsewhere (a run restarted from an
+    /// earlier consistent state, after evaluations on the far side of a singular instant).
+    pub fn forget(&self) {
+        *self.last.borrow_mut() = None;
+    }
+
+    /// The system seen.
+    pub fn system(&self) -> &'a S {
+        self.sys
+    }
+
     /// The independent coordinates.
     pub fn free(&self) -> &[usize] {
         &self.free

@@ -58,6 +58,10 @@ pub struct Settings {
     pub record: Record,
     /// Keep the dense output of a bridged run.
     pub dense: bool,
+    /// Bridge at all: `false` ([`Options::passages`] off, [`Unbridged`]) is one raw run
+    /// that stops with the typed error at a singular position, after the same check of the
+    /// start against the constraints.
+    pub bridge: bool,
 }
 
 impl Settings {
@@ -70,6 +74,7 @@ impl Settings {
             max_halvings: 14,
             record: Record::Steps,
             dense: true,
+            bridge: true,
         }
     }
 
@@ -83,12 +88,13 @@ impl Settings {
         }
     }
 
-    /// The settings of an adaptive method's ordinary `solve`: its `rtol` and recording, or
-    /// `None` when [`Options::passages`] is off.
+    /// The settings of an adaptive method's ordinary `solve`: its `rtol` and recording;
+    /// no bridge when [`Options::passages`] is off (the start is still checked).
     pub fn of(opts: &Options) -> Option<Self> {
-        opts.passages.then(|| Settings {
+        Some(Settings {
             record: opts.record.clone(),
             dense: opts.dense,
+            bridge: opts.passages,
             ..Settings::new(opts.rtol)
         })
     }
@@ -132,6 +138,10 @@ pub fn pass<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize
 pub struct Unbridged<'a, S>(pub &'a S);
 
 impl<S: OdeSystem<D>, const D: usize> OdeSystem<D> for Unbridged<'_, S> {
+    /// Itself: no bridge, but the closed loop's start is checked ([`Settings::bridge`]).
+    fn passage(&self) -> Option<&dyn Bridge<D>> {
+        Some(self)
+    }
     fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>> {
         self.0.rhs(t, y)
     }
@@ -141,6 +151,27 @@ impl<S: OdeSystem<D>, const D: usize> OdeSystem<D> for Unbridged<'_, S> {
     const EXACT_JACOBIAN: bool = S::EXACT_JACOBIAN;
     fn project(&self, t: f64, y: &mut Vector<D>) -> Result<()> {
         self.0.project(t, y)
+    }
+}
+
+impl<S: OdeSystem<D>, const D: usize> Bridge<D> for Unbridged<'_, S> {
+    fn pass(
+        &self,
+        start: (f64, Vector<D>, f64),
+        events: &[Event<'_, D>],
+        settings: &Settings,
+        run: &mut Run<'_, D>,
+    ) -> Result<Solution<D>> {
+        match self.0.passage() {
+            Some(inner) => {
+                let raw = Settings {
+                    bridge: false,
+                    ..settings.clone()
+                };
+                inner.pass(start, events, &raw, run)
+            }
+            None => run(start.0, start.1, &mut |_| Flow::Continue),
+        }
     }
 }
 
@@ -248,6 +279,9 @@ where
     crate::integrate::positive_finite("tol", settings.tol)?;
     crate::integrate::validate_problem(t0, &y0, t1)?;
     check_start::<S, N, M, D>(sys, t0, &y0)?;
+    if !settings.bridge {
+        return run(t0, y0, &mut |_| Flow::Continue);
+    }
     let (rank0, redundant0) = rank_and_redundant(&sys.phi_q(t0, &split::<N, D>(&y0).0));
     let mut out: Option<Solution<D>> = None;
     let mut passages: Vec<Passage> = Vec::new();
@@ -436,7 +470,17 @@ fn measure<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>
     y: &Vector<D>,
     rank0: usize,
 ) -> f64 {
-    let r = pivot_remainders(&sys.phi_q(t, &split::<N, D>(y).0));
+    measure_q::<S, N, M>(sys, t, &split::<N, D>(y).0, rank0)
+}
+
+/// [`measure`] at the configuration `q`.
+fn measure_q<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    rank0: usize,
+) -> f64 {
+    let r = pivot_remainders(&sys.phi_q(t, q));
     r.get(rank0.max(1) - 1).copied().unwrap_or(0.0)
 }
 
@@ -497,7 +541,7 @@ where
             before.and_then(|(tp, yp)| extrapolate::<S, N, M, D>(sys, (tp, &yp), (ta, &ya), rank0))
         }
     };
-    let t_star = guess
+    let mut t_star = guess
         .filter(|&t| t < tf + 4.0 * (tf - ta))
         .unwrap_or(tf)
         .max(ta);
@@ -511,9 +555,13 @@ where
     // truncation error and raises the rounding of the evaluations nearer the instant.
     let mut best: Option<(f64, Solution<D>, Vector<D>, Segment<D>)> = None;
     for _ in 0..settings.max_halvings {
-        let s0 = t_star - 0.55 * h;
-        let part = dopri.solve(&view, ta, ya, s0, events)?;
-        if let Some((y1, seg, err)) = jump::<S, N, M, D>(&view, s0, &part.y_end, h)?
+        let (s0, part) =
+            approach::<S, N, M, D>(&view, &dopri, (ta, ya), &mut t_star, h, events, rank0)?;
+        if part.stopped_by.is_some() {
+            return Ok((part, t_star, f64::NAN));
+        }
+        let jumped = jump::<S, N, M, D>(&view, s0, &part.y_end, h)?;
+        if let Some((y1, seg, err)) = jumped
             && best.as_ref().is_none_or(|b| err < b.0)
         {
             best = Some((err, part, y1, seg));
@@ -523,14 +571,15 @@ where
         }
         h *= 0.5;
     }
-    let Some((err, mut part, y1, seg)) = best.filter(|b| b.0 <= WORST) else {
+    let worst = WORST.min(ACCEPT * tol);
+    let Some((err, mut part, y1, seg)) = best.filter(|b| b.0 <= worst) else {
         return Err(Error::SingularPosition {
             t: t_star,
             detail: format!(
                 "the motion across the singular position near t = {} is not determined: \
                  no step over it keeps its error estimate below {}; q = {:?}",
                 Num(t_star),
-                Num(WORST),
+                Num(worst),
                 split::<N, D>(&ya).0.as_slice()
             ),
         });
@@ -557,14 +606,90 @@ where
     Ok((part, t_star, err))
 }
 
+/// The leg of a bridge from `(ta, ya)` to `s0 = t* - 0.55 h`, with the singular instant
+/// `t*` relocated from the leg's end ([`locate`]) and the leg run again while it moved by
+/// more than `h / 20`: the index-1 solve may stop `1e-5` s short of the instant, so its time
+/// is no guide for a step across of that size. The leg starts from `ya` itself (not from a
+/// prediction out of an earlier attempt, which may lie past the instant).
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the leg's start, the instant and the step across"
+)]
+fn approach<S, const N: usize, const M: usize, const D: usize>(
+    view: &Partitioned<'_, S, N, M>,
+    dopri: &Dopri5,
+    (ta, ya): (f64, Vector<D>),
+    t_star: &mut f64,
+    h: f64,
+    events: &[Event<'_, D>],
+    rank0: usize,
+) -> Result<(f64, Solution<D>)>
+where
+    S: Constrained<N, M>,
+{
+    let mut tries = 0;
+    loop {
+        let s0 = (*t_star - 0.55 * h).max(ta);
+        view.forget();
+        let part = dopri.solve(view, ta, ya, s0, events)?;
+        tries += 1;
+        if part.stopped_by.is_some() || tries == RELOCATE {
+            return Ok((s0, part));
+        }
+        match locate::<S, N, M, D>(view, s0, &part.y_end, h, rank0)? {
+            Some(t) if (t - *t_star).abs() > 0.05 * h => *t_star = t,
+            _ => return Ok((s0, part)),
+        }
+    }
+}
+
+/// Legs run per step across at most (a relocation converges in one or two).
+const RELOCATE: usize = 4;
+
+/// The singular instant ahead of the consistent state `(s0, y0)`: the zero of [`measure`]
+/// along the Taylor expansion `q + qd s + qdd s^2 / 2` there, by two Newton steps from the
+/// side it approaches (the measure is a distance, `|s - t*|` to first order); `None` when
+/// it does not fall. `h` sets the difference quotient's scale.
+fn locate<S, const N: usize, const M: usize, const D: usize>(
+    view: &Partitioned<'_, S, N, M>,
+    s0: f64,
+    y0: &Vector<D>,
+    h: f64,
+    rank0: usize,
+) -> Result<Option<f64>>
+where
+    S: Constrained<N, M>,
+{
+    let f = view.rhs(s0, y0)?;
+    let (q, qd) = split::<N, D>(y0);
+    let qdd = f.fixed_rows::<N>(N).into_owned();
+    let m = |s: f64| {
+        let d = s - s0;
+        measure_q::<S, N, M>(view.system(), s, &(q + qd * d + qdd * (0.5 * d * d)), rank0)
+    };
+    let newton = |s: f64, scale: f64| {
+        let d = 1e-3 * scale;
+        let slope = (m(s + d) - m(s - d)) / (2.0 * d);
+        let t = s - m(s) / slope;
+        (slope < 0.0 && t.is_finite() && t > s).then_some(t)
+    };
+    let Some(t1) = newton(s0, h) else {
+        return Ok(None);
+    };
+    let s1 = s0 + 0.8 * (t1 - s0);
+    Ok(Some(
+        newton(s1, t1 - s0)
+            .filter(|&t| t < t1 + (t1 - s0))
+            .unwrap_or(t1),
+    ))
+}
+
 /// The tightest tolerance a bridge is run to. Near the instant the evaluations carry
-/// rounding divided by the square of the vanishing singular value. On the 40-loop
-/// assembly the step over the instant can reach estimates below `1e-11` at some passages
-/// (at t = 0.72 they fell 31-fold a halving: 2.6e-8, 8.3e-10, 2.7e-11), but bridges run
-/// tighter than this failed at others (t = 2.687 at 1e-11 and 1e-12, where the index-1
-/// solve stopped 1e-5 s before the instant, so the guess of the instant is off by more
-/// than a quarter of the small steps): the bridge's error per passage, about this, is what
-/// limits that assembly's error at tolerances below it (docs/STABILITY.md).
+/// rounding divided by the square of the vanishing singular value, so the step across has
+/// a smallest error estimate: on the 40-loop assembly at t = 0.72 it falls 31-fold a
+/// halving to 2.7e-11 at `h = 1.1e-2`, then rises about fourfold a halving (1.1e-10 at
+/// `h = 2.7e-3`, 7.7e-6 at `2.1e-5`). Bridges run at 1e-12 with the instant relocated
+/// ([`approach`]) spent minutes in legs at that tolerance over 3 s.
 const FLOOR: f64 = 1e-10;
 
 /// The largest relative error estimate a step over a singular instant may have: past it
@@ -572,9 +697,21 @@ const FLOOR: f64 = 1e-10;
 /// the instant to resolve it).
 const WORST: f64 = 1e-6;
 
-/// One DOPRI5 step of `view` from `(s0, y0)` over `h`: the projected end, its cubic Hermite
-/// segment, and the relative error estimate; `None` when a stage met the singular
-/// position itself.
+/// A step across whose estimate, at its smallest over the halvings, stays above this many
+/// times the bridge's tolerance ends the run with [`Error::SingularPosition`] rather than
+/// carry an error the tolerance did not allow (at most [`WORST`]).
+const ACCEPT: f64 = 100.0;
+
+/// A step across whose end moved by more than this fraction of `h |qd|` when its dependent
+/// coordinates were rebuilt is refused: its stages met the instant too closely and
+/// continued on another assembly branch (measured: `1e-10` relative at `h = 1e-2` on the
+/// 40-loop assembly, `2e-4` at `h = 2e-5`, where the branches are `h |qd|` apart).
+const BRANCH: f64 = 1e-2;
+
+/// One DOPRI5 step of `view` from `(s0, y0)` over `h`: the projected end, its continuous
+/// extension, and the relative error estimate; `None` when a stage met the singular
+/// position itself, or when rebuilding the end moved it by more than [`BRANCH`] (the
+/// stages continued on another branch).
 #[allow(clippy::type_complexity, reason = "the end of one step")]
 fn jump<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
     view: &Partitioned<'_, S, N, M>,
@@ -599,9 +736,14 @@ fn jump<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
     // The segment is the step's continuous extension, as computed (before the projection):
     // a cubic Hermite one was 1e-8 off inside the step at DOPRI5 1e-12.
     let seg = crate::integrate::dopri5::dense_segment(s0, h, y0, &y1, &k);
+    let raw = y1;
     view.project(s0 + h, &mut y1)?;
     view.rhs(s0 + h, &y1)?;
-    Ok(Some((y1, seg, err)))
+    let moved = (0..D)
+        .map(|i| (y1[i] - raw[i]).abs() / (1.0 + y1[i].abs()))
+        .fold(0.0, f64::max);
+    let speed = max_norm(&split::<N, D>(y0).1).max(1.0);
+    Ok((moved <= BRANCH * h * speed).then_some((y1, seg, err)))
 }
 
 fn start<const D: usize>(t0: f64, y0: Vector<D>) -> Solution<D> {

@@ -61,4 +61,5 @@ fn loops_refuses_unknown_arguments_and_methods() {
     assert_eq!(status(bin, &["--bogus"]), Some(2));
     assert_eq!(status(bin, &["--only", "RK5"]), Some(2));
     assert_eq!(status(bin, &["--tol", "x"]), Some(2));
+    assert_eq!(status(bin, &["--t1", "-1"]), Some(2));
 }

@@ -8,7 +8,7 @@
 //! `J th'' + J'(th) th'^2 / 2 + V'(th) = 0`, `J = sum m |dp/dth|^2 + I (dphi/dth)^2` over the
 //! bodies, `V` gravity's potential; `J'` by a central difference of the analytic `J`.
 
-use mbd::integrate::{Dop853, Dopri5, GeneralizedAlpha, Integrator, Options, Radau5, Rk4};
+use mbd::integrate::{Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Options, Radau5, Rk4};
 use mbd::prelude::*;
 use std::f64::consts::PI;
 
@@ -242,6 +242,18 @@ fn generalized_alpha_stops_at_the_limit_position_naming_it() {
             &format!("generalized-alpha (OdeSystem) h = {h}"),
             within(h),
         );
+    }
+}
+
+/// The implicit Gauss method (order 4): its Newton iteration fails on the steps next to the
+/// limit (it ended with `NewtonFailed`); the chart watch names the position instead, as for
+/// RK4 and generalized-alpha, whether a step passes the limit or Newton fails before it.
+#[test]
+fn gauss_stops_at_the_limit_position_naming_it() {
+    let y0 = TRIPLE.initial_state();
+    for h in [2e-2, 1e-2, 2e-3, 1e-3] {
+        let gauss = Gauss::new(h).solve(&TRIPLE, 0.0, y0, 5.0, &[]);
+        assert_stops_at_the_limit(gauss, &format!("Gauss h = {h}"), within(h));
     }
 }
 

@@ -33,6 +33,7 @@ use super::{
     Event, Flow, Integrator, Observer, Record, Recorder, Segment, Solution, Stats, validate_problem,
 };
 use super::{non_finite, positive_finite};
+use crate::closure::{ChartWatch, passed_limit};
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, OdeSystem, Vector};
@@ -293,6 +294,8 @@ impl Integrator for Gauss {
         };
         let mut lu = fresh(t0, &y0, &mut stats)?;
         let mut jac_current = true;
+        // A minimal loop's limit position stepped over, or Newton failing on its way there.
+        let mut chart = ChartWatch::<D>::default();
         // Collocation polynomial of the last step: u(θ) − y0 = a1 θ + a2 θ².
         let mut previous: Option<[Vector<D>; 2]> = None;
         let mut compensation = Vector::<D>::zeros();
@@ -314,12 +317,18 @@ impl Integrator for Gauss {
                         break (z, f, slow);
                     }
                     Stages::Failed { .. } if !jac_current => {
-                        lu = fresh(t, &y, &mut stats)?;
+                        lu = fresh(t, &y, &mut stats)
+                            .map_err(|e| at_limit(sys, &chart, t_new + h, e))?;
                         jac_current = true;
                     }
                     Stages::Failed { non_finite: true } => return Err(Error::NonFinite { t }),
                     Stages::Failed { non_finite: false } => {
-                        return Err(Error::NewtonFailed { t, h });
+                        return Err(at_limit(
+                            sys,
+                            &chart,
+                            t_new + h,
+                            Error::NewtonFailed { t, h },
+                        ));
                     }
                 }
             };
@@ -342,6 +351,9 @@ impl Integrator for Gauss {
             }
             if non_finite(&y1) {
                 return Err(Error::NonFinite { t: t_new });
+            }
+            if let Some((ts, yb)) = chart.accept(t_new, &y1, |y| sys.chart_margin(t_new, y)) {
+                return Err(passed_limit(ts, &yb, sys.rhs(ts, &yb).err()));
             }
             if slow && step < n {
                 // The iteration slowed down: a fresh Jacobian for the next step.
@@ -369,5 +381,25 @@ impl Integrator for Gauss {
             }
         }
         rec.finish(stats)
+    }
+}
+
+/// A Newton failure (or a singular iteration matrix) whose step was on its way to a limit
+/// position of a minimal loop's closed forms (the last three margins reach the boundary
+/// before `t_end`): the position's [`Error::SingularPosition`], naming it, as RK4 and
+/// generalized-α report it; there the minimal equations' inertia grows without bound and
+/// Newton cannot converge. Any other error is returned as it is.
+fn at_limit<S: OdeSystem<D>, const D: usize>(
+    sys: &S,
+    chart: &ChartWatch<D>,
+    t_end: f64,
+    e: Error,
+) -> Error {
+    if !matches!(e, Error::NewtonFailed { .. }) {
+        return e;
+    }
+    match chart.passed(t_end, &|y: &Vector<D>| sys.chart_margin(t_end, y)) {
+        Some((ts, yb)) => passed_limit(ts, &yb, sys.rhs(ts, &yb).err()),
+        None => e,
     }
 }

@@ -1,23 +1,24 @@
 //! Closed loops at scale: the IFToMM A02 assembly of 40 four-bar loops
 //! ([`mechanisms::fourbar_assembly`]) — the cost of one right-hand side and whole runs of
-//! every method, with the error of crank 0's tip against the one-coordinate reference and
+//! every method, with the error of crank 0's tip against the one-coordinate reduction (by quadrature, `Reduced::exact`) and
 //! how far the cranks drifted from a parallelogram.
 //!
 //! DOPRI5, DOP853, Auto, Radau5 and generalized-alpha run through `mbd::passage`, which bridges the singular
 //! positions their index-1 accelerations (or Newton iterations) stop at; `bridged` counts them.
 //!
 //! `cargo run --release -p mechanisms --bin loops [-- --quick] [--only DOPRI5|DOP853|Auto|Radau5|ALI3-P|gen-a]
-//! [--tol 1e-7,3e-7] [--no-rhs]` (`--tol`: the DOPRI5, DOP853, Auto and Radau5 tolerances run, in place of the
-//! defaults; `--no-rhs`: skip timing one right-hand side, as when profiling the runs)
+//! [--tol 1e-7,3e-7] [--t1 3] [--passages] [--no-rhs]` (`--tol`: the DOPRI5, DOP853, Auto and Radau5 tolerances
+//! run, in place of the defaults; `--t1`: a shorter span; `--passages`: list every bridge; `--no-rhs`: skip
+//! timing one right-hand side, as when profiling the runs). The runs keep only the 400 output states (no
+//! dense output), so memory stays small at any setting.
 
 use clap::Parser;
 use mbd::integrate::{Ali3, Auto, Dop853, GeneralizedAlpha, Radau5};
-use mbd::passage::{self, Settings};
-use mbd::{Dopri5, OdeSystem, Options, Solution};
+use mbd::passage::{self, Passage, Settings};
+use mbd::{Dopri5, OdeSystem, Options, Record, Solution};
 use mechanisms::fourbar_assembly::{self as fa, FourBarAssembly};
 use std::time::Instant;
 
-const T1: f64 = 20.0;
 const OUTPUTS: usize = 400;
 
 /// This thread's CPU time in seconds (NaN where the platform has no thread clock): on a
@@ -63,6 +64,22 @@ struct Args {
     /// Skip timing one right-hand side (as when profiling the runs).
     #[arg(long)]
     no_rhs: bool,
+    /// The span integrated, in seconds (the benchmark's 20 s by default).
+    #[arg(long, default_value_t = 20.0, value_parser = positive)]
+    t1: f64,
+    /// List every bridged passage (time, steps, error estimate of the step across).
+    #[arg(long)]
+    passages: bool,
+    /// Print the tip error at every 10th output time (where the error is made).
+    #[arg(long)]
+    trace: bool,
+}
+
+fn positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a positive time")),
+    }
 }
 
 impl Args {
@@ -74,6 +91,52 @@ impl Args {
     fn runs(&self, name: &str) -> bool {
         self.only.as_deref().is_none_or(|only| only == name)
     }
+
+    /// The output times: `OUTPUTS + 1` equally spaced over `[0, t1]`.
+    fn grid(&self) -> Vec<f64> {
+        (0..=OUTPUTS)
+            .map(|k| self.t1 * k as f64 / OUTPUTS as f64)
+            .collect()
+    }
+
+    /// The runs' options at tolerance `tol`: the output times only, no dense output.
+    fn options(&self, tol: f64) -> Options {
+        Options {
+            rtol: tol,
+            atol: tol,
+            dense: false,
+            record: Record::Times(self.grid()),
+            ..Default::default()
+        }
+    }
+
+    /// Bridges to `tol`, recording as [`Args::options`].
+    fn settings(&self, tol: f64) -> Settings {
+        Settings {
+            dense: false,
+            record: Record::Times(self.grid()),
+            ..Settings::new(tol)
+        }
+    }
+}
+
+/// `max |B0 - B0_exact|` over the output times `grid` (infinite where one was not recorded).
+fn tip_error(a: &FourBarAssembly, sol: &Solution<{ fa::D }>, grid: &[f64]) -> f64 {
+    let reduced = fa::Reduced::of(a);
+    grid.iter()
+        .map(|&t| {
+            // A recorded output time, else the dense output (ALI3-P keeps every step).
+            let k = sol.t.iter().position(|&s| s == t);
+            match k.map(|k| sol.y[k]).or_else(|| sol.at(t)) {
+                Some(y) => {
+                    let p = a.tip(&y);
+                    let th = reduced.exact(-1.0 / a.l, t).0;
+                    (p[0] - a.l * th.cos()).hypot(p[1] - a.l * th.sin())
+                }
+                None => f64::INFINITY,
+            }
+        })
+        .fold(0.0, f64::max)
 }
 
 fn row(
@@ -81,8 +144,7 @@ fn row(
     name: &str,
     setting: &str,
     a: &FourBarAssembly,
-    r: &Solution<2>,
-    run: impl FnOnce() -> mbd::Result<(Solution<{ fa::D }>, usize)>,
+    run: impl FnOnce() -> mbd::Result<(Solution<{ fa::D }>, Vec<Passage>)>,
 ) {
     if !args.runs(name) {
         return;
@@ -92,15 +154,30 @@ fn row(
     let (secs, cpu) = (start.elapsed().as_secs_f64(), cpu_time() - cpu0);
     match out {
         Ok((sol, passages)) => {
-            let err = fa::tip_error(a, &sol, r, T1, OUTPUTS);
+            let err = tip_error(a, &sol, &args.grid());
             let spread = sol.y.iter().map(|y| a.spread(y).0).fold(0.0, f64::max);
             println!(
-                "{name:<8} {setting:<10} ok   tip error {err:9.2e}  max crank spread {spread:9.2e}  {:8.1} ms ({:.1} ms CPU)  steps {:7}  rhs {:8}  bridged {passages:3}",
+                "{name:<8} {setting:<10} ok   tip error {err:9.2e}  max crank spread {spread:9.2e}  {:8.1} ms ({:.1} ms CPU)  steps {:7}  rhs {:8}  bridged {:3}",
                 secs * 1e3,
                 cpu * 1e3,
                 sol.stats.n_accepted,
-                sol.stats.n_rhs
+                sol.stats.n_rhs,
+                passages.len()
             );
+            if args.trace {
+                for (k, &t) in args.grid().iter().enumerate().step_by(10) {
+                    let e = tip_error(a, &sol, &[t]);
+                    println!("    t = {t:8.3}  tip error {e:9.2e}  (k = {k})");
+                }
+            }
+            if args.passages {
+                for p in &passages {
+                    println!(
+                        "    passage t = {:.6}  bridge {:.6} .. {:.6}  steps {:5}  estimate {:9.2e}",
+                        p.t, p.from, p.to, p.steps, p.error
+                    );
+                }
+            }
         }
         Err(e) => println!("{name:<8} {setting:<10} FAIL {e}  ({:.1} ms)", secs * 1e3),
     }
@@ -111,7 +188,6 @@ fn main() {
     let quick = args.quick;
     let a = FourBarAssembly::benchmark();
     let y0 = a.benchmark_state(1.0);
-    let reference = fa::reference(&a, 1.0, T1).expect("reference");
     let mut y = y0;
     y[0] += 0.3;
     if !args.no_rhs {
@@ -128,54 +204,40 @@ fn main() {
         &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]
     });
     for &tol in &dopri {
-        let opts = Options {
-            rtol: tol,
-            atol: tol,
-            ..Default::default()
-        };
-        row(
-            &args,
-            "DOPRI5",
-            &format!("{tol:.0e}"),
-            &a,
-            &reference,
-            || {
-                passage::solve(
-                    &Dopri5::new(opts),
-                    &a,
-                    0.0,
-                    y0,
-                    T1,
-                    &[],
-                    &Settings::new(tol),
-                )
-                .map(|p| (p.solution, p.passages.len()))
-            },
-        );
+        let opts = args.options(tol);
+        row(&args, "DOPRI5", &format!("{tol:.0e}"), &a, || {
+            passage::solve(
+                &Dopri5::new(opts),
+                &a,
+                0.0,
+                y0,
+                args.t1,
+                &[],
+                &args.settings(tol),
+            )
+            .map(|p| (p.solution, p.passages))
+        });
     }
     // The other explicit methods at the settings that meet the benchmark's 1e-3 (or nearly).
     let explicit = args.tolerances(if quick { &[1e-6] } else { &[1e-6, 1e-7] });
     for &tol in &explicit {
-        let opts = Options {
-            rtol: tol,
-            atol: tol,
-            ..Default::default()
-        };
-        let settings = Settings::new(tol);
-        row(
-            &args,
-            "DOP853",
-            &format!("{tol:.0e}"),
-            &a,
-            &reference,
-            || {
-                passage::solve(&Dop853::new(opts.clone()), &a, 0.0, y0, T1, &[], &settings)
-                    .map(|p| (p.solution, p.passages.len()))
-            },
-        );
-        row(&args, "Auto", &format!("{tol:.0e}"), &a, &reference, || {
-            passage::solve(&Auto::new(opts), &a, 0.0, y0, T1, &[], &settings)
-                .map(|p| (p.solution, p.passages.len()))
+        let opts = args.options(tol);
+        let settings = args.settings(tol);
+        row(&args, "DOP853", &format!("{tol:.0e}"), &a, || {
+            passage::solve(
+                &Dop853::new(opts.clone()),
+                &a,
+                0.0,
+                y0,
+                args.t1,
+                &[],
+                &settings,
+            )
+            .map(|p| (p.solution, p.passages))
+        });
+        row(&args, "Auto", &format!("{tol:.0e}"), &a, || {
+            passage::solve(&Auto::new(opts), &a, 0.0, y0, args.t1, &[], &settings)
+                .map(|p| (p.solution, p.passages))
         });
     }
     let radau = args.tolerances(if quick {
@@ -184,30 +246,19 @@ fn main() {
         &[1e-6, 1e-7, 1e-8, 1e-9, 1e-10]
     });
     for &tol in &radau {
-        let opts = Options {
-            rtol: tol,
-            atol: tol,
-            ..Default::default()
-        };
-        row(
-            &args,
-            "Radau5",
-            &format!("{tol:.0e}"),
-            &a,
-            &reference,
-            || {
-                passage::solve(
-                    &Radau5::new(opts),
-                    &a,
-                    0.0,
-                    y0,
-                    T1,
-                    &[],
-                    &Settings::new(tol),
-                )
-                .map(|p| (p.solution, p.passages.len()))
-            },
-        );
+        let opts = args.options(tol);
+        row(&args, "Radau5", &format!("{tol:.0e}"), &a, || {
+            passage::solve(
+                &Radau5::new(opts),
+                &a,
+                0.0,
+                y0,
+                args.t1,
+                &[],
+                &args.settings(tol),
+            )
+            .map(|p| (p.solution, p.passages))
+        });
     }
     let ali3: &[f64] = if quick {
         &[1e-2, 1e-3]
@@ -217,45 +268,31 @@ fn main() {
     for &h in ali3 {
         let q0 = y0.fixed_rows::<{ fa::N }>(0).into_owned();
         let qd0 = y0.fixed_rows::<{ fa::N }>(fa::N).into_owned();
-        row(
-            &args,
-            "ALI3-P",
-            &format!("h={h:.0e}"),
-            &a,
-            &reference,
-            || {
-                Ali3::new(h)
-                    .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, T1, &[])
-                    .map(|s| (s, 0))
-            },
-        );
+        row(&args, "ALI3-P", &format!("h={h:.0e}"), &a, || {
+            Ali3::new(h)
+                .solve::<_, { fa::N }, { fa::M }, { fa::D }>(&a, 0.0, q0, qd0, args.t1, &[])
+                .map(|s| (s, Vec::new()))
+        });
     }
     let alpha: &[f64] = if quick { &[1e-2] } else { &[1e-2, 1e-3, 1e-4] };
     for &h in alpha {
-        row(
-            &args,
-            "gen-a",
-            &format!("h={h:.0e}"),
-            &a,
-            &reference,
-            || {
-                passage::solve_generalized_alpha::<
+        row(&args, "gen-a", &format!("h={h:.0e}"), &a, || {
+            passage::solve_generalized_alpha::<
                     _,
                     { fa::N },
                     { fa::M },
                     { fa::N + fa::M },
                     { fa::D },
                 >(
-                    &GeneralizedAlpha::new(0.9, h),
+                    &GeneralizedAlpha::new(0.9, h).recording(Record::Times(args.grid()), false),
                     &a,
                     0.0,
                     y0,
-                    T1,
+                    args.t1,
                     &[],
-                    &Settings::new(h * h),
+                    &args.settings(h * h),
                 )
-                .map(|p| (p.solution, p.passages.len()))
-            },
-        );
+                .map(|p| (p.solution, p.passages))
+        });
     }
 }
