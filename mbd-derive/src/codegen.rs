@@ -588,10 +588,11 @@ fn parameter_checks(
     });
     let eager_fn = eager.as_ref().map(|code| {
         quote! {
-            /// The checks no solve would notice (stiffnesses, dampings, friction coefficients).
+            /// The checks no solve would notice (stiffnesses, dampings, friction coefficients),
+            /// at the time `t` of the evaluation: a stiffness may be a function of time.
             #[inline]
-            fn check_elements(&self) -> ::mbd::__private::Result<()> {
-                let t = 0.0_f64;
+            fn check_elements(&self, t: f64) -> ::mbd::__private::Result<()> {
+                let _ = t;
                 #code
                 Ok(())
             }
@@ -615,7 +616,7 @@ fn parameter_checks(
             self.check_parameters().err().unwrap_or(err)
         }
     };
-    (code, eager.map(|_| quote!(self.check_elements()?;)))
+    (code, eager.map(|_| quote!(self.check_elements(t)?;)))
 }
 
 /// The arguments of which `order` computes both `sin` and `cos` (see `Block::paired`).

@@ -97,7 +97,13 @@ const DAMPED: Damped = Damped {
 #[test]
 fn coulomb_damped_oscillator_stops_at_the_closed_form_turning_point() {
     let half = PI / 2.0; // pi / w with w = 2
-    for p in [DAMPED, Damped { mu_s: 0.25, ..DAMPED }] {
+    for p in [
+        DAMPED,
+        Damped {
+            mu_s: 0.25,
+            ..DAMPED
+        },
+    ] {
         let turns = turning_points(&p);
         assert_eq!(turns.len(), if p.mu_s == 0.1 { 2 } else { 1 });
         let stop_t = half * turns.len() as f64;
@@ -195,7 +201,11 @@ fn a_block_under_a_rising_push_breaks_away_at_the_static_limit() {
         assert_eq!(run.switches.len(), 1, "{name}: {:?}", run.switches);
         let sw = &run.switches[0];
         assert_eq!((sw.from, sw.to), ([Slip::Stick], [Slip::Forward]), "{name}");
-        assert!((sw.t - ts).abs() < 1e-9, "{name}: breaks at {} vs {ts}", sw.t);
+        assert!(
+            (sw.t - ts).abs() < 1e-9,
+            "{name}: breaks at {} vs {ts}",
+            sw.t
+        );
         // Held exactly until then.
         assert_eq!(run.solution.at(0.9 * ts).unwrap()[0], 0.0, "{name}");
         let (t, y) = run.solution.last();

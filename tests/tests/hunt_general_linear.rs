@@ -124,7 +124,10 @@ fn sleeping_top_on_a_joint_tree_has_the_gyroscopic_frequencies_and_limit() {
             .collect();
         assert_eq!(osc.len(), 2, "{found:?}");
         for (got, want) in osc.iter().zip(want) {
-            assert!((got - want).abs() < 1e-10 * want, "spin {spin}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < 1e-10 * want,
+                "spin {spin}: {got} vs {want}"
+            );
         }
         assert!(found.iter().all(|m| !m.unstable));
         // The spin angle and rate: a neutral double zero.
@@ -176,7 +179,10 @@ fn ball_joint_pendulum_linearises_to_its_two_swings_and_a_free_spin() {
     let found = undamped_modes(&p, 0.0, &Vector::<3>::zeros()).unwrap();
     assert!(found[0].omega_squared.abs() < 1e-12, "{found:?}");
     for mode in &found[1..] {
-        assert!((mode.omega_squared - want).abs() < 1e-10 * want, "{found:?}");
+        assert!(
+            (mode.omega_squared - want).abs() < 1e-10 * want,
+            "{found:?}"
+        );
     }
 }
 
@@ -249,7 +255,15 @@ fn forward_sensitivities_along_an_oscillation_are_the_closed_form() {
     for j in 0..2 {
         let dx = -x0 * t1 * (w * t1).sin() * dw[j];
         let dv = -x0 * ((w * t1).sin() + w * t1 * (w * t1).cos()) * dw[j];
-        assert!((s[(0, j)] - dx).abs() < 1e-9, "dx/dp{j}: {} vs {dx}", s[(0, j)]);
-        assert!((s[(1, j)] - dv).abs() < 1e-9, "dv/dp{j}: {} vs {dv}", s[(1, j)]);
+        assert!(
+            (s[(0, j)] - dx).abs() < 1e-9,
+            "dx/dp{j}: {} vs {dx}",
+            s[(0, j)]
+        );
+        assert!(
+            (s[(1, j)] - dv).abs() < 1e-9,
+            "dv/dp{j}: {} vs {dv}",
+            s[(1, j)]
+        );
     }
 }
