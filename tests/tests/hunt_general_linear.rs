@@ -267,3 +267,54 @@ fn forward_sensitivities_along_an_oscillation_are_the_closed_form() {
         );
     }
 }
+
+/// A block on a spring on a rough floor, with its Jacobian generated. Sliding, Coulomb
+/// friction is a constant force, so `A = [[0, 1], [-k/m, 0]]` exactly. At rest the contact
+/// sticks or breaks away by the load: the accelerations have no derivative there, and the
+/// frictionless model's `A` (what the generated Jacobian returned with the friction
+/// direction 0, with `undamped_modes` reporting `w^2 = k/m` about a point the friction
+/// holds) must not come back as `Ok`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[point(wall, at = [0.0, 0.0])]
+#[spring(s, from = wall, to = block, k = k)]
+#[friction(along = x, mu = mu, normal = m * g)]
+#[output(reach = x)]
+pub struct RoughSpring {
+    pub m: f64,
+    pub g: f64,
+    pub k: f64,
+    pub mu: f64,
+}
+
+#[test]
+fn friction_at_rest_is_not_linearised_as_if_it_were_not_there() {
+    let p = RoughSpring {
+        m: 2.0,
+        g: 9.81,
+        k: 8.0,
+        mu: 0.1,
+    };
+    for v in [0.3, -0.3] {
+        let y = Vector::<2>::new(0.5, v);
+        let a = linearize(&p, 0.0, &y).unwrap();
+        assert_eq!((a[(0, 0)], a[(0, 1)], a[(1, 1)]), (0.0, 1.0, 0.0));
+        assert!((a[(1, 0)] + p.k / p.m).abs() < 1e-15);
+    }
+    let at_rest = |err: Error| match err {
+        Error::InvalidInput { what, detail } => {
+            assert_eq!(what, "friction at rest");
+            assert!(detail.contains("`x`"), "{detail}");
+        }
+        other => panic!("{other:?}"),
+    };
+    // Held by friction (k x = 0.8 N < mu m g = 1.96 N), and breaking away (k x = 8 N).
+    for x in [0.1, 1.0] {
+        at_rest(linearize(&p, 0.0, &Vector::<2>::new(x, 0.0)).unwrap_err());
+        at_rest(undamped_modes(&p, 0.0, &Vector::<1>::new(x)).unwrap_err());
+        at_rest(equilibrium_sensitivity(&p, 0.0, &[x]).unwrap_err());
+    }
+}
