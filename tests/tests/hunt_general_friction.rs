@@ -314,3 +314,59 @@ fn a_huge_coefficient_stops_the_block_at_the_closed_form_instant() {
         assert_eq!(y[1], 0.0);
     }
 }
+
+/// A wheel on a spatial hinge about the ground `z` axis with a bearing friction torque
+/// `mu r |n|` (`mu` written as the coefficient times the radius, as the docs say): spun at
+/// `w0` it decelerates at `mu r n / c`, stops after `w0 c / (mu r n)` having turned
+/// `w0^2 / (2 mu r n / c)`, and stays.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[body(wheel, joint = revolute(q, z), mass = m, inertia = diag(a, a, c))]
+#[friction(along = q, mu = mu * r, normal = n)]
+#[init(der(q) = w0)]
+pub struct Wheel {
+    pub m: f64,
+    pub a: f64,
+    pub c: f64,
+    pub mu: f64,
+    pub r: f64,
+    pub n: f64,
+    pub w0: f64,
+}
+
+#[test]
+fn a_spatial_hinge_with_bearing_friction_stops_at_the_closed_form_turn() {
+    let p = Wheel {
+        m: 2.0,
+        a: 0.1,
+        c: 0.2,
+        mu: 0.3,
+        r: 0.05,
+        n: 20.0,
+        w0: 5.0,
+    };
+    let decel = p.mu * p.r * p.n / p.c;
+    let (t_stop, q_stop) = (p.w0 / decel, p.w0 * p.w0 / (2.0 * decel));
+    let runs: [(&str, Result<HybridSolution<2, [Slip; 1]>, Error>); 3] = [
+        (
+            "DOP853",
+            mbd::hybrid::solve(&Dop853::new(tight()), &p, 0.0, p.initial_state(), 5.0, &[]),
+        ),
+        (
+            "Radau5",
+            mbd::hybrid::solve(&Radau5::new(tight()), &p, 0.0, p.initial_state(), 5.0, &[]),
+        ),
+        (
+            "Vern9",
+            mbd::hybrid::solve(&Vern9::new(tight()), &p, 0.0, p.initial_state(), 5.0, &[]),
+        ),
+    ];
+    for (name, run) in runs {
+        let run = run.unwrap();
+        assert_eq!(run.switches.len(), 1, "{name}");
+        assert!((run.switches[0].t - t_stop).abs() < 1e-10, "{name}");
+        let (_, y) = run.solution.last();
+        assert!((y[0] - q_stop).abs() < 1e-9, "{name}: {}", y[0]);
+        assert_eq!(y[1], 0.0, "{name}");
+    }
+}
