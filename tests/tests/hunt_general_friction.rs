@@ -370,3 +370,56 @@ fn a_spatial_hinge_with_bearing_friction_stops_at_the_closed_form_turn() {
         assert_eq!(y[1], 0.0, "{name}");
     }
 }
+
+/// Three blocks written as repeated cells, each on the rough floor with its own contact,
+/// launched at `i` m/s: block `i` stops after `i / (mu g)`, at `i^2 / (2 mu g)`, the three
+/// contacts sticking one after another while the others still slide.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[repeat(i in 1..=3,
+    coords(x[i]),
+    particle(b[i], mass = m, at = [x[i], 0.0]),
+    friction(along = x[i], mu = mu, normal = m * g),
+    init(der(x[i]) = i))]
+pub struct Three {
+    pub m: f64,
+    pub g: f64,
+    pub mu: f64,
+}
+
+#[test]
+fn repeated_blocks_stick_one_after_another_at_the_closed_form_times() {
+    let p = Three {
+        m: 0.5,
+        g: 9.81,
+        mu: 0.2,
+    };
+    let y0 = p.initial_state();
+    assert_eq!(y0.fixed_rows::<3>(3).as_slice(), [1.0, 2.0, 3.0]);
+    let decel = p.mu * p.g;
+    for (name, run) in [
+        (
+            "DOPRI5",
+            mbd::hybrid::solve(&Dopri5::new(tight()), &p, 0.0, y0, 2.0, &[]),
+        ),
+        (
+            "Radau5",
+            mbd::hybrid::solve(&Radau5::new(tight()), &p, 0.0, y0, 2.0, &[]),
+        ),
+    ] {
+        let run = run.unwrap();
+        assert_eq!(run.switches.len(), 3, "{name}: {:?}", run.switches);
+        for (k, sw) in run.switches.iter().enumerate() {
+            let v = (k + 1) as f64;
+            assert!((sw.t - v / decel).abs() < 1e-10, "{name}: block {} at {}", k + 1, sw.t);
+            assert_eq!(sw.to[k], Slip::Stick, "{name}");
+        }
+        let (_, y) = run.solution.last();
+        for k in 0..3 {
+            let v = (k + 1) as f64;
+            assert!((y[k] - v * v / (2.0 * decel)).abs() < 1e-9, "{name}: {}", y[k]);
+            assert_eq!(y[3 + k], 0.0);
+        }
+        assert_eq!(run.mode, [Slip::Stick; 3]);
+    }
+}
