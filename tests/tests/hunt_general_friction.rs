@@ -411,13 +411,22 @@ fn repeated_blocks_stick_one_after_another_at_the_closed_form_times() {
         assert_eq!(run.switches.len(), 3, "{name}: {:?}", run.switches);
         for (k, sw) in run.switches.iter().enumerate() {
             let v = (k + 1) as f64;
-            assert!((sw.t - v / decel).abs() < 1e-10, "{name}: block {} at {}", k + 1, sw.t);
+            assert!(
+                (sw.t - v / decel).abs() < 1e-10,
+                "{name}: block {} at {}",
+                k + 1,
+                sw.t
+            );
             assert_eq!(sw.to[k], Slip::Stick, "{name}");
         }
         let (_, y) = run.solution.last();
         for k in 0..3 {
             let v = (k + 1) as f64;
-            assert!((y[k] - v * v / (2.0 * decel)).abs() < 1e-9, "{name}: {}", y[k]);
+            assert!(
+                (y[k] - v * v / (2.0 * decel)).abs() < 1e-9,
+                "{name}: {}",
+                y[k]
+            );
             assert_eq!(y[3 + k], 0.0);
         }
         assert_eq!(run.mode, [Slip::Stick; 3]);

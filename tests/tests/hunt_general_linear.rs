@@ -3,7 +3,7 @@
 //! small-oscillation frequencies, a gyroscopic stability limit and sensitivities derived by
 //! hand beside each test.
 
-use mbd::analysis::linear::{ModeKind, linearize, modes, undamped_modes};
+use mbd::analysis::linear::{ModeKind, linearize, modes, state_space, undamped_modes};
 use mbd::analysis::sensitivity::{Sensitivity, equilibrium_sensitivity};
 use mbd::integrate::{Dop853, Integrator};
 use mbd::prelude::*;
@@ -317,4 +317,59 @@ fn friction_at_rest_is_not_linearised_as_if_it_were_not_there() {
         at_rest(undamped_modes(&p, 0.0, &Vector::<1>::new(x)).unwrap_err());
         at_rest(equilibrium_sensitivity(&p, 0.0, &[x]).unwrap_err());
     }
+}
+
+/// A bead on a rod turned by a drive `th = w t` whose rate `w` is an input (the docs'
+/// bead, with its Jacobian). Along the rod `s'' = w^2 s - g sin(w t)`, and the drive's
+/// torque is `2 m s s' w + g cos(w t) (ma r + m s)`, so at `(t, s, s')`:
+/// `A = [[0, 1], [w^2, 0]]`, `B = [0, 2 w s - g t cos(w t)]`,
+/// `C_motor = [2 m s' w + m g cos(w t), 2 m s w]`,
+/// `D_motor = 2 m s s' - g t sin(w t) (ma r + m s)`; the output `s` has `C = [1, 0]`.
+#[derive(Debug, Mechanism)]
+#[mechanism(planar, jacobian)]
+#[gravity(0.0, -g)]
+#[drive(th = w * t)]
+#[body(rod, joint = revolute(th), com = [r, 0.0], mass = ma, inertia = ia)]
+#[body(bead, parent = rod, joint = prismatic(s, [1.0, 0.0]), mass = m)]
+#[input(w)]
+#[output(motor = reaction(th), pos = s)]
+pub struct TurnedBead {
+    pub m: f64,
+    pub ma: f64,
+    pub ia: f64,
+    pub r: f64,
+    pub w: f64,
+    pub g: f64,
+}
+
+#[test]
+fn a_drive_rate_as_input_has_the_closed_form_state_space() {
+    let p = TurnedBead {
+        m: 0.2,
+        ma: 1.0,
+        ia: 0.1,
+        r: 0.5,
+        w: 3.0,
+        g: 9.81,
+    };
+    let (t, s, sd) = (0.4, 0.3, 0.7);
+    let ss = state_space(&p, t, &Vector::<2>::new(s, sd)).unwrap();
+    assert_eq!(
+        (ss.inputs.clone(), ss.outputs.clone()),
+        (vec!["w"], vec!["motor", "pos"])
+    );
+    let wt = p.w * t;
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-13 * (1.0 + b.abs());
+    assert!(close(ss.a[(0, 0)], 0.0) && close(ss.a[(0, 1)], 1.0));
+    assert!(close(ss.a[(1, 0)], p.w * p.w) && close(ss.a[(1, 1)], 0.0));
+    assert!(close(ss.b[(0, 0)], 0.0));
+    assert!(close(ss.b[(1, 0)], 2.0 * p.w * s - p.g * t * wt.cos()));
+    assert!(close(
+        ss.c[(0, 0)],
+        2.0 * p.m * sd * p.w + p.m * p.g * wt.cos()
+    ));
+    assert!(close(ss.c[(0, 1)], 2.0 * p.m * s * p.w));
+    assert!(close(ss.c[(1, 0)], 1.0) && close(ss.c[(1, 1)], 0.0));
+    let d = 2.0 * p.m * s * sd - p.g * t * wt.sin() * (p.ma * p.r + p.m * s);
+    assert!(close(ss.d[(0, 0)], d) && close(ss.d[(1, 0)], 0.0));
 }
