@@ -524,6 +524,19 @@ fn batched_trig(
     (code, known)
 }
 
+/// `impl PartialEq` for a generated struct of `f64` fields, comparing them as two arrays:
+/// the derive's `a == b && ..` chain of thousands of fields (a model's outputs) overflows
+/// rustc's stack (at about 5500), an array literal does not.
+pub(crate) fn flat_partial_eq(name: &syn::Ident, fields: &[&syn::Ident]) -> TokenStream {
+    quote! {
+        impl ::core::cmp::PartialEq for #name {
+            fn eq(&self, other: &Self) -> bool {
+                [#(self.#fields),*] == [#(other.#fields),*]
+            }
+        }
+    }
+}
+
 /// `check_parameters`: every parameter finite, and every mass, inertia, stiffness, damping
 /// and friction coefficient that is not a constant (constants are checked at compile time)
 /// of its sign; `diagnose` puts a failed check in place of the error of a solve it explains

@@ -55,9 +55,11 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
         let names = output_fields(ast);
         let k = names.len();
         let (ro, rk) = (res(quote!(#s)), res(quote!([f64; #k])));
+        let eq = crate::codegen::flat_partial_eq(&s, &names.iter().collect::<Vec<_>>());
         quote! {
-            #[derive(Debug, Clone, Copy, PartialEq)]
+            #[derive(Debug, Clone, Copy)]
             pub struct #s { #(pub #names: f64,)* }
+            #eq
             impl #ident {
                 pub const OUTPUTS: [&'static str; #k] = [""; #k];
                 pub fn outputs(&self, t: f64, y: &#vd) -> #ro { #never }

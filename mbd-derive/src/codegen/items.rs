@@ -559,10 +559,12 @@ fn outputs(eq: &Equations, sh: &mut Shape<'_>) -> Option<TokenStream> {
         let s = b.stmts();
         let vals: Vec<TokenStream> = roots.iter().map(|e| b.leaf(*e)).collect();
         let doc = format!("The outputs of [`{ident}`], evaluated by [`{ident}::outputs`].");
+        let eq = super::flat_partial_eq(&outputs_struct, &out_names.iter().collect::<Vec<_>>());
         quote! {
             #[doc = #doc]
-            #[derive(Debug, Clone, Copy, PartialEq)]
+            #[derive(Debug, Clone, Copy)]
             pub struct #outputs_struct { #(pub #out_names: f64,)* }
+            #eq
             #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
             impl #ident {
                 /// Names of the outputs, in declaration order.
@@ -792,10 +794,13 @@ fn state(
         "The state of [`{ident}`] by coordinate name: positions, then velocities (`_dot`)."
     );
 
+    let state_fields: Vec<&syn::Ident> = q_ids.iter().chain(&qd_ids).collect();
+    let state_eq = super::flat_partial_eq(&state_struct, &state_fields);
     quote! {
         #[doc = #state_doc]
-        #[derive(Debug, Clone, Copy, PartialEq, Default)]
+        #[derive(Debug, Clone, Copy, Default)]
         pub struct #state_struct { #(pub #q_ids: f64,)* #(pub #qd_ids: f64,)* }
+        #state_eq
         impl ::core::convert::From<&::mbd::__private::Vector<#d>> for #state_struct {
             fn from(y: &::mbd::__private::Vector<#d>) -> Self {
                 #state_struct { #(#q_ids: y[#q_idx],)* #(#qd_ids: y[#qd_idx],)* }
