@@ -240,3 +240,55 @@ fn a_pure_relative_tolerance_is_run_or_refused_by_name() {
     );
     check("Radau5", Radau5::new(opts).solve(&p, 0.0, y0, 2.0, &[]));
 }
+
+/// A block launched on a rough floor.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[friction(along = x, mu = mu, normal = m * g)]
+#[init(der(x) = 1.0)]
+pub struct Launched {
+    pub m: f64,
+    pub g: f64,
+    pub mu: f64,
+}
+
+/// A bad parameter of a friction model is named by every entry point, the mode choice at
+/// the start of a hybrid run included (it reported a negative mass as
+/// `MassMatrixNotPositiveDefinite` and a NaN coefficient as "friction coefficients").
+#[test]
+fn a_friction_models_bad_parameters_are_named_by_the_hybrid_run() {
+    let good = Launched {
+        m: 1.0,
+        g: 9.81,
+        mu: 0.3,
+    };
+    let y0 = good.initial_state();
+    let (q, qd) = (Vector::<1>::zeros(), Vector::<1>::new(1.0));
+    let coefficient = "the friction coefficient along `x`";
+    for (bad, names) in [
+        (Launched { m: -1.0, ..good }, vec!["the mass of `block`"]),
+        // A NaN coefficient: as the parameter or as the coefficient it is.
+        (
+            Launched {
+                mu: f64::NAN,
+                ..good
+            },
+            vec!["parameter `mu`", coefficient],
+        ),
+        (Launched { mu: -0.3, ..good }, vec![coefficient]),
+    ] {
+        let named = |err: Error, entry: &str| match err {
+            Error::InvalidParameter { what, .. } => {
+                assert!(names.contains(&what.as_str()), "{entry}: {what}")
+            }
+            other => panic!("{entry}: {other:?}"),
+        };
+        named(bad.acceleration(0.0, &q, &qd).unwrap_err(), "acceleration");
+        let run = mbd::hybrid::solve(&Dopri5::new(Options::default()), &bad, 0.0, y0, 1.0, &[]);
+        named(run.unwrap_err(), "hybrid DOPRI5");
+        let run = mbd::hybrid::solve(&Rk4::new(0.01), &bad, 0.0, y0, 1.0, &[]);
+        named(run.unwrap_err(), "hybrid RK4");
+    }
+}
