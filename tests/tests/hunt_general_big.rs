@@ -11,8 +11,8 @@ use mbd::prelude::*;
 /// followed by `n - i` bars, so with `c_ii = 1/3 + (n - i)` and `c_ij = 1/2 + (n - max(i,
 /// j))`, `T = m l^2 / 2 sum c_ij cos(th_i - th_j) th_i' th_j'` and
 /// `V = -m g l sum (n - i + 1/2) cos th_i`; Lagrange's equations:
-/// `sum_j c_ij cos(th_i - th_j) th_j'' + sum_j c_ij sin(th_i - th_j) th_j'^2
-///  + (g / l) (n - i + 1/2) sin th_i = 0`.
+/// `sum_j c_ij (cos(th_i - th_j) th_j'' + sin(th_i - th_j) th_j'^2) =
+/// -(g / l) (n - i + 1/2) sin th_i`.
 /// Returns the relative angles' accelerations (`q_1 = th_1`, `q_k = th_k - th_{k-1}`) at a
 /// state given in relative angles.
 fn chain_by_hand(g_over_l: f64, q: &[f64], qd: &[f64]) -> Vec<f64> {

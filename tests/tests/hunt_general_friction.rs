@@ -15,6 +15,9 @@ fn tight() -> Options {
     }
 }
 
+/// A run of a model with one contact.
+type Run1 = HybridSolution<2, [Slip; 1]>;
+
 /// Runs `f` with each adaptive method at tight tolerances, naming it.
 fn each_method(mut f: impl FnMut(&str, &dyn Fn() -> Box<dyn Run>)) {
     f("DOPRI5", &|| Box::new(Dopri5::new(tight())));
@@ -347,7 +350,7 @@ fn a_spatial_hinge_with_bearing_friction_stops_at_the_closed_form_turn() {
     };
     let decel = p.mu * p.r * p.n / p.c;
     let (t_stop, q_stop) = (p.w0 / decel, p.w0 * p.w0 / (2.0 * decel));
-    let runs: [(&str, Result<HybridSolution<2, [Slip; 1]>, Error>); 3] = [
+    let runs: [(&str, Result<Run1, Error>); 3] = [
         (
             "DOP853",
             mbd::hybrid::solve(&Dop853::new(tight()), &p, 0.0, p.initial_state(), 5.0, &[]),
