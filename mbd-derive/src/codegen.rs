@@ -528,10 +528,12 @@ fn batched_trig(
 /// the derive's `a == b && ..` chain of thousands of fields (a model's outputs) overflows
 /// rustc's stack (at about 5500), an array literal does not.
 pub(crate) fn flat_partial_eq(name: &syn::Ident, fields: &[&syn::Ident]) -> TokenStream {
+    let k = fields.len();
     quote! {
         impl ::core::cmp::PartialEq for #name {
             fn eq(&self, other: &Self) -> bool {
-                [#(self.#fields),*] == [#(other.#fields),*]
+                let (a, b): ([f64; #k], [f64; #k]) = ([#(self.#fields),*], [#(other.#fields),*]);
+                a == b
             }
         }
     }
