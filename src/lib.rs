@@ -125,13 +125,16 @@
 //! negative inertia, stiffness, spring length, damping or friction coefficient, an inertia
 //! tensor that is not positive definite, a rotation that is not one, NaN or infinite
 //! values), a mass or inertia that depends on time, a load or friction along a driven or
-//! relaxed coordinate, a default configuration that violates a constraint, and more (see
+//! relaxed coordinate (friction also along a ball joint's coordinate), a model of more than
+//! 512 bodies (the derive's size limit), a default configuration that violates a
+//! constraint, and more (see
 //! `tests/ui/` and `docs/RELIABILITY.md`). A failed derive still defines the items it would
 //! have generated, so only the real errors are reported.
 //!
 //! At run time, what the derive could not fold is checked: `X::check_parameters()` (every
 //! parameter finite; masses, inertias, stiffnesses, lengths, dampings and friction
-//! coefficients of their sign) is reported by the accelerations as
+//! coefficients of their sign; a stiffness, damping or coefficient written as a law in time
+//! at the time of each evaluation) is reported by the accelerations as
 //! [`Error::InvalidParameter`] naming the parameter or the body; a mass matrix that is not
 //! positive definite is [`Error::MassMatrixNotPositiveDefinite`], never solved; an event
 //! function that fails or turns NaN ends the integration with [`Error::EventFailed`].
@@ -298,7 +301,10 @@
 //! spaced by the function's own slope and curvature: a body stuck under a load that varies
 //! in time has a constant state, so its steps grow, and a breakaway that comes and goes
 //! within one step is still found, without `Options::h_max` (a pulse shorter than the
-//! sample spacing its approach allows is the limit). One `friction` per coordinate. The friction
+//! sample spacing its approach allows is the limit). One `friction` per coordinate. With
+//! `#[mechanism(jacobian)]` the exact Jacobian and the linear parts are those of a sliding
+//! state; at a contact at rest, where the accelerations have no derivative, they return
+//! `InvalidInput { what: "friction at rest", .. }`. The friction
 //! of a joint is written on the joint's coordinate: a prismatic joint's slide, or a revolute
 //! joint's angle with `mu` a friction radius times the coefficient (a torque `mu r |n|`);
 //! with `#[body(.., reaction)]` the normal force can be the joint's force projected across

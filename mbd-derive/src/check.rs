@@ -637,6 +637,17 @@ fn driven_loads(ast: &Mechanism, errors: &mut Errors) {
                 ),
             );
         }
+        let ball = ast.tree.iter().any(|tb| {
+            matches!(tb.joint, crate::parse::Joint::Ball(..)) && tb.joint.coords().contains(&c)
+        });
+        if ball {
+            errors.at(
+                c.span(),
+                format!(
+                    "friction along `{c}`, a coordinate of a ball joint: its three coordinates describe one rotation (they jump to the shadow set once a turn), so `{c}'` is no sliding velocity; put the friction on an angle of `revolute` or `spherical` joints"
+                ),
+            );
+        }
     }
 }
 

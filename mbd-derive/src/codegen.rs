@@ -524,6 +524,21 @@ fn batched_trig(
     (code, known)
 }
 
+/// `impl PartialEq` for a generated struct of `f64` fields, comparing them as two arrays:
+/// the derive's `a == b && ..` chain of thousands of fields (a model's outputs) overflows
+/// rustc's stack (at about 5500), an array literal does not.
+pub(crate) fn flat_partial_eq(name: &syn::Ident, fields: &[&syn::Ident]) -> TokenStream {
+    let k = fields.len();
+    quote! {
+        impl ::core::cmp::PartialEq for #name {
+            fn eq(&self, other: &Self) -> bool {
+                let (a, b): ([f64; #k], [f64; #k]) = ([#(self.#fields),*], [#(other.#fields),*]);
+                a == b
+            }
+        }
+    }
+}
+
 /// `check_parameters`: every parameter finite, and every mass, inertia, stiffness, damping
 /// and friction coefficient that is not a constant (constants are checked at compile time)
 /// of its sign; `diagnose` puts a failed check in place of the error of a solve it explains
@@ -588,10 +603,11 @@ fn parameter_checks(
     });
     let eager_fn = eager.as_ref().map(|code| {
         quote! {
-            /// The checks no solve would notice (stiffnesses, dampings, friction coefficients).
+            /// The checks no solve would notice (stiffnesses, dampings, friction coefficients),
+            /// at the time `t` of the evaluation: a stiffness may be a function of time.
             #[inline]
-            fn check_elements(&self) -> ::mbd::__private::Result<()> {
-                let t = 0.0_f64;
+            fn check_elements(&self, t: f64) -> ::mbd::__private::Result<()> {
+                let _ = t;
                 #code
                 Ok(())
             }
@@ -615,7 +631,7 @@ fn parameter_checks(
             self.check_parameters().err().unwrap_or(err)
         }
     };
-    (code, eager.map(|_| quote!(self.check_elements()?;)))
+    (code, eager.map(|_| quote!(self.check_elements(t)?;)))
 }
 
 /// The arguments of which `order` computes both `sin` and `cos` (see `Block::paired`).

@@ -100,11 +100,13 @@ pub fn emit(
             fn switching_state(&self, mode: &Self::Mode, k: usize) -> Option<(usize, f64)> {
                 #p::friction::switching_state::<#n, #nf>(&<Self as #p::Frictional<#n, #m, #nf, #a>>::ALONG, mode, k)
             }
+            // A failed solve explained by a bad parameter names it (a negative mass is not
+            // "a mass matrix not positive definite", a NaN coefficient is the parameter's).
             fn mode_at(&self, t: f64, y: &#p::Vector<#d>) -> #p::Result<Self::Mode> {
-                #p::friction::mode_at::<Self, #n, #m, #nf, #a, #d>(self, t, y)
+                #p::friction::mode_at::<Self, #n, #m, #nf, #a, #d>(self, t, y).map_err(|e| self.diagnose(e))
             }
             fn switch(&self, t: f64, y: &mut #p::Vector<#d>, mode: &Self::Mode, k: usize) -> #p::Result<Self::Mode> {
-                #p::friction::switch::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode, k)
+                #p::friction::switch::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode, k).map_err(|e| self.diagnose(e))
             }
             #project
         }

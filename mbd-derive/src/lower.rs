@@ -469,7 +469,12 @@ impl Lowerer<'_> {
                     Kind::Name(id) => id.to_string(),
                     _ => unreachable!("matched above"),
                 };
-                let msg = format!("`{fname}` takes a body name; `{text}` is not a body");
+                let mut msg = format!("`{fname}` takes a body name; `{text}` is not a body");
+                if let Some(Binding::Value(Value::Vector(_))) = self.names.get(&text) {
+                    msg += &format!(
+                        ": `{text}` is a point, a vector already (write `{text}`); for a point fixed to a body, ask the body: `{fname}(body, [offset])`"
+                    );
+                }
                 return self.fail(args[0].span(), msg);
             }
             Kind::Invalid => return Err(()),

@@ -54,8 +54,6 @@ pub enum Op {
     Sub,
     Mul,
     Div,
-    /// Any other operator except `^` and `==` (refused here): "operands do not match".
-    Other,
 }
 
 impl Term {
@@ -84,7 +82,6 @@ impl Term {
                     Op::Sub => Some(x - y),
                     Op::Mul => Some(x * y),
                     Op::Div => Some(x / y),
-                    Op::Other => None,
                 }
             }
             Kind::Call(name, args) => {
@@ -408,6 +405,11 @@ fn term_here(e: &syn::Expr, errors: &mut Errors, known: Option<&Known>) -> Term 
             let first = u.op.span();
             let kind = match u.op {
                 syn::UnOp::Neg(_) => Kind::Neg(Box::new(inner)),
+                syn::UnOp::Deref(_) => {
+                    let msg = "only unary `-` is supported; `**` is not a power in Rust: use `x.powi(2)` or `powf(x, y)`";
+                    errors.at(u.span(), msg);
+                    Kind::Invalid
+                }
                 _ => {
                     errors.at(u.span(), "only unary `-` is supported");
                     Kind::Invalid
@@ -432,7 +434,14 @@ fn term_here(e: &syn::Expr, errors: &mut Errors, known: Option<&Known>) -> Term 
                     errors.at(b.op.span(), "`==` belongs only in `constraint(...)`");
                     None
                 }
-                _ => Some(Op::Other),
+                other => {
+                    let op = quote::ToTokens::to_token_stream(&other).to_string();
+                    let msg = format!(
+                        "`{op}` is not an operator of the language: it has `+`, `-`, `*`, `/` (and `==` in a constraint)"
+                    );
+                    errors.at(b.op.span(), msg);
+                    None
+                }
             };
             let first = l.first;
             let kind = op.map_or(Kind::Invalid, |op| {
@@ -480,6 +489,12 @@ fn term_here(e: &syn::Expr, errors: &mut Errors, known: Option<&Known>) -> Term 
             let first = args[0].first;
             let kind = call(&m.method, args, || m.span(), errors);
             one(kind, first).until(m.paren_token.span.join())
+        }
+        E::Field(f) => {
+            let msg =
+                "a vector has no fields: take a component by index, `v[0]`, `v[1]` (, `v[2]`)";
+            errors.at(f.span(), msg);
+            one(Kind::Invalid, f.span())
         }
         other => {
             let msg = "unsupported expression: use numbers, names, `+ - * /`, calls, `[..]`";
@@ -595,12 +610,32 @@ fn arguments<'e>(
         .collect()
 }
 
+/// The message for a function the language does not have, with what to write instead
+/// where a common name from other languages has a spelling here.
+fn unknown_function(fname: &str) -> String {
+    let instead = match fname {
+        "log" => Some("`ln(x)` (natural logarithm)"),
+        "log10" => Some("`ln(x) / LN_10`"),
+        "log2" => Some("`ln(x) / LN_2`"),
+        "pow" => Some("`powi(x, n)` (integer n) or `powf(x, y)`"),
+        "sqr" | "square" => Some("`powi(x, 2)`"),
+        "cbrt" => Some("`powf(x, 1.0 / 3.0)`"),
+        "arctan" | "atan2f" => Some("`atan(x)` or `atan2(y, x)`"),
+        "fabs" => Some("`abs(x)`"),
+        _ => None,
+    };
+    match instead {
+        Some(hint) => format!("unknown function `{fname}`: write {hint}"),
+        None => format!("unknown function `{fname}`"),
+    }
+}
+
 /// A call of a known function with the right number of arguments (`span`: the call's,
 /// for the arity's error).
 fn call(name: &Ident, args: Vec<Term>, span: impl Fn() -> Span, errors: &mut Errors) -> Kind {
     let fname = name.to_string();
     let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == fname) else {
-        errors.at(name.span(), format!("unknown function `{fname}`"));
+        errors.at(name.span(), unknown_function(&fname));
         return Kind::Invalid;
     };
     let arity_ok = args.len() == arity

@@ -466,6 +466,10 @@ impl Mechanism {
         }
         m.joint_coordinates(&mut errors);
         m.duplicates(&mut errors);
+        let names = m.bodies.iter().map(|b| &b.name);
+        if let Some(over) = names.chain(m.tree.iter().map(|b| &b.name)).nth(MAX_BODIES) {
+            errors.at(over.span(), too_many_bodies());
+        }
         match errors.finish() {
             Ok(()) => Ok(m),
             Err(e) => Err((e, Some(Box::new(m)))),
@@ -964,6 +968,18 @@ fn parent(e: Expr, errors: &mut Errors) -> Option<Ident> {
 /// links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default),
 /// each turned by its relative angle `link_q1 ..` (zero: straight down, along the parent's
 /// `-y`), mass centre at mid-length.
+/// The most bodies (free, tree and chain links together) a model may have: the symbolic
+/// stage's memory grows faster than the bodies (a 512-link chain builds in about a
+/// minute; 1024 links ran out of 6 GB), so past this the derive stops with a spanned error
+/// instead of exhausting the machine.
+pub const MAX_BODIES: usize = 512;
+
+fn too_many_bodies() -> String {
+    format!(
+        "a model has at most {MAX_BODIES} bodies (the derive's size limit: the symbolic stage's memory grows faster than the bodies)"
+    )
+}
+
 fn chain(mut item: Item, tree: &mut Vec<TreeBody>, errors: &mut Errors) {
     let name = item.name.clone();
     let n = match item.require("n", errors, "chain") {
@@ -971,7 +987,11 @@ fn chain(mut item: Item, tree: &mut Vec<TreeBody>, errors: &mut Errors) {
             lit: syn::Lit::Int(i),
             ..
         })) => match i.base10_parse::<usize>() {
-            Ok(n) if n >= 1 => Some(n),
+            Ok(n) if (1..=MAX_BODIES).contains(&n) => Some(n),
+            Ok(n) if n > MAX_BODIES => {
+                errors.at(i.span(), too_many_bodies());
+                None
+            }
             _ => {
                 errors.at(i.span(), "a chain has `n >= 1` links");
                 None

@@ -52,12 +52,14 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
     let fields = unique(free.iter().copied().chain(&dots));
     let outputs = (!ast.outputs.is_empty()).then(|| {
         let s = format_ident!("{}Outputs", ident);
-        let names = unique(ast.outputs.iter().map(|o| &o.name));
+        let names = output_fields(ast);
         let k = names.len();
         let (ro, rk) = (res(quote!(#s)), res(quote!([f64; #k])));
+        let eq = crate::codegen::flat_partial_eq(&s, &names.iter().collect::<Vec<_>>());
         quote! {
-            #[derive(Debug, Clone, Copy, PartialEq)]
+            #[derive(Debug, Clone, Copy)]
             pub struct #s { #(pub #names: f64,)* }
+            #eq
             impl #ident {
                 pub const OUTPUTS: [&'static str; #k] = [""; #k];
                 pub fn outputs(&self, t: f64, y: &#vd) -> #ro { #never }
@@ -143,6 +145,51 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
         #events
         #friction
         #geometry
+    }
+}
+
+/// The outputs struct's fields, each once: a vector output's components (`p_x`, `p_y`
+/// (, `p_z`)) where its expression is one by its form (a point, a vector literal, a body
+/// query that gives a vector), so that the user's `out.p_x` adds no error of its own.
+fn output_fields(ast: &Mechanism) -> Vec<Ident> {
+    let dim = match ast.dim {
+        crate::parse::Dim::Planar => 2,
+        crate::parse::Dim::Spatial => 3,
+    };
+    let mut fields = Vec::new();
+    for o in &ast.outputs {
+        match vector_len(ast, &o.expr, dim) {
+            Some(len) => fields.extend(
+                ["x", "y", "z"][..len.min(3)]
+                    .iter()
+                    .map(|axis| format_ident!("{}_{}", o.name, axis)),
+            ),
+            None => fields.push(o.name.clone()),
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    fields.retain(|f| seen.insert(f.to_string()));
+    fields
+}
+
+/// How many components `e` has when its form says it is a vector.
+fn vector_len(ast: &Mechanism, e: &syn::Expr, dim: usize) -> Option<usize> {
+    let name = |e: &syn::Expr| match e {
+        syn::Expr::Path(p) => p.path.get_ident().map(|i| i.to_string()),
+        _ => None,
+    };
+    match e {
+        syn::Expr::Paren(p) => vector_len(ast, &p.expr, dim),
+        syn::Expr::Array(a) => Some(a.elems.len()),
+        syn::Expr::Call(c) => match name(&c.func)?.as_str() {
+            "position" | "velocity" | "acceleration" => Some(dim),
+            "angular_velocity" | "angular_acceleration" | "cross" if dim == 3 => Some(3),
+            _ => None,
+        },
+        _ => {
+            let n = name(e)?;
+            ast.points.iter().any(|p| p.name == n).then_some(dim)
+        }
     }
 }
 

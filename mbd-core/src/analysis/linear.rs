@@ -134,13 +134,12 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
         .map(|r| r.iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max);
     let tol = NEUTRAL_TOL * norm.max(f64::MIN_POSITIVE);
-    let schur =
-        Schur::try_new(a.clone(), f64::EPSILON, 10_000).ok_or_else(|| Error::InvalidInput {
-            what: "modes",
-            detail: "the Schur iteration did not converge".into(),
-        })?;
+    let eigenvalues = eigenvalues(&a).ok_or_else(|| Error::InvalidInput {
+        what: "modes",
+        detail: "the Schur iteration did not converge".into(),
+    })?;
     let mut out = Vec::new();
-    for lambda in schur.complex_eigenvalues().iter().copied() {
+    for lambda in eigenvalues.iter().copied() {
         let modulus = lambda.norm();
         // A pair once; neutral eigenvalues each (a double zero may come out as `+-i eps`).
         if lambda.im < 0.0 && modulus > tol {
@@ -170,6 +169,22 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
     }
     out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
     Ok(out)
+}
+
+/// The eigenvalues of `a` from its real Schur form. nalgebra's shifted QR iteration can
+/// cycle without converging on a matrix with a symmetric pattern of eigenvalues (an
+/// unstable gyroscopic pair `+-a +-ib`: a sleeping top spun below its stability limit);
+/// then it is run again on `H a H`, `H` a fixed reflection that breaks the pattern
+/// (a similarity: the same eigenvalues).
+fn eigenvalues(a: &DMatrix<f64>) -> Option<DVector<Complex<f64>>> {
+    let schur = |m: DMatrix<f64>| Schur::try_new(m, f64::EPSILON, 10_000);
+    if let Some(s) = schur(a.clone()) {
+        return Some(s.complex_eigenvalues());
+    }
+    let n = a.nrows();
+    let v = DVector::from_fn(n, |i, _| 1.0 + 0.618_033_988_749_895 * i as f64);
+    let h = DMatrix::<f64>::identity(n, n) - &v * v.transpose() * (2.0 / v.norm_squared());
+    schur(&h * a * &h).map(|s| s.complex_eigenvalues())
 }
 
 /// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it

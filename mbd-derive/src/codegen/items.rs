@@ -62,12 +62,19 @@ pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
     });
     let outputs = Some(quote!(#outputs #geometry));
     sh.parts.statements += accel.statements;
-    let linear = crate::linear::emit(eq, sh.ident, &sh.split, &sh.solve_qdd_lambda, &sh.direction)
-        .map(|(code, len)| {
-            sh.parts.names.push("linear");
-            sh.parts.statements += len;
-            code
-        });
+    let differentiable = differentiable(eq, &sh.direction);
+    let linear = crate::linear::emit(
+        eq,
+        sh.ident,
+        &sh.split,
+        &sh.solve_qdd_lambda,
+        &differentiable,
+    )
+    .map(|(code, len)| {
+        sh.parts.names.push("linear");
+        sh.parts.statements += len;
+        code
+    });
     let items = [
         mechanism_impl,
         constrained_impl.unwrap_or_default(),
@@ -392,9 +399,33 @@ fn constrained_impl(
     })
 }
 
+/// The friction directions for code that differentiates the accelerations (the Jacobian,
+/// the linear parts), refusing a contact at rest: there it sticks or breaks away by the load,
+/// and the accelerations have no derivative (with the direction 0 the derivatives would be
+/// the frictionless model's, a wrong `Ok`).
+fn differentiable(eq: &Equations, direction: &Option<TokenStream>) -> Option<TokenStream> {
+    let direction = direction.as_ref()?;
+    let along: Vec<String> = (eq.frictions.iter())
+        .map(|f| eq.free[f.coord].to_string())
+        .collect();
+    Some(quote! {
+        #direction
+        if let Some(k) = direction.iter().position(|d| *d == 0.0) {
+            return Err(::mbd::__private::Error::InvalidInput {
+                what: "friction at rest",
+                detail: ::std::format!(
+                    "the contact along `{}` is at rest: it sticks or breaks away by the load, so the \
+                     accelerations have no derivative there; linearise a sliding state",
+                    [#(#along),*][k]),
+            });
+        }
+    })
+}
+
 fn jacobian(eq: &Equations, sh: &mut Shape<'_>) -> Option<TokenStream> {
     let (n, m, d) = (sh.n, sh.m, sh.d);
-    let (split, direction, solve_qdd_lambda) = (&sh.split, &sh.direction, &sh.solve_qdd_lambda);
+    let direction = differentiable(eq, &sh.direction);
+    let (split, solve_qdd_lambda) = (&sh.split, &sh.solve_qdd_lambda);
     let parts = &mut sh.parts;
     let m_or_0 = if sh.constrained { m } else { 0 };
     eq.jacobian.as_ref().map(|jac| {
@@ -528,10 +559,12 @@ fn outputs(eq: &Equations, sh: &mut Shape<'_>) -> Option<TokenStream> {
         let s = b.stmts();
         let vals: Vec<TokenStream> = roots.iter().map(|e| b.leaf(*e)).collect();
         let doc = format!("The outputs of [`{ident}`], evaluated by [`{ident}::outputs`].");
+        let eq = super::flat_partial_eq(&outputs_struct, &out_names.iter().collect::<Vec<_>>());
         quote! {
             #[doc = #doc]
-            #[derive(Debug, Clone, Copy, PartialEq)]
+            #[derive(Debug, Clone, Copy)]
             pub struct #outputs_struct { #(pub #out_names: f64,)* }
+            #eq
             #[allow(unused_variables, unused_mut, clippy::all, reason = "generated straight-line code")]
             impl #ident {
                 /// Names of the outputs, in declaration order.
@@ -761,10 +794,13 @@ fn state(
         "The state of [`{ident}`] by coordinate name: positions, then velocities (`_dot`)."
     );
 
+    let state_fields: Vec<&syn::Ident> = q_ids.iter().chain(&qd_ids).collect();
+    let state_eq = super::flat_partial_eq(&state_struct, &state_fields);
     quote! {
         #[doc = #state_doc]
-        #[derive(Debug, Clone, Copy, PartialEq, Default)]
+        #[derive(Debug, Clone, Copy, Default)]
         pub struct #state_struct { #(pub #q_ids: f64,)* #(pub #qd_ids: f64,)* }
+        #state_eq
         impl ::core::convert::From<&::mbd::__private::Vector<#d>> for #state_struct {
             fn from(y: &::mbd::__private::Vector<#d>) -> Self {
                 #state_struct { #(#q_ids: y[#q_idx],)* #(#qd_ids: y[#qd_idx],)* }
