@@ -108,7 +108,8 @@ pub trait Integrator {
 pub struct Options {
     /// Relative tolerance (adaptive methods).
     pub rtol: f64,
-    /// Absolute tolerance (adaptive methods).
+    /// Absolute tolerance (adaptive methods), positive: with `atol = 0` a component's error
+    /// weight `atol + rtol |y|` vanishes where it passes through zero.
     pub atol: f64,
     /// Initial step; `None` lets the method choose (Hairer's `HINIT`).
     pub h0: Option<f64>,
@@ -227,17 +228,12 @@ pub(crate) fn second_order_end_packed<const N: usize, const D: usize>(
 }
 
 impl Options {
-    /// Reject options outside their domain: `rtol > 0` and `atol >= 0` finite, `h0` and
+    /// Reject options outside their domain: `rtol > 0` and `atol > 0` finite, `h0` and
     /// `h_max` finite and positive when given, `max_steps >= 1`.
     pub fn validate(&self) -> Result<()> {
         let bad = |what: &'static str, detail: String| Err(Error::InvalidInput { what, detail });
         positive_finite("rtol", self.rtol)?;
-        if !(self.atol >= 0.0 && self.atol.is_finite()) {
-            return bad(
-                "atol",
-                format!("must be non-negative and finite, got {}", Num(self.atol)),
-            );
-        }
+        positive_finite("atol", self.atol)?;
         if let Some(h) = self.h0 {
             positive_finite("h0", h)?;
         }
