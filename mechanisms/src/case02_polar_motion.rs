@@ -24,7 +24,7 @@
 //! **Discrepancies in the manual.** None: its 0.5447 and 0.63193 are these, rounded, and
 //! RecurDyn agrees.
 
-use crate::drawing::{At, Sketch};
+use crate::drawing::Sketch;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
@@ -36,8 +36,7 @@ const METHOD: &str = "generated outputs of the driven motion";
 #[mechanism(geometry)]
 #[drive(r = r_0 + r_dot * t)]
 #[drive(theta = theta_dot * t)]
-#[point(pole, at = [0.0, 0.0])]
-#[particle(b, mass = m, at = [pole[0] + r * cos(theta), pole[1] + r * sin(theta)])]
+#[particle(b, mass = m, at = [r * cos(theta), r * sin(theta)])]
 #[output(v = norm(velocity(b)))]
 #[output(a = norm(acceleration(b)))]
 pub struct PolarMotion {
@@ -56,11 +55,8 @@ pub const MODEL: PolarMotion = PolarMotion {
     theta_dot: std::f64::consts::FRAC_PI_3,
 };
 
-/// The drawing beyond the model's shapes. The polar radius OB.
-pub const SKETCH: Sketch = Sketch {
-    links: &[("radius", At("pole", 0), At("b", 0))],
-    ..Sketch::NONE
-};
+/// The drawing: the model's own shapes (B alone; its polar radius is no member).
+pub const SKETCH: Sketch = Sketch::NONE;
 
 /// Exact references `[v, a]`: `v = sqrt(r'^2 + (r θ')^2)`,
 /// `a = sqrt((r'' − r θ'^2)^2 + (r θ'' + 2 r' θ')^2)` with `r'' = θ'' = 0`

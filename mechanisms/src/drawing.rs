@@ -134,7 +134,11 @@ pub fn apply(mut anim: Animation, sketch: &Sketch) -> mbd::Result<Animation> {
 /// The ends of the bars a frame draws, each with what it belongs to: planar rigid bars
 /// (not the bodies drawn through their joints), links, and the joints of those bodies.
 pub fn ends(f: &Frame) -> Vec<(At, [f64; 3])> {
-    let through = |name: &str| f.added.iter().any(|d| d.kind == Added::Body && d.name == name);
+    let through = |name: &str| {
+        f.added
+            .iter()
+            .any(|d| d.kind == Added::Body && d.name == name)
+    };
     let mut out = Vec::new();
     for s in &f.shapes {
         if s.kind == ShapeKind::Rigid && s.points.len() == 3 && !through(s.name) {

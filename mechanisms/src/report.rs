@@ -213,7 +213,10 @@ fn animation_json(a: &Animation) -> String {
     let shown = |f: &crate::validation::Frame| -> Vec<(&'static str, &'static str, Vec<[f64; 3]>)> {
         let through = |n: &str| f.added.iter().any(|d| d.kind == Added::Body && d.name == n);
         let own = f.shapes.iter().filter(|s| !through(s.name));
-        let added = f.added.iter().map(|d| (d.kind.name(), d.name, d.points.clone()));
+        let added = f
+            .added
+            .iter()
+            .map(|d| (d.kind.name(), d.name, d.points.clone()));
         added
             .chain(own.map(|s| (s.kind.name(), s.name, s.points.clone())))
             .collect()
