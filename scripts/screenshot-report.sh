@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Render the validation report (report.html) in headless Chromium and save screenshots:
-# the top of the page, every drawing in one grid (`report.html?drawings`, twice: early and
-# later in the animation) and each chosen case alone (`report.html?case=NN`), with the
-# animation run for a while first.
+# the top of the page, every drawing in one grid (`report.html?drawings`) stopped at the
+# start, the middle and the end of each run (`&at=0`, `0.5`, `1`) and once running, and each
+# chosen case alone (`report.html?case=NN`), its drawing stopped half-way.
 #
 #   scripts/screenshot-report.sh [OUT_DIR] [CASE ...]      (default: target/report-shots, 15 19 21 28)
 #
@@ -29,10 +29,10 @@ shot() { # name, width, height, url
     echo "$out/$1.png"
 }
 shot top 1100 1400 "$page"
-shot drawings 1400 2600 "$page?drawings"
-"$browser" --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,2600 \
-    --virtual-time-budget=4200 --screenshot="$out/drawings-later.png" "$page?drawings" > /dev/null 2>&1
-echo "$out/drawings-later.png"
+for at in 0 0.5 1; do
+    shot "drawings-at-$at" 1400 2700 "$page?drawings&at=$at"
+done
+shot drawings 1400 2700 "$page?drawings"
 for c in "${cases[@]}"; do
-    shot "case$c" 1100 1100 "$page?case=$c"
+    shot "case$c" 1100 1100 "$page?case=$c&at=0.5"
 done

@@ -13,6 +13,7 @@
 //! `t_AB = (v0 + v_B)/g = 4.403755...`. The manual's 16.865, 4.404 and 18.188 are these,
 //! rounded.
 
+use crate::drawing::Sketch;
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -42,6 +43,9 @@ pub const MODEL: VerticalThrow = VerticalThrow {
     v0: 25.0,
     b: 15.0,
 };
+
+/// The drawing: the model's own shapes.
+pub const SKETCH: Sketch = Sketch::NONE;
 
 /// Exact references, from constant-acceleration kinematics (see the module docs).
 pub fn references() -> [f64; 3] {

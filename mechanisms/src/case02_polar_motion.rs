@@ -24,6 +24,7 @@
 //! **Discrepancies in the manual.** None: its 0.5447 and 0.63193 are these, rounded, and
 //! RecurDyn agrees.
 
+use crate::drawing::Sketch;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
@@ -53,6 +54,9 @@ pub const MODEL: PolarMotion = PolarMotion {
     r_dot: -0.15,
     theta_dot: std::f64::consts::FRAC_PI_3,
 };
+
+/// The drawing: the model's own shapes (B alone; its polar radius is no member).
+pub const SKETCH: Sketch = Sketch::NONE;
 
 /// Exact references `[v, a]`: `v = sqrt(r'^2 + (r θ')^2)`,
 /// `a = sqrt((r'' − r θ'^2)^2 + (r θ'' + 2 r' θ')^2)` with `r'' = θ'' = 0`

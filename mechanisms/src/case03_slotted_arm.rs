@@ -36,6 +36,7 @@
 //! (RecurDyn 315.12); its table's 315 is right. The worked `θ'' = −1510.48` uses the rounded
 //! `r'`, `θ'` and γ: exactly −1510.4256 (RecurDyn −1510.43); the table's −1510 is right.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -81,6 +82,12 @@ pub const MODEL: SlottedArm = SlottedArm {
     oc: 0.3,
     beta_0: std::f64::consts::FRAC_PI_6,
     beta_dot: 60.0,
+};
+
+/// The drawing beyond the model's shapes. The slotted arm's tip is free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("arm", 1)],
+    ..Sketch::NONE
 };
 
 /// Exact references `[r', r'', θ', θ'']` at t = 0 (see the module docs).

@@ -40,6 +40,7 @@
 //! 60°, min 8.010 at 48.19°; started at the bottom with `θ' = θ_0 ω_n`, min 8.370 at
 //! 52.97°). mbd is judged against the exact 9.02638731168.
 
+use crate::drawing::Sketch;
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::integrate::{Integrator, Options, Radau5, Solution};
@@ -73,6 +74,9 @@ pub const MODEL: Pendulum = Pendulum {
     l: 0.8,
     theta_0: std::f64::consts::FRAC_PI_3,
 };
+
+/// The drawing: the model's own shapes.
+pub const SKETCH: Sketch = Sketch::NONE;
 
 /// `ω_n = sqrt(g/l)`.
 pub fn natural_frequency() -> f64 {

@@ -36,6 +36,7 @@
 //! short; its own text says 19.063) is not rounding: its friction model (velocity-regularised
 //! stiction) deviates. The reference is 19.57998 m.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::Slip;
@@ -109,6 +110,12 @@ pub const MODEL: CrateOnIncline = CrateOnIncline {
     slope: 15.0 * std::f64::consts::PI / 180.0,
     mu: 0.4,
     v0: 7.0,
+};
+
+/// The drawing beyond the model's shapes. The incline: the crate's path.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("crate_body", 0)],
+    ..Sketch::NONE
 };
 
 /// The manual's second incline, 30°: the crate does not stop.

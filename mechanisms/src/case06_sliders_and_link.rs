@@ -32,6 +32,7 @@
 //! **Discrepancies in the manual.** None in the results (1.36, −9.318, 46.59 are these,
 //! rounded; the worked solution's 1.364 too). Its reference and its units are misprinted (above).
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
@@ -70,6 +71,13 @@ pub const MODEL: SlidersAndLink = SlidersAndLink {
     p: 40.0,
     x_a0: 0.4,
     v_a0: 0.9,
+};
+
+/// The drawing beyond the model's shapes. The light bar AB and the sliders' guides.
+pub const SKETCH: Sketch = Sketch {
+    links: &[("bar_ab", At("a", 0), At("b", 0))],
+    guides: &[At("a", 0), At("b", 0)],
+    ..Sketch::NONE
 };
 
 /// Exact references `[a_A, a_B, T]`: from `m_B a_B = −T y/l`, `m_A a_A = P − T x/l` and

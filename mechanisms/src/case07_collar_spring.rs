@@ -30,6 +30,7 @@
 //! exact `x_A` the value is **1.1562775** (the corrected reference, at the manual's g).
 //! RecurDyn's 1.1556 matches g = 9.81 (1.1556287).
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -69,6 +70,12 @@ pub const MODEL: CollarOnRod = CollarOnRod {
     a_x: 0.45,
     a_y: -0.75,
     b_y: -0.5,
+};
+
+/// The drawing beyond the model's shapes. The smooth rod the collar runs on.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("collar", 0)],
+    ..Sketch::NONE
 };
 
 /// `v_B` from the work-energy balance `½ m v_B^2 = ½ k (x_A^2 − x_B^2) − m g h_B` (Meriam &

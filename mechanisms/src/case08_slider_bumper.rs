@@ -35,6 +35,7 @@
 //! **Discrepancies in the manual.** None: 9.395 and 54.24 are right to their digits.
 //! RecurDyn's δ = 54.08 (−0.3 %) reflects its contact model, not the physics.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::integrate::Solution;
@@ -92,6 +93,12 @@ pub const MODEL: SliderOnGuide = SliderOnGuide {
     h_f: 1.5,
     p: -7.051_185_388_632_02,
     x_f: 8.0,
+};
+
+/// The drawing beyond the model's shapes. The guide: the slider's path.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("slider", 0)],
+    ..Sketch::NONE
 };
 
 /// The manual's bumper.

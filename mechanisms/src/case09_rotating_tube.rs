@@ -29,6 +29,7 @@
 //! the table's **30.653°** does not follow from it (a slip of 0.016°): the corrected value is
 //! 30.6372157°. Its `t = 1.07 s` is right to its digits.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -60,6 +61,12 @@ pub const MODEL: TubeAndParticle = TubeAndParticle {
     g: 9.81,
     omega_0: 0.5,
     length: 1.0,
+};
+
+/// The drawing beyond the model's shapes. The tube's open end is free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("tube", 1)],
+    ..Sketch::NONE
 };
 
 /// The particle's distance from O at tube angle θ: `r = g/(2 ω_0^2)(sinh θ − sin θ)`, the

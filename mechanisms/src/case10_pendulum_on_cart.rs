@@ -28,6 +28,7 @@
 //!
 //! **Discrepancies in the manual.** None: 12.53 and 3.13 are these, rounded.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
@@ -62,6 +63,13 @@ pub const MODEL: PendulumOnCart = PendulumOnCart {
     g: 9.81,
     l: 0.5,
     theta_0: 1e-6,
+};
+
+/// The drawing beyond the model's shapes. The light rod from the cart to the bob, and the cart's track.
+pub const SKETCH: Sketch = Sketch {
+    links: &[("rod", At("cart", 0), At("bob", 0))],
+    guides: &[At("cart", 0)],
+    ..Sketch::NONE
 };
 
 /// `[θ', v_x]` at the bottom from rest at `theta_0`, by momentum and energy with equal

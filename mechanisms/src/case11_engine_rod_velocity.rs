@@ -32,6 +32,7 @@
 //! answer **19.24** (RecurDyn agrees): the corrected value. Its `ω_AB = 29.5` is right (the
 //! worked 29.49 is 29.496 truncated); RecurDyn's 29.53 is 0.1 % off.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -76,6 +77,12 @@ pub const MODEL: Engine = Engine {
     a_g: 0.25,
     omega: 50.0 * std::f64::consts::PI,
     phi_0: std::f64::consts::FRAC_PI_3,
+};
+
+/// The drawing beyond the model's shapes. The piston's cylinder.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("piston", 0)],
+    ..Sketch::NONE
 };
 
 /// `[|v_G|, ω_AB, |v_A|]` at t = 0 (see the module docs).

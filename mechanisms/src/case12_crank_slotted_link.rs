@@ -30,6 +30,7 @@
 //! `r = 0.2 > l = 0.1` would make the crank longer than the pivot distance (a different,
 //! fully rotating link).
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -72,6 +73,12 @@ pub const MODEL: SlottedLink = SlottedLink {
     l: 0.2,
     theta_0: std::f64::consts::FRAC_PI_4,
     theta_dot: 3.0,
+};
+
+/// The drawing beyond the model's shapes. The link's far end and the slider's ends are free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("link", 1), At("slider", 1), At("slider", 2)],
+    ..Sketch::NONE
 };
 
 /// The link's clockwise angular velocity at crank angle θ and rate `theta_dot`:

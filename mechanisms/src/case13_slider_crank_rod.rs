@@ -24,6 +24,7 @@
 //!
 //! **Discrepancies in the manual.** None: 0.832 and −3.99 are these, rounded; RecurDyn agrees.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -65,6 +66,12 @@ pub const MODEL: SliderCrank = SliderCrank {
     l: 0.2,
     omega_0: 3.0,
     theta_0: std::f64::consts::FRAC_PI_3,
+};
+
+/// The drawing beyond the model's shapes. The slider's guide.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("slider", 0)],
+    ..Sketch::NONE
 };
 
 /// Exact references `[β', β'']` at t = 0: from `sin β = (r/l) sin θ` with θ uniform,

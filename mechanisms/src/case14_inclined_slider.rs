@@ -32,6 +32,7 @@
 //! its **`v_A = 0.2259`** is 0.1 % low: the corrected value is **0.22610317** (RecurDyn's
 //! 0.2261 agrees). Its `v_C = 0.1747` happens to round correctly.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -77,6 +78,12 @@ pub const MODEL: InclinedSlider = InclinedSlider {
     l: 0.5,
     omega_ob: 0.8,
     incline: 20.0 * std::f64::consts::PI / 180.0,
+};
+
+/// The drawing beyond the model's shapes. The inclined guide.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("slider", 0)],
+    ..Sketch::NONE
 };
 
 /// `[v_A, v_C, ω_AB]` at t = 0 from the instant centre I on the line OB at

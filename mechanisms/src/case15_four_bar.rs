@@ -30,6 +30,7 @@
 //! **Discrepancies in the manual.** None: 0.214 and 0.429 are these, rounded (both
 //! clockwise); RecurDyn agrees.
 
+use crate::drawing::Sketch;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -80,6 +81,9 @@ pub const MODEL: FourBar = FourBar {
     a_y: 0.16,
     c_x: -0.12,
 };
+
+/// The drawing: the model's own shapes.
+pub const SKETCH: Sketch = Sketch::NONE;
 
 /// Exact references `[ω_AB, ω_AC]`, clockwise-positive: the velocity loop
 /// `v_B + w_1 k × r_BA = w_2 k × r_CA` (counter-clockwise w; Meriam & Kraige Sect. 5/4)

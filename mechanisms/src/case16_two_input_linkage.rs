@@ -39,6 +39,7 @@
 //! **Discrepancies in the manual.** None: its arithmetic is exact (a 3-4-5 triangle) and
 //! RecurDyn's 2 agrees.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -91,6 +92,12 @@ pub const MODEL: TwoInputLinkage = TwoInputLinkage {
     v_a: 1.2,
     x_a0: 0.8,
     y_a: 0.6,
+};
+
+/// The drawing beyond the model's shapes. The slider's guide.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("slider_a", 0)],
+    ..Sketch::NONE
 };
 
 /// `[ω_BC, ω_AB]` at t = 0 from the velocity loop

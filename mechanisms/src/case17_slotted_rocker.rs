@@ -41,6 +41,7 @@
 //! more than its ω_BC explains (`0.5 · 0.577 = 0.2885`): probably read at another instant or
 //! point; mbd is judged against 15/52.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -87,6 +88,12 @@ pub const MODEL: SlottedRocker = SlottedRocker {
     cb: 0.5,
     omega_oa: 3.0,
     theta_0: std::f64::consts::FRAC_PI_6,
+};
+
+/// The drawing beyond the model's shapes. The rocker's far end and the slider's ends are free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("rocker", 1), At("slider", 1), At("slider", 2)],
+    ..Sketch::NONE
 };
 
 /// `[ω_BC, α_BC]` at t = 0, the rotation rate of `d = A − C` (Meriam & Kraige Sect. 5/7):

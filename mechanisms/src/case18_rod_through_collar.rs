@@ -37,6 +37,7 @@
 //! `α = (−5.769231 + 1.706873)/0.65 = −6.249781`. Its text's −6.248 is that slip (−6.2485)
 //! compounded by the rounded −5.769 and 1.154 (−6.24781); the table's **−6.25** is the exact value rounded, and RecurDyn's −6.24 agrees to 0.16 %.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -80,6 +81,12 @@ pub const MODEL: RodThroughCollar = RodThroughCollar {
     oc: 0.6,
     bd: 1.0,
     omega_0: 5.0,
+};
+
+/// The drawing beyond the model's shapes. The rod's far end and the collar's ends are free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("rod", 2), At("collar", 1), At("collar", 2)],
+    ..Sketch::NONE
 };
 
 /// `[ω_BD, α_BD]` at t = 0, the rotation rate of `d = B − C` (Meriam & Kraige Sect. 5/7):

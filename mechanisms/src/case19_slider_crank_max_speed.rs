@@ -37,6 +37,7 @@
 //! ω = 157.08); exactly `r ω^2 (1 + r/l) = 4185.769724`, and `a_A(180°) = r ω^2 (r/l − 1) =
 //! −1982.733027` (manual −1983.19).
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Read, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematics};
@@ -75,6 +76,12 @@ pub const MODEL: SliderCrank = SliderCrank {
     r: 0.125,
     l: 0.35,
     omega: 1500.0 * 2.0 * std::f64::consts::PI / 60.0,
+};
+
+/// The drawing beyond the model's shapes. The piston's cylinder.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("piston", 0)],
+    ..Sketch::NONE
 };
 
 /// The piston's speed toward O and its derivative in θ:

@@ -35,6 +35,7 @@
 //! The corrected value is 155.5859. RecurDyn's 155.67 was read at 60.06°, where the exact
 //! value is 155.6782: RecurDyn agrees with the corrected theory, not with 155.65.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -46,8 +47,9 @@ use mbd::prelude::*;
 #[gravity(0.0, -g)]
 #[coords(theta)]
 #[relaxed(ux, uy)]
+#[point(bearing, at = [ux, uy])]
 #[rigid(pendulum, mass = m, inertia = m * (k_o * k_o - r_bar * r_bar),
-        at = [ux + r_bar * cos(theta), uy - r_bar * sin(theta)], angle = -theta)]
+        at = [bearing[0] + r_bar * cos(theta), bearing[1] - r_bar * sin(theta)], angle = -theta)]
 #[init(theta = 0.0, der(theta) = 0.0)]
 #[output(r_o = hypot(reaction(ux), reaction(uy)))]
 #[output(omega = der(theta))]
@@ -71,6 +73,12 @@ pub const MODEL: Pendulum = Pendulum {
     r_bar: 0.25,
     k_o: 0.295,
     theta_1: std::f64::consts::FRAC_PI_3,
+};
+
+/// The drawing beyond the model's shapes. The pendulum from its bearing O to its mass centre.
+pub const SKETCH: Sketch = Sketch {
+    bodies: &[("pendulum", &[At("bearing", 0)])],
+    ..Sketch::NONE
 };
 
 /// `[α, ω, O_n, O_t, R_O]` at angle `theta`, from the closed form of the module docs.

@@ -41,6 +41,7 @@
 //! table's `α = 5.871` is a rounding slip: `(333.333 − 245.25)/15 = 5.87222`, as its own
 //! text (5.872) says.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
@@ -52,7 +53,8 @@ use mbd::prelude::*;
 #[gravity(0.0, -g)]
 #[coords(theta, phi)]
 #[relaxed(s)]
-#[point(pin_b, at = [r * cos(theta), r * sin(theta)])]
+#[point(pivot_a, at = [0.0, 0.0])]
+#[point(pin_b, at = [pivot_a[0] + r * cos(theta), pivot_a[1] + r * sin(theta)])]
 #[point(pin_d, at = [pin_b[0] + h * sin(phi), pin_b[1] - h * cos(phi)])]
 #[point(pivot_c, at = [0.0, -h])]
 #[rigid(bar, mass = m, inertia = i_bar,
@@ -92,6 +94,16 @@ pub const MODEL: Parallelogram = Parallelogram {
     b_g: 0.5,
     couple: 200.0,
     omega_0: 5.0,
+};
+
+/// The drawing beyond the model's shapes. The links AB and CD, and the bar BD through its pins.
+pub const SKETCH: Sketch = Sketch {
+    links: &[
+        ("link_ab", At("pivot_a", 0), At("pin_b", 0)),
+        ("link_cd", At("pivot_c", 0), At("pin_d", 0)),
+    ],
+    bodies: &[("bar", &[At("pin_b", 0), At("pin_d", 0)])],
+    ..Sketch::NONE
 };
 
 /// Exact references `[R_D, α]`: `m r ω^2 b_g / h` and `(M/r − m g)/(m r)`.

@@ -44,6 +44,7 @@
 //! **Discrepancies in the manual.** The table's 1714 and 2178 are right (rounded); its text's
 //! 2178.13 comes from rounded intermediates (`a_n = 0.812`); exact 2178.1595.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -64,7 +65,8 @@ use mbd::prelude::*;
         at = [pin_f[0] + fg_along * cos(phi) - fg_normal * sin(phi),
               pin_f[1] + fg_along * sin(phi) + fg_normal * cos(phi)],
         angle = phi)]
-#[constraint(hypot(pin_d[0], pin_d[1]) == l + s)]
+#[point(pivot_c, at = [0.0, 0.0])]
+#[constraint(hypot(pin_d[0] - pivot_c[0], pin_d[1] - pivot_c[1]) == l + s)]
 #[init(phi = 0.0)]
 #[output(f_d = abs(reaction(s)))]
 #[output(compression_cd = reaction(s))]
@@ -97,6 +99,13 @@ pub const MODEL: DrivenPlatform = DrivenPlatform {
     fg_normal: 0.48,
     amplitude: std::f64::consts::FRAC_PI_6,
     rate: std::f64::consts::FRAC_PI_2,
+};
+
+/// The drawing beyond the model's shapes. The link CD, and the platform through its pins F and D.
+pub const SKETCH: Sketch = Sketch {
+    links: &[("link_cd", At("pivot_c", 0), At("pin_d", 0))],
+    bodies: &[("platform", &[At("pin_f", 0), At("pin_d", 0)])],
+    ..Sketch::NONE
 };
 
 /// The pin force `F_D` at time `t`, by moments about F on the translating platform (see

@@ -30,6 +30,7 @@
 //! **Discrepancies in the manual.** None beyond rounding: its 78.56 is right to 4 digits (with
 //! its rounded α = 1.018e-3 the time would be 78.5626). RecurDyn's 78.6 agrees.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Animation, Curve, Frame, Outcome, Row};
 use mbd::Drawable;
@@ -41,8 +42,9 @@ use mbd::prelude::*;
 #[derive(Debug, Clone, Mechanism)]
 #[mechanism(geometry)]
 #[coords(theta)]
+#[point(axis, at = [0.0, 0.0])]
 #[rigid(block, mass = m, inertia = m * (a * a + b * b) / 12.0,
-        at = [d * cos(theta), d * sin(theta)], angle = theta)]
+        at = [axis[0] + d * cos(theta), axis[1] + d * sin(theta)], angle = theta)]
 #[torque(turning, on = block, value = torque)]
 #[init(theta = 0.0, der(theta) = 0.0)]
 #[event(halfway = theta - theta_switch, rising, terminal)]
@@ -68,6 +70,12 @@ pub const MODEL: Block = Block {
     d: 2.05,
     torque: 30.0,
     theta_switch: std::f64::consts::FRAC_PI_4,
+};
+
+/// The drawing beyond the model's shapes. The block from its axis O to its mass centre.
+pub const SKETCH: Sketch = Sketch {
+    bodies: &[("block", &[At("axis", 0)])],
+    ..Sketch::NONE
 };
 
 /// The second phase: the torque reversed.
@@ -126,6 +134,7 @@ pub fn draw(span: f64, at: &[f64]) -> mbd::Result<Animation> {
             t,
             shapes,
             outputs: Vec::new(),
+            added: Vec::new(),
         }))
     };
     let span = span.min(end);
@@ -137,7 +146,12 @@ pub fn draw(span: f64, at: &[f64]) -> mbd::Result<Animation> {
     for &t in at.iter().filter(|t| (0.0..=span).contains(*t)) {
         stills.extend(frame(t)?);
     }
-    Ok(Animation { frames, stills })
+    let drawn = Animation {
+        frames,
+        stills,
+        ..Animation::default()
+    };
+    crate::drawing::apply(drawn, &SKETCH)
 }
 
 pub fn run() -> mbd::Result<Outcome> {

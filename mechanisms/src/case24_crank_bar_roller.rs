@@ -38,6 +38,7 @@
 //! **Discrepancies in the manual.** None in the result (36.38); its "6 rad/s^2" for
 //! `(a_G/A)_t` is a unit slip (m/s^2).
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, Outcome, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -83,6 +84,12 @@ pub const MODEL: CrankBar = CrankBar {
     o_x: 0.4,
     o_y: 0.8,
     omega_0: 4.5,
+};
+
+/// The drawing beyond the model's shapes. The floor under the roller B.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("bar", 1)],
+    ..Sketch::NONE
 };
 
 /// `[ω_AB, α_AB, N_B]` at the instant, by hand (see the module docs): B = A + L e(φ) moves

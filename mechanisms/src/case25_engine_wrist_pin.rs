@@ -47,6 +47,7 @@
 //! above it). Its piston equation "`A_x = 0`" also ignores the cylinder wall: the pin force
 //! has a horizontal part, −355.57 N, balanced by the wall.
 
+use crate::drawing::{At, Sketch};
 use crate::validation::{Curve, MILLISECONDS, Outcome, Read, Row};
 use mbd::analysis::{KinematicState, NewtonOptions, kinematic_sweep, kinematics};
 use mbd::prelude::*;
@@ -96,6 +97,13 @@ pub const MODEL: Engine = Engine {
     rho: 0.0325,
     k_g: 0.028,
     m_piston: 0.82,
+};
+
+/// The drawing beyond the model's shapes. The rod (not a uniform bar) through its pins, and the cylinder.
+pub const SKETCH: Sketch = Sketch {
+    bodies: &[("rod", &[At("crank_pin", 0), At("piston", 0)])],
+    guides: &[At("piston", 0)],
+    ..Sketch::NONE
 };
 
 /// The pin force at the instant by hand, `[α_AB, a_A, A_x, A_y, R_A]` (force of the rod on

@@ -36,6 +36,7 @@
 //!
 //! **Discrepancies in the manual.** None: its 2.29 is the exact value rounded.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -45,10 +46,11 @@ use mbd::prelude::*;
 #[mechanism(geometry)]
 #[gravity(0.0, -g)]
 #[coords(theta, phi)]
-#[point(pin_a, at = [r * cos(theta), r * sin(theta)])]
+#[point(pivot_o, at = [0.0, 0.0])]
+#[point(pin_a, at = [pivot_o[0] + r * cos(theta), pivot_o[1] + r * sin(theta)])]
 #[point(slider_b, at = [pin_a[0] + l * cos(phi), pin_a[1] + l * sin(phi)])]
 #[rigid(crank, mass = m_crank, inertia = m_crank * (k_o * k_o - r_g * r_g),
-        at = [r_g * cos(theta), r_g * sin(theta)], angle = theta)]
+        at = [pivot_o[0] + r_g * cos(theta), pivot_o[1] + r_g * sin(theta)], angle = theta)]
 #[rigid(bar, mass = m_bar, inertia = m_bar * l * l / 12.0,
         at = [pin_a[0] + l / 2.0 * cos(phi), pin_a[1] + l / 2.0 * sin(phi)], angle = phi)]
 #[constraint(slider_b[1] == h)]
@@ -81,6 +83,13 @@ pub const MODEL: CrankAndBar = CrankAndBar {
     m_bar: 12.0,
     l: 0.8,
     h: 0.0,
+};
+
+/// The drawing beyond the model's shapes. The crank (not a uniform bar) from O to A, and B's guide.
+pub const SKETCH: Sketch = Sketch {
+    bodies: &[("crank", &[At("pivot_o", 0), At("pin_a", 0)])],
+    guides: &[At("slider_b", 0)],
+    ..Sketch::NONE
 };
 
 /// Exact reference `[v_B]` by work–energy (see the module docs).

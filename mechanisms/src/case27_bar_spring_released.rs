@@ -35,6 +35,7 @@
 //! RecurDyn's 19.07° is 1 % off: the maximum is flat (0.2° moves ω in the 5th digit), so it
 //! is an artefact of sampling or reading the plot.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -74,6 +75,12 @@ pub const MODEL: BarWithSpring = BarWithSpring {
     a: 0.6,
     c: 0.6,
     k: 100.0,
+};
+
+/// The drawing beyond the model's shapes. The bar's far end is free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("bar", 1)],
+    ..Sketch::NONE
 };
 
 /// `ω^2` at angle θ from the energy balance (the module docs), for `a = c`.

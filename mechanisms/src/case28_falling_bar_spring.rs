@@ -41,6 +41,7 @@
 //! `ω(90°) = 1.589` is its rounded formula's 1.58873; the exact 1.5895184 rounds to 1.590.
 //! RecurDyn is about 1 % off in both ω's, in opposite directions.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -78,6 +79,12 @@ pub const MODEL: FallingBar = FallingBar {
     c: 1.2,
     k: 3000.0,
     omega_0: 4.0,
+};
+
+/// The drawing beyond the model's shapes. The bar's upper end is free.
+pub const SKETCH: Sketch = Sketch {
+    free: &[At("bar", 1)],
+    ..Sketch::NONE
 };
 
 /// `ω^2` at θ from the energy balance (the module docs), for `c = l/2`.

@@ -35,6 +35,7 @@
 //! **Discrepancies in the manual.** None: −394.78, −47.37, 78.96, −98.70 and 134.98 are the
 //! exact values rounded.
 
+use crate::drawing::Sketch;
 use crate::validation::{Curve, Outcome, Row, series};
 use mbd::prelude::*;
 
@@ -84,6 +85,9 @@ pub const MODEL: SpinningDisk = SpinningDisk {
     h: 0.1,
     m: 1.0,
 };
+
+/// The drawing: the model's own shapes.
+pub const SKETCH: Sketch = Sketch::NONE;
 
 /// Exact references `[α_x, a_Ax, a_Ay, a_Az]` (see the module docs).
 pub fn references() -> [f64; 4] {

@@ -28,6 +28,7 @@
 //! "ω_d = 5.196/2π Hz = 0.827 Hz" and "T = 1/ω_d": it means the damped frequency
 //! `f_d = ω_d/2π` and `T = 1/f_d = 1.209 s`; and it rounds `e^{−π/√3} = 0.163034` to 0.163.
 
+use crate::drawing::{At, Sketch};
 use crate::sim;
 use crate::validation::{Curve, Outcome, Row};
 use mbd::prelude::*;
@@ -64,6 +65,12 @@ pub const MODEL: DampedBlock = DampedBlock {
     c: 18.0,
     wall: 1.0,
     x_0: 0.3,
+};
+
+/// The drawing beyond the model's shapes. The floor the block slides on.
+pub const SKETCH: Sketch = Sketch {
+    guides: &[At("block", 0)],
+    ..Sketch::NONE
 };
 
 /// `[ζ, ω_d]`: `ω_n = sqrt(k/m)`, `ζ = c / (2 sqrt(m k))`, `ω_d = ω_n sqrt(1 − ζ^2)`.

@@ -8,6 +8,7 @@
 pub mod accuracy;
 pub mod bricard;
 pub mod chain_by_hand;
+pub mod drawing;
 pub mod fourbar_assembly;
 pub mod handwritten;
 pub mod linear_io;
@@ -59,7 +60,7 @@ use validation::Case;
 
 /// A case's [`validation::Draw`]: its `MODEL` from its initial state, with its outputs (or
 /// `no_outputs`), over the span the report asks for or, where given, one of the model's
-/// own (a fast drive's turn).
+/// own (a fast drive's turn), with what the case's `SKETCH` adds.
 macro_rules! draw {
     ($case:ident :: $model:ident $(, span = |$m:ident| $span:expr)?) => {
         |requested, at| {
@@ -70,13 +71,16 @@ macro_rules! draw {
                 let values = model.output_values(t, y)?;
                 Ok(std::iter::zip($case::$model::OUTPUTS, values).collect())
             };
-            sim::animate(&model, model.initial_state(), span, at, &outputs)
+            let drawn = sim::animate(&model, model.initial_state(), span, at, &outputs)?;
+            drawing::apply(drawn, &$case::SKETCH)
         }
     };
     ($case:ident :: $model:ident, no_outputs) => {
         |span, at| {
             let model = $case::MODEL;
-            sim::animate(&model, model.initial_state(), span, at, &|_, _| Ok(Vec::new()))
+            let drawn =
+                sim::animate(&model, model.initial_state(), span, at, &|_, _| Ok(Vec::new()))?;
+            drawing::apply(drawn, &$case::SKETCH)
         }
     };
 }

@@ -3,6 +3,7 @@
 //! curve with the theory, RecurDyn and mbd values marked, the manual's table, and where the
 //! manual is wrong. Inline SVG, CSS and a few lines of JavaScript; no network.
 
+use crate::drawing::Added;
 use crate::plot::{self, Mark, Series};
 use crate::validation::{Animation, Case, OFF_CURVE, Outcome, Read};
 use serde::Serialize;
@@ -191,7 +192,9 @@ fn table(rows: &[ReportRow]) -> String {
     s
 }
 
-/// The animation's data as JSON: kinds and names once, then per frame `t` and the points.
+/// The animation's data as JSON: kinds and names once, then per frame `t` and the points;
+/// the guides' paths and the ground pivots. The sketch's elements come first (drawn under
+/// the model's); a body it draws through its joints replaces the bar of its inertia.
 fn animation_json(a: &Animation) -> String {
     #[derive(Serialize)]
     struct Frame {
@@ -199,26 +202,41 @@ fn animation_json(a: &Animation) -> String {
         p: Vec<Vec<[f64; 3]>>,
     }
     #[derive(Serialize)]
-    struct Data {
+    struct Data<'a> {
         kinds: Vec<&'static str>,
         names: Vec<&'static str>,
         frames: Vec<Frame>,
         stills: Vec<Frame>,
+        guides: Vec<&'a [[f64; 3]]>,
+        pivots: &'a [[f64; 3]],
     }
-    let first = a.frames.first().map(|f| f.shapes.as_slice()).unwrap_or(&[]);
+    let shown = |f: &crate::validation::Frame| -> Vec<(&'static str, &'static str, Vec<[f64; 3]>)> {
+        let through = |n: &str| f.added.iter().any(|d| d.kind == Added::Body && d.name == n);
+        let own = f.shapes.iter().filter(|s| !through(s.name));
+        let added = f
+            .added
+            .iter()
+            .map(|d| (d.kind.name(), d.name, d.points.clone()));
+        added
+            .chain(own.map(|s| (s.kind.name(), s.name, s.points.clone())))
+            .collect()
+    };
+    let first = a.frames.first().map(shown).unwrap_or_default();
     let frames = |fs: &[crate::validation::Frame]| {
         fs.iter()
             .map(|f| Frame {
                 t: f.t,
-                p: f.shapes.iter().map(|s| s.points.clone()).collect(),
+                p: shown(f).into_iter().map(|s| s.2).collect(),
             })
             .collect()
     };
     let data = Data {
-        kinds: first.iter().map(|s| s.kind.name()).collect(),
-        names: first.iter().map(|s| s.name).collect(),
+        kinds: first.iter().map(|s| s.0).collect(),
+        names: first.iter().map(|s| s.1).collect(),
         frames: frames(&a.frames),
         stills: frames(&a.stills),
+        guides: a.guides.iter().map(|g| g.path.as_slice()).collect(),
+        pivots: &a.pivots,
     };
     serde_json::to_string(&data).unwrap_or_else(|_| "null".into())
 }
@@ -285,7 +303,9 @@ pub fn html(runs: &[CaseRun]) -> String {
         (the manual's theory where it is right, else the corrected value its case documents, shown \
         under it). Every compared quantity is plotted from the case's own run (over time, or over the \
         parameter its axis names) with the theory, RecurDyn and mbd values marked where it is compared. The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
-        rigid bodies as the slender bar of their mass and inertia, springs as zigzags, fixed points as squares, \
+        rigid bodies as the slender bar of their mass and inertia (or through their joints where they are not uniform bars), \
+        massless links (light blue) between the points they join, springs as zigzags, named points as small circles, \
+        points that never move as hatched pivots, guides along the paths of the points that run on them, \
         spatial models in an isometric projection; faint copies show the compared instants.</p>\n<nav>");
     for r in runs {
         let worst = r.rows.iter().map(|x| x.error_pct).fold(0.0, f64::max);
@@ -328,6 +348,7 @@ td.m { font-size: 0.85em; color: #555; }
 nav a { display: inline-block; width: 4.2em; margin: 2px; padding: 2px; border: 1px solid #ccc; text-align: center; text-decoration: none; }
 nav small { display: block; font-size: 0.7em; color: #555; }
 .small { font-size: 0.85em; color: #555; }
+[hidden] { display: none !important; }
 body.drawings { max-width: none; }
 body.drawings > :not(section):not(script), body.drawings section > :not(h2):not(.figs),
 body.drawings figure.plot, body.drawings .figs > p { display: none; }
@@ -347,6 +368,8 @@ const SCRIPT: &str = r##"<script>
   });
   // `report.html?drawings`: every case's drawing alone, in a grid (to check them at a glance).
   if (query.has("drawings")) document.body.classList.add("drawings");
+  // `report.html?at=0.5`: every drawing stopped at that fraction of its run (screenshots).
+  const at = query.has("at") ? Math.min(1, Math.max(0, parseFloat(query.get("at")) || 0)) : null;
   const NS = "http://www.w3.org/2000/svg";
   function el(svg, tag, attrs) {
     const e = document.createElementNS(NS, tag);
@@ -394,26 +417,66 @@ const SCRIPT: &str = r##"<script>
     }
     const is3 = (kind, p) => spatial && kind === "rigid" && p.length === 4;
     let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    const grow = q => {
+      const p = view(q);
+      x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+    };
     for (const f of all) f.p.forEach((s, i) => {
-      const pts = is3(data.kinds[i], s) ? body3(s).rim.concat([s[0]]) : s;
-      for (const q of pts) {
-        const p = view(q);
-        x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
-      }
+      (is3(data.kinds[i], s) ? body3(s).rim.concat([s[0]]) : s).forEach(grow);
     });
+    data.guides.forEach(g => g.forEach(grow));
+    data.pivots.forEach(grow);
     const span = Math.max(x1 - x0, y1 - y0, 1e-9), k = 280 / span;
     const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
     const map = q => { const p = view(q); return [160 + (p[0] - cx) * k, 160 - (p[1] - cy) * k]; };
     const line = (e, a, b) => { e.setAttribute("x1", a[0]); e.setAttribute("y1", a[1]); e.setAttribute("x2", b[0]); e.setAttribute("y2", b[1]); };
     const pts = a => a.map(p => p[0].toFixed(1) + "," + p[1].toFixed(1)).join(" ");
-    const colours = { rigid: "#0072b2", link: "#0072b2", particle: "#d55e00", point: "#555", spring: "#009e73", damper: "#cc79a7" };
+    const RIGID = ["#0072b2", "#e69f00", "#6a3d9a", "#0097a7"];
+    const colours = { rigid: "#0072b2", link: "#0072b2", body: "#0072b2", bar: "#56b4e9", particle: "#d55e00", point: "#555", spring: "#009e73", damper: "#cc79a7" };
+    // Ground: each guide along its point's path (extended a little at both ends, hatched
+    // on its lower side, or its left where it is vertical), each pivot as a hatched wedge.
+    const ground = el(svg, "g", { stroke: "#777", "stroke-width": 1.2, fill: "none" });
+    data.guides.forEach(g => {
+      const s = [];
+      g.map(map).forEach(p => { if (!s.length || Math.hypot(p[0] - s[s.length - 1][0], p[1] - s[s.length - 1][1]) > 1) s.push(p); });
+      if (s.length < 2) return;
+      const ext = (a, b) => { const d = Math.hypot(a[0] - b[0], a[1] - b[1]); return [a[0] + (a[0] - b[0]) / d * 25, a[1] + (a[1] - b[1]) / d * 25]; };
+      s.unshift(ext(s[0], s[1])); s.push(ext(s[s.length - 1], s[s.length - 2]));
+      el(ground, "polyline", { points: pts(s), "stroke-width": 2 });
+      // A hatch every 9 px of the path (`next`: the arc length of the next one).
+      // One side for the whole guide: below its chord (left of a vertical one).
+      const cx = s[s.length - 1][0] - s[0][0], cy = s[s.length - 1][1] - s[0][1];
+      const side = cx > 1e-6 * Math.abs(cy) || (Math.abs(cx) <= 1e-6 * Math.abs(cy) && cy > 0) ? 1 : -1;
+      let next = 0, walked = 0;
+      for (let j = 1; j < s.length; j++) {
+        const a = s[j - 1], b = s[j], d = Math.hypot(b[0] - a[0], b[1] - a[1]);
+        const nx = -side * (b[1] - a[1]) / d, ny = side * (b[0] - a[0]) / d;
+        for (; next < walked + d; next += 9) {
+          const u = (next - walked) / d, x = a[0] + (b[0] - a[0]) * u, y = a[1] + (b[1] - a[1]) * u;
+          el(ground, "line", { x1: x + nx * 2, y1: y + ny * 2, x2: x + nx * 8 - ny * 5, y2: y + ny * 8 + nx * 5 });
+        }
+        walked += d;
+      }
+    });
+    data.pivots.forEach(q => {
+      const [x, y] = map(q);
+      el(ground, "polygon", { points: pts([[x, y], [x - 7, y + 11], [x + 7, y + 11]]), fill: "#ddd" });
+      for (let u = -9; u <= 9; u += 4.5) el(ground, "line", { x1: x + u, y1: y + 11, x2: x + u - 4, y2: y + 16 });
+    });
     function build(opacity) {
       const g = el(svg, "g", { opacity: opacity });
+      let bodies = 0;
       return data.kinds.map((kind, i) => {
-        const c = colours[kind] || "#000";
+        // Rigid bodies in turns of colour, so that a slider on a link stands out.
+        const c = kind === "rigid" || kind === "body" ? RIGID[bodies++ % RIGID.length] : colours[kind] || "#000";
         if (kind === "spring") return [el(g, "polyline", { fill: "none", stroke: c, "stroke-width": 1.5 })];
         if (kind === "damper") return [el(g, "line", { stroke: c, "stroke-width": 5, "stroke-dasharray": "2 2" })];
-        if (kind === "point") return [el(g, "rect", { width: 8, height: 8, fill: c })];
+        if (kind === "point") return [el(g, "circle", { r: 3, fill: "#fff", stroke: c, "stroke-width": 1.5 })];
+        if (kind === "bar") return [el(g, "line", { stroke: c, "stroke-width": 3.5, "stroke-linecap": "round" }),
+          el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" }), el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })];
+        if (kind === "body") return [el(g, "polygon", { fill: c, "fill-opacity": 0.3, stroke: c, "stroke-width": 6, "stroke-linejoin": "round" }),
+          el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })].concat(
+          data.frames[0].p[i].slice(1).map(() => el(g, "circle", { r: 3, fill: "#fff", stroke: "#000" })));
         if (kind === "particle") return [el(g, "circle", { r: 6, fill: c })];
         if (kind === "link") return [el(g, "line", { stroke: "#999", "stroke-width": 1 }),
           el(g, "line", { stroke: c, "stroke-width": 5, "stroke-linecap": "round" }),
@@ -438,11 +501,19 @@ const SCRIPT: &str = r##"<script>
           return;
         }
         if (kind === "spring") {
-          const len = Math.hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
-          parts[0].setAttribute("points", zigzag(p[0], p[1], Math.max(3, Math.round(len / 10)), 5));
+          const [a, b] = beside(p, apart[i]), len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+          parts[0].setAttribute("points", zigzag(a, b, Math.max(3, Math.round(len / 10)), 5));
         }
-        else if (kind === "damper") { parts[0].setAttribute("x1", p[0][0]); parts[0].setAttribute("y1", p[0][1]); parts[0].setAttribute("x2", p[1][0]); parts[0].setAttribute("y2", p[1][1]); }
-        else if (kind === "point") { parts[0].setAttribute("x", p[0][0] - 4); parts[0].setAttribute("y", p[0][1] - 4); }
+        else if (kind === "damper") { const [a, b] = beside(p, apart[i]); line(parts[0], a, b); }
+        else if (kind === "point") { parts[0].setAttribute("cx", p[0][0]); parts[0].setAttribute("cy", p[0][1]); }
+        else if (kind === "bar") {
+          line(parts[0], p[0], p[1]);
+          [1, 2].forEach(j => { parts[j].setAttribute("cx", p[j - 1][0]); parts[j].setAttribute("cy", p[j - 1][1]); });
+        } else if (kind === "body") {
+          // Its joints, then back through its mass centre (a line where the centre is on it).
+          parts[0].setAttribute("points", pts(p.slice(1).concat([p[0]])));
+          p.forEach((q, j) => { parts[j + 1].setAttribute("cx", q[0]); parts[j + 1].setAttribute("cy", q[1]); });
+        }
         else if (kind === "particle") { parts[0].setAttribute("cx", p[0][0]); parts[0].setAttribute("cy", p[0][1]); }
         else if (kind === "link") {
           const set = (e, a, b) => { e.setAttribute("x1", a[0]); e.setAttribute("y1", a[1]); e.setAttribute("x2", b[0]); e.setAttribute("y2", b[1]); };
@@ -456,15 +527,31 @@ const SCRIPT: &str = r##"<script>
         }
       });
     }
+    // A spring and a damper between the same two points are drawn side by side, 7 px apart.
+    const same = (a, b) => a.every((q, j) => q.every((x, k) => Math.abs(x - b[j][k]) <= 1e-12));
+    const f0 = data.frames[0].p;
+    const apart = data.kinds.map((kind, i) => {
+      const other = kind === "spring" ? "damper" : kind === "damper" ? "spring" : null;
+      const pair = other && data.kinds.some((k, j) => k === other && same(f0[i], f0[j]));
+      return pair ? (kind === "spring" ? -7 : 7) : 0;
+    });
+    function beside(p, o) {
+      const dx = p[1][0] - p[0][0], dy = p[1][1] - p[0][1], d = Math.hypot(dx, dy) || 1;
+      return p.map(q => [q[0] - dy / d * o, q[1] + dx / d * o]);
+    }
+    // A roller where a guided point is (under the shapes: a particle covers it).
+    const rollers = data.guides.map(() => el(svg, "circle", { r: 5, fill: "#fff", stroke: "#777", "stroke-width": 1.5 }));
     data.stills.forEach(f => place(build(0.3), f));
     const live = build(1);
     const n = data.frames.length;
-    let i = 0, playing = true, last = 0;
+    let i = at === null ? 0 : Math.round(at * (n - 1)), playing = at === null, last = 0;
     function show() {
       place(live, data.frames[i]);
+      data.guides.forEach((g, j) => { const q = map(g[i]); rollers[j].setAttribute("cx", q[0]); rollers[j].setAttribute("cy", q[1]); });
       label.textContent = "t = " + data.frames[i].t.toPrecision(4) + " s";
     }
     show();
+    if (!playing) fig.querySelector("button").textContent = "play";
     fig.querySelector("button").onclick = e => { playing = !playing; e.target.textContent = playing ? "pause" : "play"; };
     function tick(now) {
       if (playing && now - last > 5000 / n) { i = (i + 1) % n; show(); last = now; }

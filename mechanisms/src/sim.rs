@@ -96,6 +96,7 @@ pub fn animate<S: OdeSystem<D> + Drawable<D>, const D: usize>(
                 t,
                 shapes: sys.geometry(t, &y)?,
                 outputs: outputs(t, &y)?,
+                added: Vec::new(),
             })),
             None => Ok(None),
         }
@@ -108,5 +109,9 @@ pub fn animate<S: OdeSystem<D> + Drawable<D>, const D: usize>(
     for &t in at.iter().filter(|t| (0.0..=t1).contains(*t)) {
         stills.extend(draw(t)?);
     }
-    Ok(Animation { frames, stills })
+    Ok(Animation {
+        frames,
+        stills,
+        ..Animation::default()
+    })
 }

@@ -148,13 +148,18 @@ pub struct Frame {
     pub shapes: Vec<mbd::Shape>,
     /// The model's outputs (`#[output]`) at `t`, by name.
     pub outputs: Vec<(&'static str, f64)>,
+    /// What the case's sketch adds, from `shapes` ([`crate::drawing`]).
+    pub added: Vec<crate::drawing::Drawn>,
 }
 
-/// The mechanism over a run: uniform frames to animate, and stills at the compared instants.
+/// The mechanism over a run: uniform frames to animate, and stills at the compared instants;
+/// the guides' paths and the ground pivots, which do not move.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Animation {
     pub frames: Vec<Frame>,
     pub stills: Vec<Frame>,
+    pub guides: Vec<crate::drawing::Guide>,
+    pub pivots: Vec<[f64; 3]>,
 }
 
 /// Draws a case's model over `[0, span]` with stills at the given instants.
