@@ -174,13 +174,11 @@ fn every_method_follows_the_one_coordinate_reduction() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
-/// Open defect: generalized-alpha's index-3 form (`solve_constrained`) factors
-/// `[M, Phi_q^T; Phi_q, 0]`-like Newton matrices, singular with a redundant row, and stops at
-/// the first step (`Newton iteration failed at t = 0.001 even with h = 1.000e-3`), where the
-/// same method through `Integrator::solve` and ALI3-P run (above). Expected: it runs like them,
-/// or the error names the redundant constraint.
+/// Generalized-alpha's index-3 form (`solve_constrained`) factors `[M, Phi_q^T; Phi_q, 0]`-like
+/// Newton matrices, singular with a redundant row (it stopped at its first step); the row found
+/// redundant at the start leaves Newton's system (its multiplier zero) and the run follows the
+/// one-coordinate reduction like the same method through `Integrator::solve` and ALI3-P (above).
 #[test]
-#[ignore = "open: GeneralizedAlpha::solve_constrained fails its first Newton iteration with a redundant constraint"]
 fn generalized_alpha_index_three_runs_with_a_redundant_crank() {
     let t1 = 3.0;
     let y0 = start();

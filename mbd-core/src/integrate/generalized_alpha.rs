@@ -250,9 +250,23 @@ impl GeneralizedAlpha {
         const { assert!(A == N + M, "the unknowns are (q, lambda): A = N + M") };
         const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
         let (qdd0, lambda0) = sys.acceleration_and_multipliers(t0, &q0, &qd0)?;
+        // Redundant rows (found once, at `q0`: a redundant row stays redundant; a rank lost
+        // at a singular position is the bridge's business) make the saddle matrix singular
+        // and the multipliers not unique. They leave Newton's system: the equation of such a
+        // row is `lambda_i = 0` (a basic choice of the multipliers; `q` is unique).
+        let redundant = crate::analysis::rank_and_redundant(&sys.phi_q(t0, &q0)).1;
+        let kept = |mut phi_q: Matrix<M, N>| {
+            for &i in &redundant {
+                phi_q.row_mut(i).fill(0.0);
+            }
+            phi_q
+        };
         let mut z0 = Vector::<A>::zeros();
         z0.fixed_rows_mut::<N>(0).copy_from(&q0);
         z0.fixed_rows_mut::<M>(N).copy_from(&lambda0);
+        for &i in &redundant {
+            z0[N + i] = 0.0;
+        }
         let start = Start {
             t0,
             q0,
@@ -262,7 +276,11 @@ impl GeneralizedAlpha {
         };
         // The iteration matrix from structure: `M` and `Phi_q` at the iterate (see `Factor`).
         let structure = |t: f64, q1: &Vector<N>, c1: f64| {
-            Factor::saddle(&(sys.mass_matrix(t, q1) * c1), &sys.phi_q(t, q1))
+            Factor::saddle(
+                &(sys.mass_matrix(t, q1) * c1),
+                &kept(sys.phi_q(t, q1)),
+                &redundant,
+            )
         };
         self.run::<N, A, D>(
             start,
@@ -277,10 +295,13 @@ impl GeneralizedAlpha {
                 let mut r = Vector::<A>::zeros();
                 r.fixed_rows_mut::<N>(0).copy_from(
                     &(sys.inverse_dynamics(t, &q1, qd1, qdd1)
-                        + sys.phi_q(t, &q1).transpose() * lambda),
+                        + kept(sys.phi_q(t, &q1)).transpose() * lambda),
                 );
                 r.fixed_rows_mut::<M>(N)
                     .copy_from(&(sys.phi(t, &q1) * scale));
+                for &i in &redundant {
+                    r[N + i] = z[N + i] * scale;
+                }
                 r
             },
             Some(structure),
@@ -596,13 +617,16 @@ pub(crate) enum Factor<const K: usize> {
 }
 
 impl<const K: usize> Factor<K> {
-    /// `[c1 M, Phi_q^T; Phi_q, 0]` factored (`mass` is `c1 M`); `None` when singular.
+    /// `[c1 M, Phi_q^T; Phi_q, 0]` factored (`mass` is `c1 M`); `None` when singular. The
+    /// `redundant` rows of `phi_q` are zero and their equations `lambda_i = 0` (dense).
     fn saddle<const N: usize, const M: usize>(
         mass: &Matrix<N, N>,
         phi_q: &Matrix<M, N>,
+        redundant: &[usize],
     ) -> Option<Self> {
         const { assert!(K == N + M, "the unknowns are (q, lambda)") };
         if K > BANDED_FROM
+            && redundant.is_empty()
             && let Some(lu) = SaddleLu::factor(mass, phi_q)
         {
             return Some(Factor::Saddle(lu));
@@ -611,6 +635,9 @@ impl<const K: usize> Factor<K> {
         j.fixed_view_mut::<N, N>(0, 0).copy_from(mass);
         j.fixed_view_mut::<M, N>(N, 0).copy_from(phi_q);
         j.fixed_view_mut::<N, M>(0, N).copy_from(&phi_q.transpose());
+        for &i in redundant {
+            j[(N + i, N + i)] = 1.0;
+        }
         Lu::factor(*j).map(|lu| Factor::Dense(Box::new(lu)))
     }
 
