@@ -59,6 +59,11 @@ pub enum Error {
         t: f64,
         cause: Option<Box<Error>>,
     },
+    /// An ordinary `Integrator::solve` of a system whose right-hand side switches between
+    /// modes (Coulomb friction: a body that stops and sticks) failed (`cause`: its steps
+    /// collapsed at the discontinuity) at `t`; [`crate::hybrid::solve`] integrates such a
+    /// system mode by mode, switching exactly.
+    ModeSwitch { t: f64, cause: Box<Error> },
 }
 
 /// A number in a message: up to 6 significant figures, in exponent form when very large or
@@ -170,6 +175,11 @@ impl fmt::Display for Error {
                 ),
                 None => write!(f, "event `{event}` is NaN or infinite at t = {}", Num(*t)),
             },
+            Error::ModeSwitch { t, cause } => write!(
+                f,
+                "the model switches modes (Coulomb friction sticks or breaks away) near t = {}, where the ordinary solve failed ({cause}): integrate it with `mbd::hybrid::solve`, which switches modes exactly",
+                Num(*t)
+            ),
         }
     }
 }

@@ -82,6 +82,22 @@ impl<S: Hybrid<D>, const D: usize> OdeSystem<D> for InMode<'_, S, S::Mode> {
     }
 }
 
+/// The error of an ordinary solve of a system that switches modes: a step failure (the
+/// steps collapsing at a switch, which no step size resolves) becomes
+/// [`Error::ModeSwitch`], whose message says to use [`solve`]; any other error is kept.
+pub fn hint(e: Error) -> Error {
+    match e {
+        Error::TooManySteps { t, .. }
+        | Error::StepSizeUnderflow { t, .. }
+        | Error::Stiff { t }
+        | Error::NewtonFailed { t, .. } => Error::ModeSwitch {
+            t,
+            cause: Box::new(e),
+        },
+        e => e,
+    }
+}
+
 /// Integrate `sys` from `(t0, y0)` to `t1` with `integrator`, switching modes where the
 /// switching functions cross zero. `events` are the user's (indices in the result refer to
 /// this slice); a terminal one ends the run as usual.

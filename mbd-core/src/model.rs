@@ -31,6 +31,11 @@ pub trait OdeSystem<const D: usize> {
     /// Whether [`Self::jacobian`] is exact (generated) rather than a finite difference.
     const EXACT_JACOBIAN: bool = false;
 
+    /// Whether the right-hand side switches between modes ([`Hybrid`]; generated models with
+    /// Coulomb friction): an ordinary `Integrator::solve` whose steps collapse at a switch
+    /// then fails with [`crate::Error::ModeSwitch`], which names [`crate::hybrid::solve`].
+    const HYBRID: bool = false;
+
     /// Bring `y` back onto the system's invariant manifolds after an accepted step.
     /// Closed loops project onto `Phi = 0` and `Phi_q qd + Phi_t = 0`; the default does nothing.
     fn project(&self, _t: f64, _y: &mut Vector<D>) -> Result<()> {

@@ -438,6 +438,30 @@ fn named_list(attr: &Attribute, errors: &mut Errors) -> Vec<Named> {
     out
 }
 
+/// Loads named twice (`force`, `torque` and `generalized_force` share one namespace): each
+/// would be applied, so the second is refused, its message naming the first.
+fn duplicate_loads(attrs: &[Attribute], errors: &mut Errors) {
+    let mut seen: Vec<(Ident, String)> = Vec::new();
+    for attr in attrs {
+        let kind = attr_name(attr);
+        if !matches!(kind.as_str(), "force" | "torque" | "generalized_force") {
+            continue;
+        }
+        let Ok(list) = args(attr) else { continue };
+        let Some(Arg::Flag(name)) = list.into_iter().next() else {
+            continue;
+        };
+        if let Some((_, first)) = seen.iter().find(|(n, _)| *n == name) {
+            errors.at(
+                name.span(),
+                format!("duplicate load `{name}`: a `{first}` named `{name}` is given above; give each load its own name"),
+            );
+        } else {
+            seen.push((name, kind));
+        }
+    }
+}
+
 fn ident_list(attr: &Attribute, errors: &mut Errors) -> Vec<Ident> {
     match attr.parse_args_with(Punctuated::<Ident, Token![,]>::parse_terminated) {
         Ok(list) => list.into_iter().collect(),
@@ -466,6 +490,7 @@ impl Mechanism {
         }
         m.joint_coordinates(&mut errors);
         m.duplicates(&mut errors);
+        duplicate_loads(&input.attrs, &mut errors);
         let names = m.bodies.iter().map(|b| &b.name);
         if let Some(over) = names.chain(m.tree.iter().map(|b| &b.name)).nth(MAX_BODIES) {
             errors.at(over.span(), too_many_bodies());

@@ -51,7 +51,9 @@ pub trait Integrator {
     /// Integrate `y' = f(t, y)` from `t0` to `t1 >= t0`. The solution ends at `t1`, or at
     /// the first terminal event. A closed loop ([`OdeSystem::passage`]) is integrated
     /// through its bridge over singular positions as [`Self::passages`] asks
-    /// ([`crate::passage`]; the passages are in `Solution::passages`).
+    /// ([`crate::passage`]; the passages are in `Solution::passages`). A system that
+    /// switches modes ([`OdeSystem::HYBRID`]) whose steps collapse at a switch fails with
+    /// [`Error::ModeSwitch`], naming [`crate::hybrid::solve`].
     fn solve<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
@@ -60,13 +62,17 @@ pub trait Integrator {
         t1: f64,
         events: &[Event<'_, D>],
     ) -> Result<Solution<D>> {
-        match (sys.passage(), self.passages()) {
+        let run = match (sys.passage(), self.passages()) {
             (Some(bridge), Some(settings)) => {
                 bridge.pass((t0, y0, t1), events, &settings, &mut |t, y, observer| {
                     self.solve_observed(sys, t, y, t1, events, Some(observer))
                 })
             }
             _ => self.solve_observed(sys, t0, y0, t1, events, None),
+        };
+        match run {
+            Err(e) if S::HYBRID => Err(crate::hybrid::hint(e)),
+            run => run,
         }
     }
 

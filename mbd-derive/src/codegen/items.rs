@@ -508,6 +508,12 @@ fn ode_impl(
             }
         }
     });
+    // Coulomb friction: the plain rhs switches modes; a failed ordinary solve says so.
+    let hybrid = (accel.friction_acceleration.is_some()).then(|| {
+        quote!(
+            const HYBRID: bool = true;
+        )
+    });
     let rhs_body = match &recursion {
         Some(code) => quote! {
             self.check_masses()?;
@@ -532,6 +538,7 @@ fn ode_impl(
                 #rhs_body
             }
             #jacobian
+            #hybrid
             #project
             #passage
             #margin

@@ -1,0 +1,128 @@
+//! A plain `Integrator::solve` of a model with Coulomb friction: where the body stops and
+//! sticks, the right-hand side jumps, and an ordinary method's steps collapse there. The
+//! solve fails with the typed `Error::ModeSwitch`, whose message names `mbd::hybrid::solve`;
+//! that driver gives the closed form.
+//!
+//! Closed form: a block launched at `v0` on a rough level floor decelerates at `mu g`
+//! (friction `-mu m g sign(v)`, normal force `m g`), so `v = v0 - mu g t` until
+//! `t_stop = v0 / (mu g)`, where `x = v0^2 / (2 mu g)`; then it stays (no load moves it).
+
+use mbd::Error;
+use mbd::integrate::{Dop853, Dopri5, Integrator, Radau5, Vern9};
+use mbd::prelude::*;
+
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[friction(along = x, mu = mu, normal = m * g)]
+#[init(x = 0.0, der(x) = v0)]
+pub struct Floor {
+    pub m: f64,
+    pub g: f64,
+    pub mu: f64,
+    pub v0: f64,
+}
+
+const FLOOR: Floor = Floor {
+    m: 2.0,
+    g: 9.81,
+    mu: 0.3,
+    v0: 4.0,
+};
+
+fn opts() -> Options {
+    Options {
+        rtol: 1e-10,
+        atol: 1e-10,
+        max_steps: 20_000,
+        ..Options::default()
+    }
+}
+
+fn t_stop() -> f64 {
+    FLOOR.v0 / (FLOOR.mu * FLOOR.g)
+}
+
+/// The ordinary solve past the stop fails near it with `ModeSwitch` naming the hybrid
+/// driver, never a wrong `Ok`.
+fn refused<I: Integrator>(method: &I) {
+    let y0 = FLOOR.initial_state();
+    let err = method.solve(&FLOOR, 0.0, y0, 3.0, &[]).unwrap_err();
+    let Error::ModeSwitch { t, cause } = &err else {
+        panic!("{}: expected ModeSwitch, got {err:?}", method.name());
+    };
+    assert!(
+        (t - t_stop()).abs() < 1e-3,
+        "{}: failed at t = {t}, the stop is at {}",
+        method.name(),
+        t_stop()
+    );
+    assert!(matches!(
+        **cause,
+        Error::TooManySteps { .. }
+            | Error::StepSizeUnderflow { .. }
+            | Error::Stiff { .. }
+            | Error::NewtonFailed { .. }
+    ));
+    assert!(err.to_string().contains("mbd::hybrid::solve"), "{err}");
+}
+
+#[test]
+fn plain_solve_of_a_sticking_block_names_the_hybrid_driver() {
+    refused(&Dopri5::new(opts()));
+    refused(&Dop853::new(opts()));
+    refused(&Vern9::new(opts()));
+    refused(&Radau5::new(opts()));
+}
+
+/// At loose tolerances the method may instead chatter across `v = 0` within them and reach
+/// `t1`: then the answer is the closed form to the tolerance (`Options::default()`: 1e-6),
+/// not a wrong `Ok`.
+#[test]
+fn plain_solve_that_chatters_through_stays_within_its_tolerance() {
+    let (mu, g, v0) = (FLOOR.mu, FLOOR.g, FLOOR.v0);
+    let x_stop = v0 * v0 / (2.0 * mu * g);
+    match Dopri5::new(Options::default()).solve(&FLOOR, 0.0, FLOOR.initial_state(), 3.0, &[]) {
+        Ok(sol) => {
+            let (_, y) = sol.last();
+            assert!((y[0] - x_stop).abs() < 1e-5 * x_stop, "{y}");
+            assert!(y[1].abs() < 1e-5, "{y}");
+        }
+        Err(e) => assert!(matches!(e, Error::ModeSwitch { .. }), "{e:?}"),
+    }
+}
+
+/// Before the stop the plain solve is smooth and right: the hint does not get in the way.
+#[test]
+fn plain_solve_before_the_stop_is_the_closed_form() {
+    let (mu, g, v0) = (FLOOR.mu, FLOOR.g, FLOOR.v0);
+    let t1 = 0.5 * t_stop();
+    let sol = Dopri5::new(opts())
+        .solve(&FLOOR, 0.0, FLOOR.initial_state(), t1, &[])
+        .unwrap();
+    let (_, y) = sol.last();
+    assert!((y[0] - (v0 * t1 - 0.5 * mu * g * t1 * t1)).abs() < 1e-9);
+    assert!((y[1] - (v0 - mu * g * t1)).abs() < 1e-9);
+}
+
+/// The hybrid driver: the stop at `v0 / (mu g)`, at `v0^2 / (2 mu g)`, and the block stays.
+#[test]
+fn hybrid_solve_stops_the_block_where_the_closed_form_says_and_it_stays() {
+    let (mu, g, v0) = (FLOOR.mu, FLOOR.g, FLOOR.v0);
+    let x_stop = v0 * v0 / (2.0 * mu * g);
+    let y0 = FLOOR.initial_state();
+    let runs = [
+        mbd::hybrid::solve(&Dopri5::new(opts()), &FLOOR, 0.0, y0, 3.0, &[]).unwrap(),
+        mbd::hybrid::solve(&Radau5::new(opts()), &FLOOR, 0.0, y0, 3.0, &[]).unwrap(),
+    ];
+    for run in runs {
+        assert_eq!(run.switches.len(), 1, "{:?}", run.switches);
+        assert!((run.switches[0].t - t_stop()).abs() < 1e-9 * t_stop());
+        assert_eq!(run.mode, [mbd::Slip::Stick]);
+        let (t, y) = run.solution.last();
+        assert_eq!(t, 3.0);
+        assert!((y[0] - x_stop).abs() < 1e-9 * x_stop, "{y}");
+        assert_eq!(y[1], 0.0);
+    }
+}
