@@ -74,6 +74,31 @@ fn typed<T: std::fmt::Debug>(what: &str, r: mbd::Result<T>) {
     }
 }
 
+/// Every `Integrator` from `y` over `[0, 1]`: each must refuse, as `typed` asks of `"{form} {method}"`.
+fn typed_by_every_integrator<S: OdeSystem<D>, const D: usize>(
+    form: &str,
+    p: &S,
+    y: Vector<D>,
+    events: &[mbd::Event<'_, D>],
+) {
+    let opts = Options::default;
+    let runs = [
+        ("dopri5", Dopri5::new(opts()).solve(p, 0.0, y, 1.0, events)),
+        ("dop853", Dop853::new(opts()).solve(p, 0.0, y, 1.0, events)),
+        ("vern9", Vern9::new(opts()).solve(p, 0.0, y, 1.0, events)),
+        ("radau5", Radau5::new(opts()).solve(p, 0.0, y, 1.0, events)),
+        ("rk4", Rk4::new(1e-2).solve(p, 0.0, y, 1.0, events)),
+        ("gauss", Gauss::new(1e-2).solve(p, 0.0, y, 1.0, events)),
+        (
+            "generalized-alpha",
+            Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), p, 0.0, y, 1.0, events),
+        ),
+    ];
+    for (method, r) in runs {
+        typed(&format!("{form} {method}"), r);
+    }
+}
+
 #[test]
 fn minimal_form_refuses_a_loop_that_cannot_close_everywhere() {
     let p = APART;
@@ -85,36 +110,7 @@ fn minimal_form_refuses_a_loop_that_cannot_close_everywhere() {
     let qd = y.fixed_rows::<1>(1).into_owned();
     typed("minimal acceleration", p.acceleration(0.0, &q, &qd));
     typed("minimal jacobian", p.jacobian(0.0, &y));
-    let events = p.events();
-    let opts = || Options::default();
-    typed(
-        "minimal dopri5",
-        Dopri5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "minimal dop853",
-        Dop853::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "minimal vern9",
-        Vern9::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "minimal radau5",
-        Radau5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "minimal rk4",
-        Rk4::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "minimal gauss",
-        Gauss::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "minimal generalized-alpha",
-        Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), &p, 0.0, y, 1.0, &events),
-    );
+    typed_by_every_integrator("minimal", &p, y, &p.events());
     typed(
         "static_equilibrium",
         mbd::analysis::statics::static_equilibrium(&p, 0.0, &q, &Default::default()),
@@ -142,36 +138,7 @@ fn augmented_form_refuses_a_loop_that_cannot_close_everywhere() {
         "assemble",
         mbd::analysis::assembly::assemble(&p, 0.0, &q, &held, &Default::default()),
     );
-    let events = p.events();
-    let opts = || Options::default();
-    typed(
-        "augmented dopri5",
-        Dopri5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "augmented dop853",
-        Dop853::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "augmented vern9",
-        Vern9::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "augmented radau5",
-        Radau5::new(opts()).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "augmented rk4",
-        Rk4::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "augmented gauss",
-        Gauss::new(1e-2).solve(&p, 0.0, y, 1.0, &events),
-    );
-    typed(
-        "augmented generalized-alpha",
-        Integrator::solve(&GeneralizedAlpha::new(0.8, 1e-2), &p, 0.0, y, 1.0, &events),
-    );
+    typed_by_every_integrator("augmented", &p, y, &p.events());
     typed(
         "augmented generalized-alpha constrained",
         GeneralizedAlpha::new(0.8, 1e-2).solve_constrained::<_, 3, 2, 5, 6>(
