@@ -92,6 +92,23 @@ const INERTIA: [f64; 3] = [1.0 / 12.0, 2.0 * 9.0 / 12.0, 0.01];
 const G: f64 = 9.81;
 const W: f64 = 3.0;
 
+/// A model of type `$ty` with the reference's parameters (and any `field: value` more).
+macro_rules! reference {
+    ($ty:ident $(, $field:ident: $value:expr)*) => {
+        $ty {
+            a: A,
+            d: D,
+            l: LL,
+            m: MASS[0],
+            ml: MASS[1],
+            mb: MASS[2],
+            ib: INERTIA[2],
+            g: G,
+            $($field: $value,)*
+        }
+    };
+}
+
 /// `(phi, s)` at crank angle `th`.
 fn close(th: f64) -> (f64, f64) {
     let (x, y) = (A * th.cos(), A * th.sin() + D);
@@ -160,29 +177,11 @@ fn energy(th: f64, thd: f64) -> f64 {
 }
 
 fn free() -> QuickReturn {
-    QuickReturn {
-        a: A,
-        d: D,
-        l: LL,
-        m: 1.0,
-        ml: 2.0,
-        mb: 0.5,
-        ib: 0.01,
-        g: G,
-    }
+    reference!(QuickReturn)
 }
 
 fn free_augmented() -> QuickReturnAugmented {
-    QuickReturnAugmented {
-        a: A,
-        d: D,
-        l: LL,
-        m: 1.0,
-        ml: 2.0,
-        mb: 0.5,
-        ib: 0.01,
-        g: G,
-    }
+    reference!(QuickReturnAugmented)
 }
 
 #[test]
@@ -328,16 +327,7 @@ fn crank_turns_through_the_slide_extremes_on_every_method() {
 /// the slide at `d - a`), not with a wrong motion.
 #[test]
 fn the_minimal_form_on_the_slide_stops_where_the_slide_turns() {
-    let p = QuickReturnMinimal {
-        a: A,
-        d: D,
-        l: LL,
-        m: 1.0,
-        ml: 2.0,
-        mb: 0.5,
-        ib: 0.01,
-        g: G,
-    };
+    let p = reference!(QuickReturnMinimal);
     let y0 = p.initial_state();
     match Dopri5::new(Options {
         rtol: 1e-10,
@@ -357,28 +347,8 @@ fn the_minimal_form_on_the_slide_stops_where_the_slide_turns() {
 /// the drive's effort `reaction(th)` is `C w^2 - Q` (with `th'' = 0`), in both forms.
 #[test]
 fn driven_quick_return_drive_effort_matches_lagrange() {
-    let p = Driven {
-        a: A,
-        d: D,
-        l: LL,
-        m: 1.0,
-        ml: 2.0,
-        mb: 0.5,
-        ib: 0.01,
-        g: G,
-        w: W,
-    };
-    let pa = DrivenAugmented {
-        a: A,
-        d: D,
-        l: LL,
-        m: 1.0,
-        ml: 2.0,
-        mb: 0.5,
-        ib: 0.01,
-        g: G,
-        w: W,
-    };
+    let p = reference!(Driven, w: W);
+    let pa = reference!(DrivenAugmented, w: W);
     let opts = || Options {
         rtol: 1e-10,
         atol: 1e-10,
