@@ -232,18 +232,24 @@ fn consistent_start(pa: &SixBarAugmented) -> mbd::Vector<10> {
     out
 }
 
-/// Every method, both forms: `(name, minimal run, augmented run, energy tolerance)`.
-type Runs = Vec<(
+/// One method on both forms: `(name, minimal run, augmented run, energy tolerance)`.
+type Run = (
     &'static str,
     mbd::Result<Solution<2>>,
     mbd::Result<Solution<10>>,
     f64,
-)>;
+);
 
-fn runs(t1: f64) -> Runs {
+/// `method` on both forms, each from its start to `t1`, named, with the energy tolerance.
+fn both(name: &'static str, method: impl Integrator, t1: f64, tol: f64) -> Run {
     let (p, pa) = (minimal(), augmented());
-    let y = p.initial_state();
-    let ya = consistent_start(&pa);
+    let min = method.solve(&p, 0.0, p.initial_state(), t1, &[]);
+    let aug = method.solve(&pa, 0.0, consistent_start(&pa), t1, &[]);
+    (name, min, aug, tol)
+}
+
+/// Every method, both forms.
+fn runs(t1: f64) -> Vec<Run> {
     let tight = || Options {
         rtol: 1e-10,
         atol: 1e-10,
@@ -255,46 +261,16 @@ fn runs(t1: f64) -> Runs {
         ..Options::default()
     };
     vec![
-        (
-            "dopri5",
-            Dopri5::new(tight()).solve(&p, 0.0, y, t1, &[]),
-            Dopri5::new(tight()).solve(&pa, 0.0, ya, t1, &[]),
-            1e-7,
-        ),
-        (
-            "dop853",
-            Dop853::new(tight()).solve(&p, 0.0, y, t1, &[]),
-            Dop853::new(tight()).solve(&pa, 0.0, ya, t1, &[]),
-            1e-7,
-        ),
-        (
-            "vern9",
-            Vern9::new(tight()).solve(&p, 0.0, y, t1, &[]),
-            Vern9::new(tight()).solve(&pa, 0.0, ya, t1, &[]),
-            1e-7,
-        ),
-        (
-            "radau5",
-            Radau5::new(loose()).solve(&p, 0.0, y, t1, &[]),
-            Radau5::new(loose()).solve(&pa, 0.0, ya, t1, &[]),
-            1e-4,
-        ),
-        (
-            "rk4",
-            Rk4::new(1e-3).solve(&p, 0.0, y, t1, &[]),
-            Rk4::new(1e-3).solve(&pa, 0.0, ya, t1, &[]),
-            1e-5,
-        ),
-        (
-            "gauss",
-            Gauss::new(2e-3).solve(&p, 0.0, y, t1, &[]),
-            Gauss::new(2e-3).solve(&pa, 0.0, ya, t1, &[]),
-            1e-5,
-        ),
-        (
+        both("dopri5", Dopri5::new(tight()), t1, 1e-7),
+        both("dop853", Dop853::new(tight()), t1, 1e-7),
+        both("vern9", Vern9::new(tight()), t1, 1e-7),
+        both("radau5", Radau5::new(loose()), t1, 1e-4),
+        both("rk4", Rk4::new(1e-3), t1, 1e-5),
+        both("gauss", Gauss::new(2e-3), t1, 1e-5),
+        both(
             "generalized-alpha",
-            Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), &p, 0.0, y, t1, &[]),
-            Integrator::solve(&GeneralizedAlpha::new(1.0, 5e-4), &pa, 0.0, ya, t1, &[]),
+            GeneralizedAlpha::new(1.0, 5e-4),
+            t1,
             1e-5,
         ),
     ]
