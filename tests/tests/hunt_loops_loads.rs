@@ -57,6 +57,24 @@ const S0: f64 = 1.0;
 const CD: f64 = 3.0;
 const F: f64 = 5.0;
 
+/// A model of type `$ty` with the reference's parameters.
+macro_rules! reference {
+    ($ty:ident) => {
+        $ty {
+            a: L[0],
+            b: L[1],
+            c: L[2],
+            d: L[3],
+            m: 1.0,
+            g: G,
+            k: K,
+            s0: S0,
+            cd: CD,
+            f: F,
+        }
+    };
+}
+
 /// `(be, ga)` at crank angle `th`, the elbow above the ground line.
 fn close(th: f64) -> (f64, f64) {
     let [a, b, c, d] = L;
@@ -136,30 +154,8 @@ fn lagrange_with(th: f64, thd: f64, [k, cd, f]: [f64; 3]) -> f64 {
 
 #[test]
 fn accelerations_under_spring_damper_and_follower_force_match_lagrange_in_both_forms() {
-    let p = Loaded {
-        a: 1.0,
-        b: 3.0,
-        c: 2.5,
-        d: 3.5,
-        m: 1.0,
-        g: G,
-        k: K,
-        s0: S0,
-        cd: CD,
-        f: F,
-    };
-    let pa = LoadedAugmented {
-        a: 1.0,
-        b: 3.0,
-        c: 2.5,
-        d: 3.5,
-        m: 1.0,
-        g: G,
-        k: K,
-        s0: S0,
-        cd: CD,
-        f: F,
-    };
+    let p = reference!(Loaded);
+    let pa = reference!(LoadedAugmented);
     assert_eq!(Loaded::COORDINATES, ["th"]);
     for th in [0.5, 1.5, 2.5, 3.5, 5.0] {
         for thd in [0.0, 2.0, -4.0] {
