@@ -61,6 +61,45 @@ fn closure(y: &Vector<6>) -> f64 {
     r1.abs().max(r2.abs())
 }
 
+/// A model of type `$ty` with the bars above (all of mass 1).
+macro_rules! bars {
+    ($ty:ident) => {
+        $ty {
+            a: 2.5,
+            b: 1.0,
+            c: 2.5,
+            d: 3.0,
+            m: 1.0,
+        }
+    };
+}
+
+/// The methods both forms run, from `y0` to `t = 4`.
+fn every_method<S: OdeSystem<D>, const D: usize>(
+    p: &S,
+    y0: Vector<D>,
+) -> [(&'static str, mbd::Result<Solution<D>>); 3] {
+    let opts = |tol: f64| Options {
+        rtol: tol,
+        atol: tol,
+        ..Options::default()
+    };
+    [
+        (
+            "dopri5",
+            Dopri5::new(opts(1e-10)).solve(p, 0.0, y0, 4.0, &[]),
+        ),
+        (
+            "radau5",
+            Radau5::new(opts(1e-8)).solve(p, 0.0, y0, 4.0, &[]),
+        ),
+        ("rk4", Rk4::new(1e-3).solve(p, 0.0, y0, 4.0, &[])),
+    ]
+}
+
+/// The augmented runs' energy tolerances, in `every_method`'s order: dopri5, radau5, rk4.
+const ENERGY_TOL: [f64; 3] = [1e-7, 1e-5, 1e-6];
+
 #[test]
 fn limits_are_where_coupler_and_output_align() {
     assert!((LIMIT - 0.2f64.acos()).abs() < 1e-15);
@@ -69,39 +108,10 @@ fn limits_are_where_coupler_and_output_align() {
 
 #[test]
 fn augmented_form_passes_the_inputs_limit_on_every_method() {
-    let p = DoubleRockerAugmented {
-        a: 2.5,
-        b: 1.0,
-        c: 2.5,
-        d: 3.0,
-        m: 1.0,
-    };
+    let p = bars!(DoubleRockerAugmented);
     let y0 = p.initial_state();
     let t0 = kinetic(&y0);
-    let tight = || Options {
-        rtol: 1e-10,
-        atol: 1e-10,
-        ..Options::default()
-    };
-    let runs: Vec<(&str, mbd::Result<Solution<6>>, f64)> = vec![
-        (
-            "dopri5",
-            Dopri5::new(tight()).solve(&p, 0.0, y0, 4.0, &[]),
-            1e-7,
-        ),
-        (
-            "radau5",
-            Radau5::new(Options {
-                rtol: 1e-8,
-                atol: 1e-8,
-                ..Options::default()
-            })
-            .solve(&p, 0.0, y0, 4.0, &[]),
-            1e-5,
-        ),
-        ("rk4", Rk4::new(1e-3).solve(&p, 0.0, y0, 4.0, &[]), 1e-6),
-    ];
-    for (name, run, tol) in runs {
+    for ((name, run), tol) in every_method(&p, y0).into_iter().zip(ENERGY_TOL) {
         let sol = run.unwrap_or_else(|e| panic!("{name}: {e}"));
         let top = sol.y.iter().map(|y| y[0]).fold(f64::MIN, f64::max);
         let (mut de, mut off) = (0.0f64, 0.0f64);
@@ -126,36 +136,9 @@ fn augmented_form_passes_the_inputs_limit_on_every_method() {
 
 #[test]
 fn minimal_form_stops_at_the_inputs_limit_with_a_typed_error() {
-    let p = DoubleRocker {
-        a: 2.5,
-        b: 1.0,
-        c: 2.5,
-        d: 3.0,
-        m: 1.0,
-    };
+    let p = bars!(DoubleRocker);
     let y0 = p.initial_state();
-    let runs = [
-        (
-            "dopri5",
-            Dopri5::new(Options {
-                rtol: 1e-10,
-                atol: 1e-10,
-                ..Options::default()
-            })
-            .solve(&p, 0.0, y0, 4.0, &[]),
-        ),
-        (
-            "radau5",
-            Radau5::new(Options {
-                rtol: 1e-8,
-                atol: 1e-8,
-                ..Options::default()
-            })
-            .solve(&p, 0.0, y0, 4.0, &[]),
-        ),
-        ("rk4", Rk4::new(1e-3).solve(&p, 0.0, y0, 4.0, &[])),
-    ];
-    for (name, run) in runs {
+    for (name, run) in every_method(&p, y0) {
         match run {
             Err(mbd::Error::SingularPosition { t, detail }) => {
                 println!("{name}: t = {t}: {detail}")
