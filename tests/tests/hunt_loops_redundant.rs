@@ -54,6 +54,18 @@ impl OdeSystem<2> for Reduced {
 
 const W0: f64 = 0.5;
 
+/// The one-coordinate reduction from the bottom at `th' = W0` to `t1`, by DOPRI5 at 1e-13.
+fn reference(t1: f64) -> Solution<2> {
+    let tight = Options {
+        rtol: 1e-13,
+        atol: 1e-13,
+        ..Options::default()
+    };
+    Dopri5::new(tight)
+        .solve(&Reduced, 0.0, Vector::<2>::new(-FRAC_PI_2, W0), t1, &[])
+        .unwrap()
+}
+
 fn start() -> Vector<8> {
     Vector::<8>::from_row_slice(&[-FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0, W0, W0, W0, 0.0])
 }
@@ -90,9 +102,7 @@ fn every_method_follows_the_one_coordinate_reduction() {
         atol: tol,
         ..Options::default()
     };
-    let reference = Dopri5::new(opts(1e-13))
-        .solve(&Reduced, 0.0, Vector::<2>::new(-FRAC_PI_2, W0), t1, &[])
-        .unwrap();
+    let reference = reference(t1);
     let y0 = start();
     let runs: Vec<(&str, mbd::Result<Solution<8>>, f64)> = vec![
         follow("dopri5 1e-6", Dopri5::new(opts(1e-6)), 1e-5),
@@ -162,13 +172,7 @@ fn every_method_follows_the_one_coordinate_reduction() {
 fn generalized_alpha_index_three_runs_with_a_redundant_crank() {
     let t1 = 3.0;
     let y0 = start();
-    let reference = Dopri5::new(Options {
-        rtol: 1e-13,
-        atol: 1e-13,
-        ..Options::default()
-    })
-    .solve(&Reduced, 0.0, Vector::<2>::new(-FRAC_PI_2, W0), t1, &[])
-    .unwrap();
+    let reference = reference(t1);
     let sol = GeneralizedAlpha::new(0.9, 1e-3)
         .solve_constrained::<_, 4, 4, 8, 8>(
             &S,

@@ -60,32 +60,29 @@ const D: f64 = 3.5;
 const D2: f64 = 5.5;
 const G: f64 = 9.81;
 
+/// A model of type `$ty` with the reference's parameters.
+macro_rules! reference {
+    ($ty:ident) => {
+        $ty {
+            a: L[0],
+            b: L[1],
+            c: L[2],
+            d: D,
+            e: L[3],
+            f: L[4],
+            d2: D2,
+            m: 1.0,
+            g: G,
+        }
+    };
+}
+
 fn minimal() -> SixBar {
-    SixBar {
-        a: 1.0,
-        b: 3.0,
-        c: 2.5,
-        d: D,
-        e: 3.0,
-        f: 2.0,
-        d2: D2,
-        m: 1.0,
-        g: G,
-    }
+    reference!(SixBar)
 }
 
 fn augmented() -> SixBarAugmented {
-    SixBarAugmented {
-        a: 1.0,
-        b: 3.0,
-        c: 2.5,
-        d: D,
-        e: 3.0,
-        f: 2.0,
-        d2: D2,
-        m: 1.0,
-        g: G,
-    }
+    reference!(SixBarAugmented)
 }
 
 /// The angles `(AC, DC)` of the point `C` at `r1` from `A` and `r2` from `D`, above `AD`.
