@@ -133,6 +133,7 @@ fn augmented_form_refuses_a_loop_that_cannot_close_everywhere() {
     let p = APART_AUG;
     let y = p.initial_state();
     let q = y.fixed_rows::<3>(0).into_owned();
+    let qd = y.fixed_rows::<3>(3).into_owned();
     let held = [true, false, false];
     typed(
         "assemble",
@@ -145,21 +146,14 @@ fn augmented_form_refuses_a_loop_that_cannot_close_everywhere() {
             &p,
             0.0,
             q,
-            y.fixed_rows::<3>(3).into_owned(),
+            qd,
             1.0,
             &[],
         ),
     );
     typed(
         "augmented ali3",
-        mbd::integrate::Ali3::new(1e-2).solve::<_, 3, 2, 6>(
-            &p,
-            0.0,
-            q,
-            y.fixed_rows::<3>(3).into_owned(),
-            1.0,
-            &[],
-        ),
+        mbd::integrate::Ali3::new(1e-2).solve::<_, 3, 2, 6>(&p, 0.0, q, qd, 1.0, &[]),
     );
     typed(
         "static_equilibrium_constrained",
