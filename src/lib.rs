@@ -393,7 +393,7 @@
 //! let energy = |y: &mbd::Vector<6>| {
 //!     p.energy(0.0, &y.fixed_rows::<3>(0).into_owned(), &y.fixed_rows::<3>(3).into_owned())
 //! };
-//! assert!((energy(sol.y.last().unwrap()) - energy(&y)).abs() < 1e-8);
+//! assert!((energy(sol.y.last().unwrap())? - energy(&y)?).abs() < 1e-8);
 //! # Ok::<(), mbd::Error>(())
 //! ```
 //!

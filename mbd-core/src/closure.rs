@@ -19,6 +19,38 @@ pub fn check_domain(t: f64, arg: f64, coord: &str, names: &[&str], q: &[f64]) ->
     }
 }
 
+/// `Ok(x)` when every entry of `x` is finite, else [`Error::NonFinite`] at `t`: the last
+/// check of a generated `mass_matrix`, `forces`, `energy` or `inverse_dynamics`, after the
+/// closed forms' domain checks, so that none of them hands out a NaN.
+#[inline]
+pub fn finite_value<X: Entries>(t: f64, x: X) -> Result<X> {
+    if x.all_finite() {
+        Ok(x)
+    } else {
+        Err(Error::NonFinite { t })
+    }
+}
+
+/// A value [`finite_value`] checks entry by entry: a real, a vector or a matrix.
+pub trait Entries {
+    /// Whether no entry is NaN or infinite.
+    fn all_finite(&self) -> bool;
+}
+
+impl Entries for f64 {
+    #[inline]
+    fn all_finite(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl<const R: usize, const C: usize> Entries for crate::model::Matrix<R, C> {
+    #[inline]
+    fn all_finite(&self) -> bool {
+        self.iter().all(|v| v.is_finite())
+    }
+}
+
 /// A one-coordinate acceleration `a = f / m` of minimal coordinates with every check in one
 /// branch on values the body computed anyway: `m` positive and finite, `a` finite, each
 /// closed-form argument `args[k]` strictly inside `(-1, 1)`. Otherwise the error, in the

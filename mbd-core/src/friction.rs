@@ -631,40 +631,31 @@ pub fn project_in<const N: usize, const F: usize, const D: usize>(
 /// friction at sliding contacts and, at contacts at rest, the force the chosen mode puts
 /// there (the holding force when stuck), so that `M qdd (+ Phi_q^T lambda) = f` holds with
 /// the accelerations of [`acceleration_and_multipliers`]. Where no mode is consistent (or
-/// the solve fails) the contacts at rest contribute nothing.
+/// the solve fails), its error, as the accelerations give it.
 pub fn forces<S, const N: usize, const M: usize, const F: usize, const A: usize>(
     sys: &S,
     t: f64,
     q: &Vector<N>,
     qd: &Vector<N>,
-) -> Vector<N>
+) -> Result<Vector<N>>
 where
     S: Frictional<N, M, F, A>,
 {
     let along = &S::ALONG;
     let fixed = moving(along, qd);
-    let chosen = at_state(sys, t, (q, qd), |c, n| {
+    // The normals the chosen modes resolved (implicit ones need the solution).
+    let (modes, c, s) = at_state(sys, t, (q, qd), |c, n| {
         choose_in::<N, M, F, A>(t, c, along, &fixed, n)
-    })
-    .ok();
-    // The normals the chosen modes resolved (implicit ones need the solution); without a
-    // consistent choice, the model's explicit ones.
-    let c = match &chosen {
-        Some((_, c, _)) => c.clone(),
-        None => sys.contacts(t, q, qd),
-    };
-    let chosen = chosen.map(|(m, _, s)| (m, s));
+    })?;
     let mut f = c.forces;
     for k in 0..F {
-        let mode = chosen.as_ref().map_or(fixed[k], |(m, _)| Some(m[k]));
-        f[along[k]] -= match mode {
-            Some(Slip::Forward) => c.mu_k[k] * c.normal[k].abs(),
-            Some(Slip::Backward) => -c.mu_k[k] * c.normal[k].abs(),
-            Some(Slip::Stick) => chosen.as_ref().map_or(0.0, |(_, s)| s.load[k]),
-            None => 0.0,
+        f[along[k]] -= match modes[k] {
+            Slip::Forward => c.mu_k[k] * c.normal[k].abs(),
+            Slip::Backward => -c.mu_k[k] * c.normal[k].abs(),
+            Slip::Stick => s.load[k],
         };
     }
-    f
+    Ok(f)
 }
 
 #[cfg(test)]

@@ -66,18 +66,24 @@ pub trait Mechanism<const N: usize> {
     const COORDINATES: [&'static str; N];
 
     /// The mass matrix `M(q, t)`: symmetric, positive definite when every coordinate moves mass.
-    fn mass_matrix(&self, t: f64, q: &Vector<N>) -> Matrix<N, N>;
+    ///
+    /// `mass_matrix`, [`Self::forces`], [`Self::energy`] and [`Self::inverse_dynamics`] fail
+    /// where the accelerations do: a closed loop in minimal coordinates outside its closed
+    /// forms' domain ([`crate::Error::SingularPosition`], naming the coordinate and the
+    /// configuration), a parameter that means no mechanism, a NaN or infinite value. They
+    /// never hand out a NaN.
+    fn mass_matrix(&self, t: f64, q: &Vector<N>) -> Result<Matrix<N, N>>;
 
     /// The right-hand side `f(q, qd, t)`: generalised applied forces (gravity, springs,
     /// dampers, loads) minus the velocity-product terms.
-    fn forces(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Vector<N>;
+    fn forces(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Result<Vector<N>>;
 
     /// Accelerations `qdd`: `M qdd = f`, or the constrained system for closed loops.
     fn acceleration(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Result<Vector<N>>;
 
     /// Total mechanical energy: kinetic plus the potential of gravity and springs. Conserved
     /// by a model without dampers, friction, loads or drives; the stress suite watches it.
-    fn energy(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> f64;
+    fn energy(&self, t: f64, q: &Vector<N>, qd: &Vector<N>) -> Result<f64>;
 
     /// For a closed loop reduced to minimal coordinates by closed forms: how far `q` lies
     /// inside the closed forms' domain (`min (1 - |u|)` over their `asin`/`acos` arguments
@@ -98,8 +104,8 @@ pub trait Mechanism<const N: usize> {
         q: &Vector<N>,
         qd: &Vector<N>,
         qdd: &Vector<N>,
-    ) -> Vector<N> {
-        self.mass_matrix(t, q) * qdd - self.forces(t, q, qd)
+    ) -> Result<Vector<N>> {
+        Ok(self.mass_matrix(t, q)? * qdd - self.forces(t, q, qd)?)
     }
 }
 

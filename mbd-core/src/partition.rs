@@ -230,9 +230,9 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
         for i in 0..n {
             c[self.dependent[i]] = cd[i];
         }
-        let mass = self.sys.mass_matrix(t, q);
+        let mass = self.sys.mass_matrix(t, q)?;
         let mass = DMatrix::from_fn(N, N, |i, j| mass[(i, j)]);
-        let force = DVector::from_iterator(N, self.sys.forces(t, q, qd).iter().copied());
+        let force = DVector::from_iterator(N, self.sys.forces(t, q, qd)?.iter().copied());
         let mr = r.transpose() * &mass * &r;
         let fr = r.transpose() * (force - &mass * &c);
         let zdd = mr

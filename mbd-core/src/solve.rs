@@ -170,10 +170,10 @@ fn redundant_at_projection<S: Constrained<N, M>, const N: usize, const M: usize>
     if rank_and_redundant(&phi_q).1.is_empty() {
         return None;
     }
-    let mass = sys.mass_matrix(t, &q);
+    let mass = sys.mass_matrix(t, &q).ok()?;
     let s = AugmentedLagrangian::new(t, &mass, &phi_q)
         .ok()?
-        .solve(&sys.forces(t, &q, &qd), &sys.gamma(t, &q, &qd))
+        .solve(&sys.forces(t, &q, &qd).ok()?, &sys.gamma(t, &q, &qd))
         .ok()?;
     Some((finite(t, s.x).ok()?, finite(t, s.lambda).ok()?))
 }

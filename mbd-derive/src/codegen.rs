@@ -684,13 +684,16 @@ fn uses(eq: &Equations, roots: &[Expr], pred: impl Fn(&Role) -> bool) -> bool {
 }
 
 /// The body of `mass_matrix`: the entries written out, or, for a long tree, one column at a
-/// time from `M qdd` with `qdd` a column of the identity (O(n) code; O(n^2) work per call).
+/// time from `M qdd` with `qdd` a column of the identity (O(n) code; O(n^2) work per call);
+/// checked as [`checked_value`] says.
 fn mass_matrix_body(eq: &Equations, n: usize) -> (TokenStream, usize) {
     match &eq.mass_times {
         Some(rows) => {
             let b = Block::new(eq, rows);
             let (s, fill) = (b.stmts(), b.vector("column", n, rows));
+            let check = closure_check(eq, n);
             let code = quote! {
+                #check
                 let mut mass = ::mbd::__private::Matrix::<#n, #n>::zeros();
                 for j in 0..#n {
                     let mut qdd = ::mbd::__private::Vector::<#n>::zeros();
@@ -699,14 +702,45 @@ fn mass_matrix_body(eq: &Equations, n: usize) -> (TokenStream, usize) {
                     #fill
                     mass.set_column(j, &column);
                 }
-                mass
+                ::mbd::__private::closure::finite_value(t, mass).map_err(|e| self.diagnose(e))
             };
             (code, b.len())
         }
         None => {
-            let b = Block::new(eq, &eq.mass.iter().flatten().copied().collect::<Vec<_>>());
-            let (s, fill) = (b.stmts(), b.matrix("mass", n, n, &eq.mass));
-            (quote!(#s #fill mass), b.len())
+            let roots: Vec<Expr> = eq.mass.iter().flatten().copied().collect();
+            checked_value(
+                eq,
+                n,
+                &roots,
+                |b| b.matrix("mass", n, n, &eq.mass),
+                quote!(mass),
+            )
         }
     }
+}
+
+/// A fallible body (`Result`) that computes `roots` into `value` with `fill`: a closed loop's
+/// domain checked first, on arguments computed in the same block as the roots (shared, as
+/// in `acceleration`), then the value's finiteness, each failure diagnosed (a bad parameter
+/// named as such). `mass_matrix`, `forces` and `energy` never hand out a NaN.
+fn checked_value(
+    eq: &Equations,
+    n: usize,
+    roots: &[Expr],
+    fill: impl FnOnce(&Block<'_>) -> TokenStream,
+    value: TokenStream,
+) -> (TokenStream, usize) {
+    let domain = eq.closure_domain.as_deref().unwrap_or(&[]);
+    let all: Vec<Expr> = (roots.iter().copied())
+        .chain(domain.iter().map(|d| d.arg))
+        .collect();
+    let b = Block::new(eq, &all);
+    let (s, checks, fill) = (b.stmts(), domain_checks(&b, domain, n), fill(&b));
+    let code = quote! {
+        #s
+        #checks
+        #fill
+        ::mbd::__private::closure::finite_value(t, #value).map_err(|e| self.diagnose(e))
+    };
+    (code, b.len())
 }

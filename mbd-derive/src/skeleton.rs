@@ -130,10 +130,10 @@ pub fn emit(ast: &Mechanism) -> TokenStream {
         const _: () = {
             impl ::mbd::__private::Mechanism<#n> for #ident {
                 const COORDINATES: [&'static str; #n] = [#(#names),*];
-                fn mass_matrix(&self, t: f64, q: &#vn) -> #mnn { #never }
-                fn forces(&self, t: f64, q: &#vn, qd: &#vn) -> #vn { #never }
+                fn mass_matrix(&self, t: f64, q: &#vn) -> ::mbd::__private::Result<#mnn> { #never }
+                fn forces(&self, t: f64, q: &#vn, qd: &#vn) -> #r_vn { #never }
                 fn acceleration(&self, t: f64, q: &#vn, qd: &#vn) -> #r_vn { #never }
-                fn energy(&self, t: f64, q: &#vn, qd: &#vn) -> f64 { #never }
+                fn energy(&self, t: f64, q: &#vn, qd: &#vn) -> ::mbd::__private::Result<f64> { #never }
             }
             #constrained
             impl ::mbd::__private::OdeSystem<#d> for #ident {

@@ -159,7 +159,7 @@ mod tests {
                 max_relative = 1e-14
             );
             assert_relative_eq!(
-                MechanismModel::energy(&model, t, &none, &none),
+                MechanismModel::energy(&model, t, &none, &none).unwrap(),
                 0.5 * model.m * v * v,
                 max_relative = 1e-14
             );

@@ -242,6 +242,7 @@ mod tests {
                 &y.fixed_rows::<1>(0).into(),
                 &y.fixed_rows::<1>(1).into(),
             )
+            .unwrap()
         };
         let lost = energy(&model.initial_state()) - energy(&y);
         assert_relative_eq!(lost, model.mu * normal * x, max_relative = 1e-9);

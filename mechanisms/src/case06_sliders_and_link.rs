@@ -174,6 +174,7 @@ mod tests {
                 &Vector::<1>::new(y[0]),
                 &Vector::<1>::new(y[1]),
             )
+            .unwrap()
         };
         let e0 = energy(&sol.y[0]);
         for y in &sol.y {

@@ -168,7 +168,8 @@ mod tests {
             0.0,
             &sol.y[0].fixed_rows::<2>(0).into(),
             &sol.y[0].fixed_rows::<2>(2).into(),
-        );
+        )
+        .unwrap();
         let scale = model.m_bob * model.g * model.l;
         // The step ends (the last state, at the terminal event, is the order-3 dense output).
         let steps = sol.t.len() - 1;
@@ -178,7 +179,8 @@ mod tests {
                 *t,
                 &y.fixed_rows::<2>(0).into(),
                 &y.fixed_rows::<2>(2).into(),
-            );
+            )
+            .unwrap();
             assert_relative_eq!(e, e0, epsilon = 1e-10 * scale);
             let p = model.outputs(*t, y).unwrap().momentum_x;
             assert!(p.abs() < 1e-10 * model.m_bob * (model.g * model.l).sqrt());

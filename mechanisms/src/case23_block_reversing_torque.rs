@@ -204,7 +204,8 @@ mod tests {
             switch.t,
             &Vector::<1>::new(switch.y[0]),
             &Vector::<1>::new(switch.y[1]),
-        );
+        )
+        .unwrap();
         assert_relative_eq!(e, MODEL.torque * MODEL.theta_switch, max_relative = 1e-9);
         assert_relative_eq!(switch.t, references()[0] / 2.0, max_relative = 1e-9);
         // The reversed torque takes the same work back over the same angle.

@@ -199,6 +199,7 @@ mod tests {
                 &Vector::<1>::new(y[0]),
                 &Vector::<1>::new(y[1]),
             )
+            .unwrap()
         };
         let scale = model.m * model.g * model.l / 2.0;
         assert_relative_eq!(

@@ -220,6 +220,7 @@ mod tests {
                 &Vector::<1>::new(y[0]),
                 &Vector::<1>::new(y[1]),
             )
+            .unwrap()
         };
         // Conservative; the initial kinetic energy ½ I_O ω_0^2 = 460.8 J sets the scale.
         assert_relative_eq!(

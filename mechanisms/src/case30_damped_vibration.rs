@@ -148,7 +148,7 @@ mod tests {
         // The damper only dissipates: the energy never rises along the solution.
         let energy = sim::sample(&sol, 200, |t, y| {
             let (q, qd) = (Vector::<1>::new(y[0]), Vector::<1>::new(y[1]));
-            (t, MechanismModel::energy(&model, t, &q, &qd))
+            (t, MechanismModel::energy(&model, t, &q, &qd).unwrap())
         });
         let e0 = energy[0].1;
         for pair in energy.windows(2) {

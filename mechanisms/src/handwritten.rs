@@ -69,21 +69,21 @@ impl From<&Pendulum> for PendulumByHand {
 impl mbd::Mechanism<1> for PendulumByHand {
     const COORDINATES: [&'static str; 1] = ["theta"];
 
-    fn mass_matrix(&self, _t: f64, _q: &Vector<1>) -> Matrix<1, 1> {
-        Matrix::<1, 1>::new(self.m * self.l * self.l)
+    fn mass_matrix(&self, _t: f64, _q: &Vector<1>) -> mbd::Result<Matrix<1, 1>> {
+        Ok(Matrix::<1, 1>::new(self.m * self.l * self.l))
     }
 
-    fn forces(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> Vector<1> {
-        Vector::<1>::new(-self.m * self.g * self.l * q[0].sin())
+    fn forces(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> mbd::Result<Vector<1>> {
+        Ok(Vector::<1>::new(-self.m * self.g * self.l * q[0].sin()))
     }
 
     fn acceleration(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> mbd::Result<Vector<1>> {
         Ok(Vector::<1>::new(-self.g / self.l * q[0].sin()))
     }
 
-    fn energy(&self, _t: f64, q: &Vector<1>, qd: &Vector<1>) -> f64 {
+    fn energy(&self, _t: f64, q: &Vector<1>, qd: &Vector<1>) -> mbd::Result<f64> {
         let (m, l) = (self.m, self.l);
-        0.5 * m * l * l * qd[0] * qd[0] - m * self.g * l * q[0].cos()
+        Ok(0.5 * m * l * l * qd[0] * qd[0] - m * self.g * l * q[0].cos())
     }
 }
 
@@ -154,12 +154,12 @@ impl DoublePendulumByHand {
 impl mbd::Mechanism<2> for DoublePendulumByHand {
     const COORDINATES: [&'static str; 2] = ["a", "b"];
 
-    fn mass_matrix(&self, _t: f64, q: &Vector<2>) -> Matrix<2, 2> {
-        self.mass((q[0] - q[1]).cos())
+    fn mass_matrix(&self, _t: f64, q: &Vector<2>) -> mbd::Result<Matrix<2, 2>> {
+        Ok(self.mass((q[0] - q[1]).cos()))
     }
 
-    fn forces(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> Vector<2> {
-        self.forces_at(q, qd, (q[0] - q[1]).sin())
+    fn forces(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> mbd::Result<Vector<2>> {
+        Ok(self.forces_at(q, qd, (q[0] - q[1]).sin()))
     }
 
     fn acceleration(&self, t: f64, q: &Vector<2>, qd: &Vector<2>) -> mbd::Result<Vector<2>> {
@@ -167,10 +167,10 @@ impl mbd::Mechanism<2> for DoublePendulumByHand {
         mbd::solve::solve_mass::<2>(t, &self.mass(c), &self.forces_at(q, qd, s))
     }
 
-    fn energy(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> f64 {
+    fn energy(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> mbd::Result<f64> {
         let mass = self.mass((q[0] - q[1]).cos());
         let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
-        0.5 * qd.dot(&(mass * qd)) - (m1 + m2) * g * l1 * q[0].cos() - m2 * g * l2 * q[1].cos()
+        Ok(0.5 * qd.dot(&(mass * qd)) - (m1 + m2) * g * l1 * q[0].cos() - m2 * g * l2 * q[1].cos())
     }
 }
 
@@ -288,26 +288,26 @@ impl SliderCrankByHand {
 impl mbd::Mechanism<3> for SliderCrankByHand {
     const COORDINATES: [&'static str; 3] = ["theta", "beta", "x"];
 
-    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Matrix<3, 3> {
+    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> mbd::Result<Matrix<3, 3>> {
         let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
-        self.mass(st, ct, sb, cb)
+        Ok(self.mass(st, ct, sb, cb))
     }
 
-    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Vector<3> {
+    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> mbd::Result<Vector<3>> {
         let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
-        self.forces_at(st, ct, sb, cb, qd)
+        Ok(self.forces_at(st, ct, sb, cb, qd))
     }
 
     fn acceleration(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> mbd::Result<Vector<3>> {
         Constrained::<3, 2>::acceleration_and_multipliers(self, t, q, qd).map(|(qdd, _)| qdd)
     }
 
-    fn energy(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> f64 {
+    fn energy(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> mbd::Result<f64> {
         let ((st, ct), (sb, cb)) = (q[0].sin_cos(), q[1].sin_cos());
         let mass = self.mass(st, ct, sb, cb);
         let (r, l) = (self.r, self.l);
-        0.5 * qd.dot(&(mass * qd))
-            + self.g * (self.m_c * r / 2.0 * st + self.m_r * (r * st - l / 2.0 * sb))
+        Ok(0.5 * qd.dot(&(mass * qd))
+            + self.g * (self.m_c * r / 2.0 * st + self.m_r * (r * st - l / 2.0 * sb)))
     }
 }
 
@@ -539,12 +539,12 @@ mod tests {
         let y = Vector::<4>::new(0.7, -0.4, 0.3, 1.1);
         assert!((d.rhs(0.0, &y).unwrap() - dh.rhs(0.0, &y).unwrap()).norm() < 1e-12);
         let (q, qd) = (Vector::<2>::new(0.7, -0.4), Vector::<2>::new(0.3, 1.1));
-        let md = mbd::Mechanism::<2>::mass_matrix(&d, 0.0, &q);
-        let mh = mbd::Mechanism::<2>::mass_matrix(&dh, 0.0, &q);
+        let md = mbd::Mechanism::<2>::mass_matrix(&d, 0.0, &q).unwrap();
+        let mh = mbd::Mechanism::<2>::mass_matrix(&dh, 0.0, &q).unwrap();
         assert!((md - mh).norm() < 1e-14);
         let (ed, eh) = (
-            mbd::Mechanism::<2>::energy(&d, 0.0, &q, &qd),
-            mbd::Mechanism::<2>::energy(&dh, 0.0, &q, &qd),
+            mbd::Mechanism::<2>::energy(&d, 0.0, &q, &qd).unwrap(),
+            mbd::Mechanism::<2>::energy(&dh, 0.0, &q, &qd).unwrap(),
         );
         assert!((ed - eh).abs() < 1e-13 * ed.abs());
 
@@ -557,8 +557,8 @@ mod tests {
         assert!(Constrained::<3, 2>::phi(&sh, 0.0, &q).norm() < 1e-15);
         assert!((Constrained::<3, 2>::phi_q(&sh, 0.0, &q) * qd).norm() < 1e-13);
         let (es, eh) = (
-            mbd::Mechanism::<3>::energy(&s, 0.0, &q, &qd),
-            mbd::Mechanism::<3>::energy(&sh, 0.0, &q, &qd),
+            mbd::Mechanism::<3>::energy(&s, 0.0, &q, &qd).unwrap(),
+            mbd::Mechanism::<3>::energy(&sh, 0.0, &q, &qd).unwrap(),
         );
         assert!((es - eh).abs() < 1e-13 * es.abs());
     }

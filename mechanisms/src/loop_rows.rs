@@ -137,8 +137,8 @@ fn bricard(s: &Setting) -> Result<Measured, Failure> {
     Ok(Measured {
         quantities: vec![Quantity {
             name: "energy",
-            value: energy(&sol.y_end),
-            reference: energy(&y0),
+            value: energy(&sol.y_end)?,
+            reference: energy(&y0)?,
         }],
         stats: sol.stats,
         span: 10.0,

@@ -52,6 +52,7 @@ fn run(b: &Bricard, tol: f64, t1: f64) -> (f64, f64, f64) {
             &y.fixed_rows::<5>(0).into_owned(),
             &y.fixed_rows::<5>(5).into_owned(),
         )
+        .unwrap()
     };
     let o = Options {
         rtol: tol,
@@ -117,6 +118,7 @@ fn radau5_and_ali3_conserve_energy_too() {
             &y.fixed_rows::<5>(0).into_owned(),
             &y.fixed_rows::<5>(5).into_owned(),
         )
+        .unwrap()
     };
     let e0 = energy(&y0);
     let drift = |sol: &mbd::Solution<10>| {
@@ -175,6 +177,7 @@ fn runs_at_every_tolerance() {
             &y.fixed_rows::<5>(0).into_owned(),
             &y.fixed_rows::<5>(5).into_owned(),
         )
+        .unwrap()
     };
     let e0 = energy(&y0);
     let o = |tol: f64| Options {

@@ -60,6 +60,7 @@ fn slider_crank_reference_is_converged_and_consistent() {
             &y.fixed_rows::<3>(0).into_owned(),
             &y.fixed_rows::<3>(3).into_owned(),
         )
+        .unwrap()
     };
     let e0 = energy(slider_crank_state(&SLIDER_CRANK, 0.3, 0.0));
     let e1 = energy(slider_crank_state(&SLIDER_CRANK, theta, theta_dot));

@@ -113,7 +113,7 @@ fn at_rest_the_load_decides_not_the_sign_of_zero() {
             let f = Floor { push, ..FLOOR };
             assert_eq!(f.acceleration(0.0, &q, &qd).unwrap()[0], 0.0, "push {push}");
             // M qdd = f holds with the holding force in `forces`.
-            assert_eq!(f.forces(0.0, &q, &qd)[0], 0.0);
+            assert_eq!(f.forces(0.0, &q, &qd).unwrap()[0], 0.0);
         }
         // Beyond it, or at it (where sticking would leave no margin to see the load grow):
         // it breaks away in the direction of the push, under kinetic friction.

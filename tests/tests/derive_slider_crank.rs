@@ -68,7 +68,7 @@ fn slider_crank_kinematics_match_the_closed_form() {
         let h = 1e-6;
         let energy = |t: f64| {
             let ks = kinematics(&sc, t, &guess, &NewtonOptions::default()).unwrap();
-            MechanismModel::energy(&sc, t, &ks.q, &ks.qd)
+            MechanismModel::energy(&sc, t, &ks.q, &ks.qd).unwrap()
         };
         let d_energy = (energy(t + h) - energy(t - h)) / (2.0 * h);
         assert_relative_eq!(o.torque * sc.omega, d_energy, max_relative = 1e-6);

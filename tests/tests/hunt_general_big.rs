@@ -155,7 +155,7 @@ fn ball_joint_chain_keeps_its_energy_and_vertical_momentum_while_tumbling() {
     let energy = |y: &Vector<30>| {
         let q = y.fixed_rows::<15>(0).into_owned();
         let qd = y.fixed_rows::<15>(15).into_owned();
-        p.energy(0.0, &q, &qd)
+        p.energy(0.0, &q, &qd).unwrap()
     };
     let (e0, l0) = (energy(&y0), momentum_z(&p, &y0));
     let opts = Options {

@@ -38,8 +38,8 @@ fn thirty_two_link_recursion_equals_the_mass_matrix_form() {
     let q = Vector::<32>::from_fn(|i, _| 1.2 * (((i * 37) % 17) as f64 / 8.0 - 1.0));
     let qd = Vector::<32>::from_fn(|i, _| 2.0 * (((i * 11) % 13) as f64 / 6.0 - 1.0));
     let qdd = MechanismModel::acceleration(&chain, 0.0, &q, &qd).unwrap();
-    let mass: Matrix<32, 32> = chain.mass_matrix(0.0, &q);
-    let f = chain.forces(0.0, &q, &qd);
+    let mass: Matrix<32, 32> = chain.mass_matrix(0.0, &q).unwrap();
+    let f = chain.forces(0.0, &q, &qd).unwrap();
     assert!((mass - mass.transpose()).norm() <= 1e-13 * mass.norm());
     // Backward error: the recursion's qdd satisfies M qdd = f to rounding (a forward
     // comparison would add M's condition number, 1.7e6 here, to the bound). 1e-13 is about

@@ -271,7 +271,7 @@ where
             "damped: |dqdd/dqd| = {damping:.3e}; use `modes`"
         )));
     }
-    let mass = sys.mass_matrix(t, q);
+    let mass = sys.mass_matrix(t, q)?;
     let k = -(mass * a.fixed_view::<N, N>(N, 0));
     let asym = (k - k.transpose()).abs().max();
     if asym > 1e-9 * k.abs().max() {

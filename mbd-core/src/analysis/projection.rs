@@ -37,7 +37,7 @@ pub(crate) fn metric_correction<S: Constrained<N, M>, const N: usize, const M: u
     jac: &Matrix<M, N>,
     r: &Vector<M>,
 ) -> Result<Vector<N>> {
-    let mass = sys.mass_matrix(t, q);
+    let mass = sys.mass_matrix(t, q)?;
     // A large assembly well away from a singular position: the exact correction by one
     // banded L D L^T (what the iteration below converges to there, at a fraction of its cost).
     let exact = crate::banded::saddle_point_well_conditioned(&mass, &Vector::zeros(), jac, &(-r));

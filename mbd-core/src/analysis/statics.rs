@@ -53,9 +53,9 @@ pub fn static_equilibrium_constrained<
         let lambda = z.fixed_rows::<M>(N).into_owned();
         let mut r = Vector::<A>::zeros();
         r.fixed_rows_mut::<N>(0)
-            .copy_from(&(sys.forces(t, &q, &zero) - sys.phi_q(t, &q).transpose() * lambda));
+            .copy_from(&(sys.forces(t, &q, &zero)? - sys.phi_q(t, &q).transpose() * lambda));
         r.fixed_rows_mut::<M>(N).copy_from(&sys.phi(t, &q));
-        r
+        Ok(r)
     };
     let mut z0 = Vector::<A>::zeros();
     z0.fixed_rows_mut::<N>(0).copy_from(q_guess);
@@ -70,13 +70,13 @@ pub fn static_equilibrium_constrained<
 fn newton<const K: usize>(
     t: f64,
     z0: &Vector<K>,
-    r: impl Fn(&Vector<K>) -> Vector<K>,
+    r: impl Fn(&Vector<K>) -> Result<Vector<K>>,
     opts: &NewtonOptions,
 ) -> Result<Vector<K>> {
     opts.validate()?;
     let mut z = *z0;
     for iteration in 0..opts.max_iterations {
-        let rz = r(&z);
+        let rz = r(&z)?;
         let residual = max_norm(&rz);
         if !residual.is_finite() {
             return Err(Error::NonFinite { t });
@@ -86,7 +86,10 @@ fn newton<const K: usize>(
             iterations: iteration,
             residual,
         };
-        let jac = forward_difference(|z| Ok(r(z)), &z).map_err(|_| Error::NonFinite { t })?;
+        let jac = forward_difference(&r, &z).map_err(|e| match e {
+            Error::NonFinite { .. } => Error::NonFinite { t },
+            e => e,
+        })?;
         let dz = Lu::factor(jac).ok_or(failed)?.solve(&(-rz));
         if !dz.iter().all(|v| v.is_finite()) {
             return Err(Error::NonFinite { t });
@@ -103,6 +106,6 @@ fn newton<const K: usize>(
     Err(Error::StaticsFailed {
         t,
         iterations: opts.max_iterations,
-        residual: max_norm(&r(&z)),
+        residual: max_norm(&r(&z)?),
     })
 }

@@ -139,7 +139,7 @@ impl Ali3 {
             stats.n_lu += 1;
             PenaltyMatrix::new(
                 t1,
-                &sys.mass_matrix(t1, q1),
+                &sys.mass_matrix(t1, q1)?,
                 &sys.phi_q(t1, q1),
                 self.weight,
             )
@@ -151,9 +151,9 @@ impl Ali3 {
         let mut last = f64::INFINITY;
         for _ in 0..self.max_iterations {
             let (qd1, qdd1) = rates(&q1);
-            let residual = sys.mass_matrix(t1, &q1) * qdd1
+            let residual = sys.mass_matrix(t1, &q1)? * qdd1
                 + sys.phi_q(t1, &q1).transpose() * (*lambda + phi * alpha)
-                - sys.forces(t1, &q1, &qd1);
+                - sys.forces(t1, &q1, &qd1)?;
             stats.n_rhs += 1;
             let dq = tangent.solve(&(residual * (-0.25 * h * h)));
             if !dq.iter().all(|v| v.is_finite()) {
@@ -183,7 +183,7 @@ impl Ali3 {
             return Err(Error::NewtonFailed { t: t1, h });
         }
         let (qd1, qdd1) = rates(&q1);
-        let (mass, jac) = (sys.mass_matrix(t1, &q1), sys.phi_q(t1, &q1));
+        let (mass, jac) = (sys.mass_matrix(t1, &q1)?, sys.phi_q(t1, &q1));
         let phi_t = sys.phi_t(t1, &q1);
         let qd1 = project(&tangent, &mass, &jac, &qd1, &(-phi_t));
         let gamma = sys.gamma(t1, &q1, &qd1);

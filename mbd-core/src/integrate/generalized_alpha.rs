@@ -166,7 +166,7 @@ impl GeneralizedAlpha {
     ) -> Result<Solution<D>> {
         let qdd0 = sys.acceleration(t0, &q0, &qd0)?;
         let residual = |_, t, z: &Vector<N>, qd1: &Vector<N>, qdd1: &Vector<N>| {
-            sys.mass_matrix(t, z) * qdd1 - sys.forces(t, z, qd1)
+            Ok(sys.mass_matrix(t, z)? * qdd1 - sys.forces(t, z, qd1)?)
         };
         let start = Start {
             t0,
@@ -276,11 +276,11 @@ impl GeneralizedAlpha {
         };
         // The iteration matrix from structure: `M` and `Phi_q` at the iterate (see `Factor`).
         let structure = |t: f64, q1: &Vector<N>, c1: f64| {
-            Factor::saddle(
-                &(sys.mass_matrix(t, q1) * c1),
+            Ok(Factor::saddle(
+                &(sys.mass_matrix(t, q1)? * c1),
                 &kept(sys.phi_q(t, q1)),
                 &redundant,
-            )
+            ))
         };
         self.run::<N, A, D>(
             start,
@@ -294,7 +294,7 @@ impl GeneralizedAlpha {
                 let lambda = z.fixed_rows::<M>(N) * scale;
                 let mut r = Vector::<A>::zeros();
                 r.fixed_rows_mut::<N>(0).copy_from(
-                    &(sys.inverse_dynamics(t, &q1, qd1, qdd1)
+                    &(sys.inverse_dynamics(t, &q1, qd1, qdd1)?
                         + kept(sys.phi_q(t, &q1)).transpose() * lambda),
                 );
                 r.fixed_rows_mut::<M>(N)
@@ -302,7 +302,7 @@ impl GeneralizedAlpha {
                 for &i in &redundant {
                     r[N + i] = z[N + i] * scale;
                 }
-                r
+                Ok(r)
             },
             Some(structure),
             no_chart(),
@@ -326,8 +326,8 @@ impl GeneralizedAlpha {
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
         pack: impl Fn(&Vector<N>, &Vector<N>) -> Vector<D>,
-        residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
-        structure: Option<impl Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>>,
+        residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Result<Vector<K>>,
+        structure: Option<impl Fn(f64, &Vector<N>, f64) -> Result<Option<Factor<K>>>>,
         chart: Chart<
             impl Fn(f64, &Vector<D>) -> Option<f64>,
             impl Fn(f64, &Vector<D>) -> Option<Error>,
@@ -452,11 +452,11 @@ impl GeneralizedAlpha {
         step: &Step,
         z0: Vector<K>,
         kinematics: impl Fn(&Vector<N>) -> (Vector<N>, Vector<N>, Vector<N>, Vector<N>),
-        residual: &impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Vector<K>,
+        residual: &impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Result<Vector<K>>,
         stats: &mut Stats,
     ) -> Result<Vector<K>>
     where
-        F: Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>,
+        F: Fn(f64, &Vector<N>, f64) -> Result<Option<Factor<K>>>,
     {
         let Step {
             t1, h, bh2, v_gain, ..
@@ -482,7 +482,7 @@ impl GeneralizedAlpha {
                 newton.form(&r, step, (&z, &q1), stats)?;
                 fresh = true;
             }
-            let rz = r(&z);
+            let rz = r(&z)?;
             stats.n_rhs += 1;
             let dz = newton.solve(&rz).ok_or(failed.clone())?;
             if !dz.iter().all(|v| v.is_finite()) {
@@ -580,7 +580,7 @@ fn no_chart<const D: usize>()
 /// No structure: the forward-difference matrix.
 #[allow(clippy::type_complexity, reason = "the structure argument's type")]
 fn no_structure<const N: usize, const K: usize>()
--> Option<fn(f64, &Vector<N>, f64) -> Option<Factor<K>>> {
+-> Option<fn(f64, &Vector<N>, f64) -> Result<Option<Factor<K>>>> {
     None
 }
 
@@ -678,13 +678,13 @@ impl<const K: usize, F> Newton<K, F> {
     /// Form and factor the matrix at the iterate `z` (positions `q1`).
     fn form<const N: usize>(
         &mut self,
-        r: &impl Fn(&Vector<K>) -> Vector<K>,
+        r: &impl Fn(&Vector<K>) -> Result<Vector<K>>,
         step: &Step,
         (z, q1): (&Vector<K>, &Vector<N>),
         stats: &mut Stats,
     ) -> Result<()>
     where
-        F: Fn(f64, &Vector<N>, f64) -> Option<Factor<K>>,
+        F: Fn(f64, &Vector<N>, f64) -> Result<Option<Factor<K>>>,
     {
         let Step { t1, h, bh2, c1, .. } = *step;
         stats.n_jac += 1;
@@ -693,10 +693,14 @@ impl<const K: usize, F> Newton<K, F> {
         if self.structured()
             && let Some(structure) = &self.structure
         {
-            self.factor = Some((structure(t1, q1, c1).ok_or(failed)?, bh2));
+            self.factor = Some((structure(t1, q1, c1)?.ok_or(failed)?, bh2));
             return Ok(());
         }
-        let jac = forward_difference(|z| Ok(r(z)), z).map_err(|_| Error::NonFinite { t: t1 })?;
+        // A residual's own error (a singular position) as it is; a column that overflowed at `t1`.
+        let jac = forward_difference(r, z).map_err(|e| match e {
+            Error::NonFinite { .. } => Error::NonFinite { t: t1 },
+            e => e,
+        })?;
         stats.n_rhs += K + 1;
         let lu = Lu::factor(jac).ok_or(failed)?;
         self.factor = Some((Factor::Dense(Box::new(lu)), 1.0));
@@ -751,17 +755,11 @@ impl Integrator for GeneralizedAlpha {
         let pack = |q: &Vector<D>, qd: &Vector<D>| {
             Vector::<D>::from_fn(|i, _| if i < n { q[i] } else { qd[i - n] })
         };
-        // The residual cannot fail: the first error of `rhs` is kept and returned.
-        let failure = std::cell::Cell::new(None);
-        let residual = |_, t, z: &Vector<D>, qd1: &Vector<D>, qdd1: &Vector<D>| match sys
-            .rhs(t, &pack(z, qd1))
-        {
-            Ok(f) => Vector::<D>::from_fn(|i, _| if i < n { qdd1[i] - f[n + i] } else { qdd1[i] }),
-            Err(e) => {
-                let first = failure.take().unwrap_or(e);
-                failure.set(Some(first));
-                Vector::<D>::repeat(f64::NAN)
-            }
+        let residual = |_, t, z: &Vector<D>, qd1: &Vector<D>, qdd1: &Vector<D>| {
+            let f = sys.rhs(t, &pack(z, qd1))?;
+            Ok(Vector::<D>::from_fn(|i, _| {
+                if i < n { qdd1[i] - f[n + i] } else { qdd1[i] }
+            }))
         };
         let start = Start {
             t0,
@@ -774,7 +772,7 @@ impl Integrator for GeneralizedAlpha {
             margin: |t: f64, y: &Vector<D>| sys.chart_margin(t, y),
             explain: |t: f64, y: &Vector<D>| sys.rhs(t, y).err(),
         };
-        let run = self.run::<D, D, D>(
+        self.run::<D, D, D>(
             start,
             t1,
             events,
@@ -783,13 +781,10 @@ impl Integrator for GeneralizedAlpha {
             residual,
             no_structure(),
             chart,
-        );
-        match (run, failure.take()) {
-            (Err(_), Some(e)) => Err(e),
-            (run, _) => run.map(|mut s| {
-                s.stats.n_rhs += 1;
-                s
-            }),
-        }
+        )
+        .map(|mut s| {
+            s.stats.n_rhs += 1;
+            s
+        })
     }
 }

@@ -47,9 +47,9 @@ impl Mechanism<3> for FourBar {
     //   + 1/2 m2 |r1 w1 e1' + (r2/2) w2 e2'|^2 + 1/2 (m2 r2^2/12) w2^2   (coupler, e' = (-s, c))
     //   + 1/2 (m3 r3^2/3) w3^2                                  (rocker about D)
     // e1'.e2' = cos(th1 - th2), so M12 = m2 r1 r2/2 cos(th1 - th2), M22 = m2 r2^2/3.
-    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Matrix<3, 3> {
+    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Result<Matrix<3, 3>> {
         let c12 = 0.5 * self.m2 * self.r1 * self.r2 * (q[0] - q[1]).cos();
-        Matrix::<3, 3>::new(
+        Ok(Matrix::<3, 3>::new(
             self.m1 * self.r1.powi(2) / 3.0 + self.m2 * self.r1.powi(2),
             c12,
             0.0,
@@ -59,33 +59,33 @@ impl Mechanism<3> for FourBar {
             0.0,
             0.0,
             self.m3 * self.r3.powi(2) / 3.0,
-        )
+        ))
     }
 
     // Lagrange with M12 = c cos(th1 - th2), c = m2 r1 r2 / 2: the velocity terms are
     // row 1: c sin(th1 - th2) w2^2, row 2: -c sin(th1 - th2) w1^2 (as for a double pendulum),
     // moved to the right-hand side. Gravity: V = (m1/2 + m2) g r1 s1 + m2 g (r2/2) s2 + m3 g (r3/2) s3.
-    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Vector<3> {
+    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<Vector<3>> {
         let c = 0.5 * self.m2 * self.r1 * self.r2;
         let s12 = (q[0] - q[1]).sin();
         let g = self.grav;
-        Vector::<3>::new(
+        Ok(Vector::<3>::new(
             -(0.5 * self.m1 + self.m2) * g * self.r1 * q[0].cos() - c * s12 * qd[1].powi(2),
             -self.m2 * g * 0.5 * self.r2 * q[1].cos() + c * s12 * qd[0].powi(2),
             -self.m3 * g * 0.5 * self.r3 * q[2].cos(),
-        )
+        ))
     }
 
     fn acceleration(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<Vector<3>> {
         Ok(self.acceleration_and_multipliers(t, q, qd)?.0)
     }
 
-    fn energy(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> f64 {
+    fn energy(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<f64> {
         let g = self.grav;
-        0.5 * qd.dot(&(self.mass_matrix(t, q) * qd))
+        Ok(0.5 * qd.dot(&(self.mass_matrix(t, q)? * qd))
             + (0.5 * self.m1 + self.m2) * g * self.r1 * q[0].sin()
             + self.m2 * g * 0.5 * self.r2 * q[1].sin()
-            + self.m3 * g * 0.5 * self.r3 * q[2].sin()
+            + self.m3 * g * 0.5 * self.r3 * q[2].sin())
     }
 }
 
@@ -140,8 +140,8 @@ impl Constrained<3, 2> for FourBar {
     ) -> Result<(Vector<3>, Vector<2>)> {
         solve_augmented::<3, 2, 5>(
             t,
-            &self.mass_matrix(t, q),
-            &self.forces(t, q, qd),
+            &self.mass_matrix(t, q)?,
+            &self.forces(t, q, qd)?,
             &self.phi_q(t, q),
             &self.gamma(t, q, qd),
         )
@@ -182,9 +182,9 @@ impl Mechanism<3> for SliderCrank {
 
     // T = 1/2 (mc r^2/3) w^2 + 1/2 mr |v_G|^2 + 1/2 (mr l^2/12) wp^2 + 1/2 mp xd^2,
     // v_G = r w e_th' + (l/2) wp e_ph'  =>  M12 = mr r l/2 cos(th - ph), M22 = mr l^2/3.
-    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Matrix<3, 3> {
+    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Result<Matrix<3, 3>> {
         let c = 0.5 * self.mr * self.r * self.l * (q[0] - q[1]).cos();
-        Matrix::<3, 3>::new(
+        Ok(Matrix::<3, 3>::new(
             self.mc * self.r.powi(2) / 3.0 + self.mr * self.r.powi(2),
             c,
             0.0,
@@ -194,32 +194,32 @@ impl Mechanism<3> for SliderCrank {
             0.0,
             0.0,
             self.mp,
-        )
+        ))
     }
 
     // Velocity terms as for the four-bar's crank and coupler; potential
     // V = (mc/2 + mr) g r sin th + mr g (l/2) sin ph + k/2 (x - x_free)^2.
-    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Vector<3> {
+    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<Vector<3>> {
         let c = 0.5 * self.mr * self.r * self.l;
         let s = (q[0] - q[1]).sin();
         let g = self.grav;
-        Vector::<3>::new(
+        Ok(Vector::<3>::new(
             -(0.5 * self.mc + self.mr) * g * self.r * q[0].cos() - c * s * qd[1].powi(2),
             -self.mr * g * 0.5 * self.l * q[1].cos() + c * s * qd[0].powi(2),
             -self.k * (q[2] - self.x_free),
-        )
+        ))
     }
 
     fn acceleration(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<Vector<3>> {
         Ok(self.acceleration_and_multipliers(t, q, qd)?.0)
     }
 
-    fn energy(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> f64 {
+    fn energy(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<f64> {
         let g = self.grav;
-        0.5 * qd.dot(&(self.mass_matrix(t, q) * qd))
+        Ok(0.5 * qd.dot(&(self.mass_matrix(t, q)? * qd))
             + (0.5 * self.mc + self.mr) * g * self.r * q[0].sin()
             + self.mr * g * 0.5 * self.l * q[1].sin()
-            + 0.5 * self.k * (q[2] - self.x_free).powi(2)
+            + 0.5 * self.k * (q[2] - self.x_free).powi(2))
     }
 }
 
@@ -286,8 +286,8 @@ impl Constrained<3, 3> for SliderCrank {
     ) -> Result<(Vector<3>, Vector<3>)> {
         solve_augmented::<3, 3, 6>(
             t,
-            &self.mass_matrix(t, q),
-            &self.forces(t, q, qd),
+            &self.mass_matrix(t, q)?,
+            &self.forces(t, q, qd)?,
             &self.phi_q(t, q),
             &self.gamma(t, q, qd),
         )
@@ -314,10 +314,10 @@ impl Mechanism<3> for RelaxedPendulum {
 
     // v_G = (uxd + d cos th thd, uyd + d sin th thd):
     // T = 1/2 (m d^2 + i_c) thd^2 + m d cos th thd uxd + m d sin th thd uyd + 1/2 m (uxd^2 + uyd^2).
-    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Matrix<3, 3> {
+    fn mass_matrix(&self, _t: f64, q: &Vector<3>) -> Result<Matrix<3, 3>> {
         let (s, c) = q[0].sin_cos();
         let (m, d) = (self.m, self.d);
-        Matrix::<3, 3>::new(
+        Ok(Matrix::<3, 3>::new(
             m * d * d + self.i_c,
             m * d * c,
             m * d * s,
@@ -327,26 +327,30 @@ impl Mechanism<3> for RelaxedPendulum {
             m * d * s,
             0.0,
             m,
-        )
+        ))
     }
 
     // d/dt dT/duxd = m uxdd + m d c thdd - m d s thd^2 (no dT/dux), so f_ux = + m d s thd^2;
     // likewise f_uy = -m g - m d c thd^2; in the th row the velocity terms cancel, leaving
     // the gravity moment -m g d sin th. V = m g (uy - d cos th).
-    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Vector<3> {
+    fn forces(&self, _t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<Vector<3>> {
         let (s, c) = q[0].sin_cos();
         let (m, d, g) = (self.m, self.d, self.grav);
         let w2 = qd[0].powi(2);
-        Vector::<3>::new(-m * g * d * s, m * d * s * w2, -m * g - m * d * c * w2)
+        Ok(Vector::<3>::new(
+            -m * g * d * s,
+            m * d * s * w2,
+            -m * g - m * d * c * w2,
+        ))
     }
 
     fn acceleration(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<Vector<3>> {
         Ok(self.acceleration_and_multipliers(t, q, qd)?.0)
     }
 
-    fn energy(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> f64 {
-        0.5 * qd.dot(&(self.mass_matrix(t, q) * qd))
-            + self.m * self.grav * (q[2] - self.d * q[0].cos())
+    fn energy(&self, t: f64, q: &Vector<3>, qd: &Vector<3>) -> Result<f64> {
+        Ok(0.5 * qd.dot(&(self.mass_matrix(t, q)? * qd))
+            + self.m * self.grav * (q[2] - self.d * q[0].cos()))
     }
 }
 
@@ -371,8 +375,8 @@ impl Constrained<3, 2> for RelaxedPendulum {
     ) -> Result<(Vector<3>, Vector<2>)> {
         solve_augmented::<3, 2, 5>(
             t,
-            &self.mass_matrix(t, q),
-            &self.forces(t, q, qd),
+            &self.mass_matrix(t, q)?,
+            &self.forces(t, q, qd)?,
             &self.phi_q(t, q),
             &self.gamma(t, q, qd),
         )
@@ -394,18 +398,20 @@ pub struct HangingMass {
 
 impl Mechanism<1> for HangingMass {
     const COORDINATES: [&'static str; 1] = ["x"];
-    fn mass_matrix(&self, _t: f64, _q: &Vector<1>) -> Matrix<1, 1> {
-        Matrix::<1, 1>::new(self.m)
+    fn mass_matrix(&self, _t: f64, _q: &Vector<1>) -> Result<Matrix<1, 1>> {
+        Ok(Matrix::<1, 1>::new(self.m))
     }
-    fn forces(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> Vector<1> {
-        Vector::<1>::new(self.m * self.grav - self.k * (q[0] - self.l0))
+    fn forces(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> Result<Vector<1>> {
+        Ok(Vector::<1>::new(
+            self.m * self.grav - self.k * (q[0] - self.l0),
+        ))
     }
     fn acceleration(&self, t: f64, q: &Vector<1>, qd: &Vector<1>) -> Result<Vector<1>> {
-        solve_mass(t, &self.mass_matrix(t, q), &self.forces(t, q, qd))
+        solve_mass(t, &self.mass_matrix(t, q)?, &self.forces(t, q, qd)?)
     }
-    fn energy(&self, _t: f64, q: &Vector<1>, qd: &Vector<1>) -> f64 {
-        0.5 * self.m * qd[0].powi(2) - self.m * self.grav * q[0]
-            + 0.5 * self.k * (q[0] - self.l0).powi(2)
+    fn energy(&self, _t: f64, q: &Vector<1>, qd: &Vector<1>) -> Result<f64> {
+        Ok(0.5 * self.m * qd[0].powi(2) - self.m * self.grav * q[0]
+            + 0.5 * self.k * (q[0] - self.l0).powi(2))
     }
 }
 
@@ -429,38 +435,43 @@ impl Mechanism<2> for TwoBar {
 
     // As the four-bar's crank and coupler: M11 = m L^2/3 + m L^2, M12 = m L^2/2 cos(th1 - th2),
     // M22 = m L^2/3.
-    fn mass_matrix(&self, _t: f64, q: &Vector<2>) -> Matrix<2, 2> {
+    fn mass_matrix(&self, _t: f64, q: &Vector<2>) -> Result<Matrix<2, 2>> {
         let (m, l) = (self.m, self.len);
         let c = 0.5 * m * l * l * (q[0] - q[1]).cos();
-        Matrix::<2, 2>::new(4.0 / 3.0 * m * l * l, c, c, m * l * l / 3.0)
+        Ok(Matrix::<2, 2>::new(
+            4.0 / 3.0 * m * l * l,
+            c,
+            c,
+            m * l * l / 3.0,
+        ))
     }
 
     // V = m g (L/2) s1 + m g (L s1 + (L/2) s2) + k/2 |C|^2, C = L (c1 + c2, s1 + s2):
     // -dV/dth1 = -3/2 m g L c1 - k (C . dC/dth1), dC/dth1 = L (-s1, c1); same for th2.
-    fn forces(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> Vector<2> {
+    fn forces(&self, _t: f64, q: &Vector<2>, qd: &Vector<2>) -> Result<Vector<2>> {
         let (m, l, g, k) = (self.m, self.len, self.grav, self.k);
         let (s1, c1) = q[0].sin_cos();
         let (s2, c2) = q[1].sin_cos();
         let (cx, cy) = (l * (c1 + c2), l * (s1 + s2));
         let c = 0.5 * m * l * l;
         let s12 = (q[0] - q[1]).sin();
-        Vector::<2>::new(
+        Ok(Vector::<2>::new(
             -1.5 * m * g * l * c1 - k * (cx * -l * s1 + cy * l * c1) - c * s12 * qd[1].powi(2),
             -0.5 * m * g * l * c2 - k * (cx * -l * s2 + cy * l * c2) + c * s12 * qd[0].powi(2),
-        )
+        ))
     }
 
     fn acceleration(&self, t: f64, q: &Vector<2>, qd: &Vector<2>) -> Result<Vector<2>> {
         Ok(self.acceleration_and_multipliers(t, q, qd)?.0)
     }
 
-    fn energy(&self, t: f64, q: &Vector<2>, qd: &Vector<2>) -> f64 {
+    fn energy(&self, t: f64, q: &Vector<2>, qd: &Vector<2>) -> Result<f64> {
         let (m, l, g, k) = (self.m, self.len, self.grav, self.k);
         let (s1, c1) = q[0].sin_cos();
         let (s2, c2) = q[1].sin_cos();
-        0.5 * qd.dot(&(self.mass_matrix(t, q) * qd))
+        Ok(0.5 * qd.dot(&(self.mass_matrix(t, q)? * qd))
             + m * g * (0.5 * l * s1 + l * s1 + 0.5 * l * s2)
-            + 0.5 * k * l * l * ((c1 + c2).powi(2) + (s1 + s2).powi(2))
+            + 0.5 * k * l * l * ((c1 + c2).powi(2) + (s1 + s2).powi(2)))
     }
 }
 
@@ -485,8 +496,8 @@ impl Constrained<2, 1> for TwoBar {
     ) -> Result<(Vector<2>, Vector<1>)> {
         solve_augmented::<2, 1, 3>(
             t,
-            &self.mass_matrix(t, q),
-            &self.forces(t, q, qd),
+            &self.mass_matrix(t, q)?,
+            &self.forces(t, q, qd)?,
             &self.phi_q(t, q),
             &self.gamma(t, q, qd),
         )
@@ -505,17 +516,17 @@ pub struct Oscillator {
 
 impl Mechanism<1> for Oscillator {
     const COORDINATES: [&'static str; 1] = ["x"];
-    fn mass_matrix(&self, _t: f64, _q: &Vector<1>) -> Matrix<1, 1> {
-        Matrix::<1, 1>::new(self.m)
+    fn mass_matrix(&self, _t: f64, _q: &Vector<1>) -> Result<Matrix<1, 1>> {
+        Ok(Matrix::<1, 1>::new(self.m))
     }
-    fn forces(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> Vector<1> {
-        Vector::<1>::new(-self.k * q[0])
+    fn forces(&self, _t: f64, q: &Vector<1>, _qd: &Vector<1>) -> Result<Vector<1>> {
+        Ok(Vector::<1>::new(-self.k * q[0]))
     }
     fn acceleration(&self, t: f64, q: &Vector<1>, qd: &Vector<1>) -> Result<Vector<1>> {
-        solve_mass(t, &self.mass_matrix(t, q), &self.forces(t, q, qd))
+        solve_mass(t, &self.mass_matrix(t, q)?, &self.forces(t, q, qd)?)
     }
-    fn energy(&self, _t: f64, q: &Vector<1>, qd: &Vector<1>) -> f64 {
-        0.5 * self.m * qd[0].powi(2) + 0.5 * self.k * q[0].powi(2)
+    fn energy(&self, _t: f64, q: &Vector<1>, qd: &Vector<1>) -> Result<f64> {
+        Ok(0.5 * self.m * qd[0].powi(2) + 0.5 * self.k * q[0].powi(2))
     }
 }
 
@@ -530,17 +541,17 @@ pub struct CircleParticle {
 
 impl Mechanism<2> for CircleParticle {
     const COORDINATES: [&'static str; 2] = ["x", "y"];
-    fn mass_matrix(&self, _t: f64, _q: &Vector<2>) -> Matrix<2, 2> {
-        Matrix::<2, 2>::identity() * self.m
+    fn mass_matrix(&self, _t: f64, _q: &Vector<2>) -> Result<Matrix<2, 2>> {
+        Ok(Matrix::<2, 2>::identity() * self.m)
     }
-    fn forces(&self, _t: f64, _q: &Vector<2>, _qd: &Vector<2>) -> Vector<2> {
-        Vector::<2>::zeros()
+    fn forces(&self, _t: f64, _q: &Vector<2>, _qd: &Vector<2>) -> Result<Vector<2>> {
+        Ok(Vector::<2>::zeros())
     }
     fn acceleration(&self, t: f64, q: &Vector<2>, qd: &Vector<2>) -> Result<Vector<2>> {
         Ok(self.acceleration_and_multipliers(t, q, qd)?.0)
     }
-    fn energy(&self, _t: f64, _q: &Vector<2>, qd: &Vector<2>) -> f64 {
-        0.5 * self.m * qd.norm_squared()
+    fn energy(&self, _t: f64, _q: &Vector<2>, qd: &Vector<2>) -> Result<f64> {
+        Ok(0.5 * self.m * qd.norm_squared())
     }
 }
 
@@ -566,8 +577,8 @@ impl Constrained<2, 1> for CircleParticle {
     ) -> Result<(Vector<2>, Vector<1>)> {
         solve_augmented::<2, 1, 3>(
             t,
-            &self.mass_matrix(t, q),
-            &self.forces(t, q, qd),
+            &self.mass_matrix(t, q)?,
+            &self.forces(t, q, qd)?,
             &self.phi_q(t, q),
             &self.gamma(t, q, qd),
         )

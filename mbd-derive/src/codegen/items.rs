@@ -3,8 +3,8 @@
 //! function builds one item from the equations and the shared `Shape`.
 
 use super::{
-    Block, chart_margin, closure_check, closure_domain, domain_checks, mass_matrix_body,
-    parameter_checks, rolled_recursion, uses,
+    Block, chart_margin, checked_value, closure_check, closure_domain, domain_checks,
+    mass_matrix_body, parameter_checks, rolled_recursion, uses,
 };
 use crate::model::{Equations, Role};
 use crate::parse::{Direction, Mechanism};
@@ -194,10 +194,23 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
         Default::default()
     };
     let (mass_matrix, mass_len) = mass_matrix_body(eq, n);
-    let force_only = Block::new(eq, &eq.forces);
-    let energy = Block::new(eq, &[eq.energy]);
-    let (fo_stmts, fo_fill) = (force_only.stmts(), force_only.vector("f", n, &eq.forces));
-    let (en_stmts, en_value) = (energy.stmts(), energy.leaf(eq.energy));
+    let (forces_only, forces_len) = checked_value(
+        eq,
+        n,
+        &eq.forces,
+        |b| b.vector("f", n, &eq.forces),
+        quote!(f),
+    );
+    let (energy, energy_len) = checked_value(
+        eq,
+        n,
+        &[eq.energy],
+        |b| {
+            let e = b.leaf(eq.energy);
+            quote!(let e: f64 = #e;)
+        },
+        quote!(e),
+    );
 
     // The articulated-body recursion writes `qdd[i]` into a vector declared around it: a
     // fresh one in `acceleration`, the lower half of `y'` in `rhs` (no copies of the state).
@@ -258,19 +271,25 @@ fn acceleration(eq: &Equations, sh: &mut Shape<'_>) -> Acceleration {
     };
 
     let forces_body = match nf {
-        0 => quote!(#fo_stmts #fo_fill f),
-        _ => crate::friction::forces(eq),
+        0 => forces_only,
+        _ => {
+            let (check, forces) = (closure_check(eq, n), crate::friction::forces(eq));
+            quote! {
+                #check
+                ::mbd::__private::closure::finite_value(t, #forces?).map_err(|e| self.diagnose(e))
+            }
+        }
     };
     Acceleration {
         mf_roots,
         mass_matrix,
         forces: forces_body,
-        energy: quote!(#en_stmts #en_value),
+        energy,
         recursion,
         friction_acceleration,
         body: acceleration,
         checked: !domain.is_empty(),
-        statements: mass_len + force_only.len() + energy.len(),
+        statements: mass_len + forces_len + energy_len,
         inverse: inverse_dynamics(eq, sh),
     }
 }
@@ -288,10 +307,10 @@ fn inverse_dynamics(eq: &Equations, sh: &mut Shape<'_>) -> Option<TokenStream> {
     Some(quote! {
         #[inline]
         fn inverse_dynamics(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>,
-            qdd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
+            qdd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
             #s
             #fill
-            tau
+            ::mbd::__private::closure::finite_value(t, tau).map_err(|e| self.diagnose(e))
         }
     })
 }
@@ -314,10 +333,12 @@ fn mechanism_impl(
     quote! {
         impl ::mbd::__private::Mechanism<#n> for #ident {
             const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
-            fn mass_matrix(&self, t: f64, q: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Matrix<#n, #n> {
+            fn mass_matrix(&self, t: f64, q: &::mbd::__private::Vector<#n>)
+                -> ::mbd::__private::Result<::mbd::__private::Matrix<#n, #n>> {
                 #mass_matrix
             }
-            fn forces(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> ::mbd::__private::Vector<#n> {
+            fn forces(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
+                -> ::mbd::__private::Result<::mbd::__private::Vector<#n>> {
                 #forces_body
             }
             #inline_acceleration
@@ -329,7 +350,8 @@ fn mechanism_impl(
                 #check
                 qdd
             }
-            fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>) -> f64 {
+            fn energy(&self, t: f64, q: &::mbd::__private::Vector<#n>, qd: &::mbd::__private::Vector<#n>)
+                -> ::mbd::__private::Result<f64> {
                 #energy
             }
             #margin
