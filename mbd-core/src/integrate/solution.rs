@@ -23,7 +23,9 @@ pub enum Record {
     /// Nothing between the first and the final state.
     Final,
     /// The states at these times, ascending, from each step's dense output (a time before
-    /// `t0` or after the end of the run is not reached and not recorded).
+    /// `t0` or after the end of the run is not reached and not recorded). Vern9, whose
+    /// interpolant costs nine calls, ends a step on an output time instead where that costs
+    /// less (without dense output, events or an observer): its steps then depend on the times.
     Times(Vec<f64>),
 }
 
@@ -286,7 +288,9 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
     #[inline]
     pub(crate) fn next_times_only(&self) -> Option<(f64, f64)> {
         match &self.record {
-            Record::Times(ts) if !self.dense && self.events.is_empty() && self.observer.is_none() => {
+            Record::Times(ts)
+                if !self.dense && self.events.is_empty() && self.observer.is_none() =>
+            {
                 let after = ts.get(self.next_time + 1).copied();
                 Some((*ts.get(self.next_time)?, after.unwrap_or(f64::INFINITY)))
             }
