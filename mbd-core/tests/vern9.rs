@@ -134,18 +134,83 @@ fn vern9_stiffness_detection_is_an_option() {
     });
 }
 
-/// With `Record::Times`, only the steps with an output time strictly inside them build the
-/// interpolant, nine more calls each ([`pairs::output_times_build_only_the_segments_they_need`]).
+/// With output times alone (no dense output, events or observer), a step that would hold
+/// one output time, at `theta >= 7/16` of it, ends there instead (the progress given up
+/// costs fewer than the interpolant's nine calls) when it is no longer than 25/16 of the
+/// spacing to the next output time, and the step after it is the one it replaced (or
+/// longer, as the short step's error allows). On `y' = (1, t)` (a polynomial the method and its interpolant reproduce, so
+/// every error estimate is rounding and every step the largest, `h_max = 1`) from `h0 = 1`,
+/// times 0.3, 1.5, 2.9 over [0, 4], the steps are worked out by hand:
+/// [0, 1] holds 0.3 at theta 0.3 (interpolated, nine calls); [1, 1.5] ends on 1.5 (theta
+/// 0.5 of [1, 2]); [1.5, 2.5] holds nothing (2.9 lies beyond); [2.5, 3.5] holds 2.9 at
+/// theta 0.4 (interpolated); [3.5, 4] is the last. Calls: `f(t0)`, 16 per step, 9 twice.
+/// Recorded only at the end, the same run takes [0, 1], [1, 2], [2, 3], [3, 4].
 #[test]
-fn vern9_output_times_build_only_the_segments_they_need() {
-    let method = |record, dense| {
+fn vern9_ends_steps_on_output_times_where_that_is_cheaper() {
+    let ramp = pairs::Ode(|t: f64, _y: &Vector<2>| Vector::<2>::new(1.0, t));
+    let run = |record| {
         Vern9::new(Options {
             record,
-            dense,
+            dense: false,
+            h0: Some(1.0),
+            h_max: Some(1.0),
+            ..at_tol(1e-6)
+        })
+        .solve(&ramp, 0.0, Vector::<2>::zeros(), 4.0, &[])
+        .unwrap()
+    };
+    let times = run(Record::Times(vec![0.3, 1.5, 2.9]));
+    assert_eq!(times.stats.n_accepted, 5);
+    assert_eq!(times.stats.n_rejected, 0);
+    assert_eq!(times.stats.n_rhs, 1 + 5 * 16 + 2 * 9);
+    assert_eq!(times.t, [0.0, 0.3, 1.5, 2.9, 4.0]);
+    // Step ends to rounding; interpolated values to the interpolant's rounding, about
+    // 1e-12 of `h |f|` (its weights reach 1e4), here `h = 1`, `|f| <= 4`.
+    for (t, y) in times.t.iter().zip(&times.y) {
+        let err = (y[0] - t).abs().max((y[1] - t * t / 2.0).abs());
+        assert!(err <= 4e-12, "{t}: {y}");
+    }
+    let fin = run(Record::Final);
+    assert_eq!(fin.stats.n_accepted, 4);
+    assert_eq!(fin.stats.n_rhs, 1 + 4 * 16);
+}
+
+/// On the oscillator over 10 s with an output time every 0.5 at 1e-9 (steps of about 0.36,
+/// so a step holds at most one, as on the time-to-accuracy table's grids): the recorded
+/// states are within the tolerance of `(cos t, -sin t)`, and ending steps on output times
+/// costs fewer calls than interpolating in every step that holds one (the `Record::Steps`
+/// run's steps plus nine calls for each that holds an output time): 611 against 621. With
+/// an output time every 0.25 the two cost about the same (685 against 684): the rule
+/// weighs one step and the spacing, not the phase of the steps after it.
+#[test]
+fn vern9_output_times_are_accurate_and_cheaper_than_interpolating_all() {
+    let sys = pairs::oscillator();
+    let y0 = Vector::<2>::new(1.0, 0.0);
+    let run = |record| {
+        Vern9::new(Options {
+            record,
+            dense: false,
             ..at_tol(1e-9)
         })
+        .solve(&sys, 0.0, y0, 10.0, &[])
+        .unwrap()
     };
-    pairs::output_times_build_only_the_segments_they_need(method, 9);
+    let times: Vec<f64> = (0..=20).map(|i| 0.5 * f64::from(i)).collect();
+    let at_times = run(Record::Times(times.clone()));
+    assert_eq!(at_times.t, times);
+    for (t, y) in at_times.t.iter().zip(&at_times.y) {
+        let err = (y - pairs::oscillator_exact(*t)).amax();
+        assert!(err <= 1e-9, "t = {t}: {err:e}");
+    }
+    let steps = run(Record::Steps);
+    let inside = steps
+        .t
+        .windows(2)
+        .filter(|w| times.iter().any(|&t| w[0] < t && t < w[1]))
+        .count();
+    let interpolating_all = steps.stats.n_rhs + 9 * inside;
+    println!("{} calls against {interpolating_all}", at_times.stats.n_rhs);
+    assert!(at_times.stats.n_rhs < interpolating_all);
 }
 
 /// `Auto` runs Vern9 at rtol <= 1e-11, DOP853 up to 1e-4: its solution equals the chosen

@@ -6,8 +6,9 @@
 //! step loop's cost per right-hand-side evaluation beside the bare call's.
 //!
 //! Error: the largest absolute error of the coordinates `q` over the grid (radians and
-//! metres), the states taken at the grid times from each step's dense output
-//! (`Record::Times`, segments not kept). References: the pendulum's Jacobi-elliptic
+//! metres), the states taken at the grid times as a user gets them with `Record::Times`
+//! (segments not kept): from each step's dense output, or for Vern9 from the end of a step
+//! it ended on a grid time where that is cheaper than its interpolant. References: the pendulum's Jacobi-elliptic
 //! solution (exact); for the other models, DOP853 at `rtol = atol = 1e-14` on the *other*
 //! implementation of the same mechanism (the generated model for the hand-written one and
 //! back; the expert one-coordinate slider-crank for both slider-cranks), so that no run is

@@ -135,6 +135,18 @@ impl PiController {
         h_new
     }
 
+    /// [`Self::accept_ln`] for an accepted step cut shorter than the controller proposed
+    /// (onto an output time): the next step from its error, but the memory keeps the last
+    /// full step's (the short step's small error is no measure of the proposal, and
+    /// remembered it would shrink the steps after it).
+    #[inline]
+    pub fn accept_short_ln(&mut self, h: f64, ln_err: f64) -> f64 {
+        let memory = self.beta_ln_err_old;
+        let h_new = self.accept_ln(h, ln_err);
+        self.beta_ln_err_old = memory;
+        h_new
+    }
+
     /// The retry step after a rejected step of size `h` with error `err > 1`.
     #[inline]
     pub fn reject(&mut self, h: f64, err: f64) -> f64 {

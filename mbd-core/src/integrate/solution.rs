@@ -23,7 +23,9 @@ pub enum Record {
     /// Nothing between the first and the final state.
     Final,
     /// The states at these times, ascending, from each step's dense output (a time before
-    /// `t0` or after the end of the run is not reached and not recorded).
+    /// `t0` or after the end of the run is not reached and not recorded). Vern9, whose
+    /// interpolant costs nine calls, ends a step on an output time instead where that costs
+    /// less (without dense output, events or an observer): its steps then depend on the times.
     Times(Vec<f64>),
 }
 
@@ -277,6 +279,46 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
                 Flow::Stop
             }
         }
+    }
+
+    /// The next two output times (the second `INFINITY` when there is none) when output
+    /// times are all a step's polynomial is needed for (no dense output, events or
+    /// observer): a method may then end a step on the next, or evaluate its continuous
+    /// extension at the times alone ([`Self::accept_values`]).
+    #[inline]
+    pub(crate) fn next_times_only(&self) -> Option<(f64, f64)> {
+        match &self.record {
+            Record::Times(ts)
+                if !self.dense && self.events.is_empty() && self.observer.is_none() =>
+            {
+                let after = ts.get(self.next_time + 1).copied();
+                Some((*ts.get(self.next_time)?, after.unwrap_or(f64::INFINITY)))
+            }
+            _ => None,
+        }
+    }
+
+    /// Record an accepted step ending at `(t1, y1)` when only output times need its
+    /// polynomial ([`Self::next_times_only`] is `Some`): `value(t)` for each output time
+    /// inside the step, `y1` for one at `t1`.
+    #[inline]
+    pub(crate) fn accept_values(
+        &mut self,
+        t1: f64,
+        y1: &Vector<D>,
+        mut value: impl FnMut(f64) -> Vector<D>,
+    ) -> Flow {
+        debug_assert!(self.next_times_only().is_some());
+        self.steps += 1;
+        if let Record::Times(ts) = &self.record {
+            while let Some(&t) = ts.get(self.next_time).filter(|&&t| t <= t1) {
+                self.sol.t.push(t);
+                self.sol.y.push(if t == t1 { *y1 } else { value(t) });
+                self.next_time += 1;
+            }
+        }
+        (self.sol.t_end, self.sol.y_end) = (t1, *y1);
+        Flow::Continue
     }
 
     /// Record an accepted step ending at `(t1, y1)` when [`Self::needs_segment_to`] is

@@ -4,7 +4,7 @@ use super::control::PiController;
 use super::explicit::{self, Pair, extra_stages};
 use super::tableau::Erk;
 use super::vern9_tableau::{VERN9, VERN9_DENSE_A, VERN9_DENSE_C, VERN9_DENSE_R};
-use super::{Event, Integrator, Observer, Options, Segment, Solution};
+use super::{Event, Flow, Integrator, Observer, Options, Segment, Solution};
 use crate::error::Result;
 use crate::model::{OdeSystem, Vector};
 
@@ -15,6 +15,13 @@ use crate::model::{OdeSystem, Vector};
 /// stiffness detection every [`Options::stiffness_check`] accepted steps, and Verner's
 /// ninth-order interpolant built from nine more stages per accepted step (only when the
 /// step's segment is kept, events are located or an output time falls inside it).
+///
+/// Output times alone (`Record::Times` without dense output, events or an observer): a
+/// step that would hold one output time late in it (`theta >= 7/16`) and is no longer than
+/// 25/16 of the spacing of the output times ends on that time instead of interpolating
+/// (`explicit::lands_on`), and the interpolant is evaluated at each output time from its
+/// weights. The steps then depend on the output times; the values at them are step ends,
+/// as accurate as the run's.
 ///
 /// For tight tolerances: each step costs 16 calls against DOP853's 12 (and its interpolant
 /// nine more against three), and at equal error its steps are the longer by more than that
@@ -72,6 +79,25 @@ fn dense_segment<S: OdeSystem<D>, const D: usize>(
     Ok(Segment::polynomial(t0, h, &c))
 }
 
+/// Verner's interpolant at `theta` of the step `[t0, t0 + h]` from `y0`, its stages `k`
+/// complete (`k[17..26]` by [`extra_stages`]): `y0 + h sum_i b_i(theta) k_i` with the weights
+/// `b_i(theta) = sum_m R[m-1][i] theta^m` evaluated first, so that one value costs one
+/// combination of the stages where the polynomial's nine coefficients cost nine.
+fn interpolate<const D: usize>(
+    theta: f64,
+    h: f64,
+    y0: &Vector<D>,
+    k: &[Vector<D>; 26],
+) -> Vector<D> {
+    let b: [f64; 26] = std::array::from_fn(|i| {
+        VERN9_DENSE_R
+            .iter()
+            .rev()
+            .fold(0.0, |acc, r| (acc + r[i]) * theta)
+    });
+    y0 + Erk::<26>::combine(&b, k, h)
+}
+
 impl Integrator for Vern9 {
     fn name(&self) -> &'static str {
         "VERN9"
@@ -106,6 +132,8 @@ impl Pair<16, 26> for Vern9 {
     const ORDER: i32 = 9;
     const STIFF_LIMIT: f64 = Self::STIFF_HLAMBDA;
     const DENSE_CALLS: usize = VERN9_DENSE_C.len();
+    /// Its interpolant costs nine calls, more than half a step's sixteen.
+    const LANDS_ON_TIMES: bool = true;
 
     fn controller() -> PiController {
         Self::controller()
@@ -126,5 +154,57 @@ impl Pair<16, 26> for Vern9 {
         k: &mut [Vector<D>; 26],
     ) -> Result<Segment<D>> {
         dense_segment(sys, t, h, y, k)
+    }
+
+    #[inline]
+    fn values<F: OdeSystem<D>, const D: usize>(
+        (sys, t, h, y, _y1): (&F, f64, f64, &Vector<D>, &Vector<D>),
+        k: &mut [Vector<D>; 26],
+        take: impl FnOnce(&mut dyn FnMut(f64) -> Vector<D>) -> Flow,
+    ) -> Result<Flow> {
+        extra_stages((sys, t, h, y), k, 17, &VERN9_DENSE_A, &VERN9_DENSE_C)?;
+        let k = &*k;
+        Ok(take(&mut |ts| interpolate((ts - t) / h, h, y, k)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The interpolant evaluated at `theta` equals the polynomial of its nine coefficients
+    /// (`dense_segment`'s) to rounding, for arbitrary stages: the two forms of one sum of
+    /// the terms `h R[m][i] theta^(m+1) k_i`, so they differ by a few units of rounding of
+    /// the sum of those terms' sizes (`4 eps h sum |R[m][i]| theta^(m+1) |k_i|`; the
+    /// weights reach 1e4, so this is well above `eps |y|`).
+    #[test]
+    fn interpolate_equals_the_segment_polynomial() {
+        let k: [Vector<2>; 26] = std::array::from_fn(|i| {
+            let x = i as f64;
+            Vector::<2>::new((0.7 * x).sin(), (1.3 * x + 0.2).cos() * 3.0)
+        });
+        let (t0, h, y0) = (0.4, 0.25, Vector::<2>::new(1.0, -2.0));
+        let mut c = [y0; 10];
+        for (cm, r) in c[1..].iter_mut().zip(&VERN9_DENSE_R) {
+            *cm = Erk::<26>::combine(r, &k, h);
+        }
+        let seg = Segment::polynomial(t0, h, &c);
+        for theta in [0.0, 0.1, 0.4375, 0.77, 1.0] {
+            let a = interpolate(theta, h, &y0, &k);
+            let b = seg.eval_theta(theta);
+            let size: f64 = (0..26)
+                .map(|i| {
+                    let w: f64 = (0..9)
+                        .map(|m| VERN9_DENSE_R[m][i].abs() * theta.powi(m as i32 + 1))
+                        .sum();
+                    w * k[i].amax()
+                })
+                .sum();
+            let bound = 4.0 * f64::EPSILON * (h * size + y0.amax());
+            assert!(
+                (a - b).amax() <= bound,
+                "theta {theta}: {a} != {b} ({bound:e})"
+            );
+        }
     }
 }
