@@ -104,6 +104,43 @@ pub struct DrivenFiveBar {
     pub w: f64,
 }
 
+/// Both cranks driven (`t1 = 2 + w t`, `t2 = 1 + w2 t`): no degree of freedom is left.
+#[derive(Debug, Clone, Mechanism)]
+#[gravity(0.0, -g)]
+#[drive(t1 = 2.0 + w * t)]
+#[drive(t2 = 1.0 + w2 * t)]
+#[coords(p1, p2)]
+#[constraint(a1 * cos(t1) + b1 * cos(p1) == d + a2 * cos(t2) + b2 * cos(p2))]
+#[constraint(a1 * sin(t1) + b1 * sin(p1) == a2 * sin(t2) + b2 * sin(p2))]
+#[rigid(crank1, mass = m1, inertia = m1 * a1 * a1 / 12.0,
+        at = [a1 / 2.0 * cos(t1), a1 / 2.0 * sin(t1)], angle = t1)]
+#[rigid(crank2, mass = m2, inertia = m2 * a2 * a2 / 12.0,
+        at = [d + a2 / 2.0 * cos(t2), a2 / 2.0 * sin(t2)], angle = t2)]
+#[rigid(link1, mass = n1, inertia = n1 * b1 * b1 / 12.0,
+        at = [a1 * cos(t1) + b1 / 2.0 * cos(p1), a1 * sin(t1) + b1 / 2.0 * sin(p1)],
+        angle = p1)]
+#[rigid(link2, mass = n2, inertia = n2 * b2 * b2 / 12.0,
+        at = [d + a2 * cos(t2) + b2 / 2.0 * cos(p2), a2 * sin(t2) + b2 / 2.0 * sin(p2)],
+        angle = p2)]
+#[particle(tool, mass = mp, at = [a1 * cos(t1) + b1 * cos(p1), a1 * sin(t1) + b1 * sin(p1)])]
+#[init(p1 = 0.8778614437645025, p2 = 2.1944226987526934)]
+#[output(effort1 = reaction(t1), effort2 = reaction(t2))]
+pub struct BothDriven {
+    #[default(1.0)] pub d: f64,
+    #[default(1.0)] pub a1: f64,
+    #[default(1.0)] pub a2: f64,
+    #[default(1.6)] pub b1: f64,
+    #[default(1.6)] pub b2: f64,
+    #[default(1.0)] pub m1: f64,
+    #[default(1.2)] pub m2: f64,
+    #[default(0.8)] pub n1: f64,
+    #[default(0.9)] pub n2: f64,
+    #[default(0.5)] pub mp: f64,
+    #[default(9.81)] pub g: f64,
+    #[default(1.5)] pub w: f64,
+    #[default(-0.7)] pub w2: f64,
+}
+
 const D: f64 = 1.0;
 const A: [f64; 2] = [1.0, 1.0];
 const B: [f64; 2] = [1.6, 1.6];
@@ -247,6 +284,10 @@ fn the_state_is_both_crank_angles_and_the_init_is_on_the_hand_closure() {
     assert_eq!(FiveBar::COORDINATES, ["t1", "t2"]);
     assert_eq!(FiveBarAugmented::GENERATED.constraints, 2);
     assert_eq!(DrivenFiveBar::COORDINATES, ["t2"]);
+    assert!(FiveBar::GENERATED.parts.contains(&"minimal_closed_form"));
+    assert!(!FiveBar::GENERATED.parts.contains(&"augmented"));
+    assert!(FiveBarAugmented::GENERATED.parts.contains(&"augmented"));
+    assert_eq!(BothDriven::DOF, 0);
     let (p1, p2) = close(2.0, 1.0).unwrap();
     assert!((p1 - 0.8778614437645025).abs() < 1e-14 && (p2 - 2.1944226987526934).abs() < 1e-14);
 }
@@ -508,5 +549,22 @@ fn crank_tips_meeting_stop_the_minimal_form_and_the_augmented_form_passes() {
         );
         let phi = Constrained::<4, 2>::phi(&pa, 0.0, &y.fixed_rows::<4>(0).into_owned());
         assert!(phi.norm() < 1e-8, "{phi}");
+    }
+}
+
+/// Both cranks driven at constant rates: the efforts are Lagrange's equations' balances with
+/// `q'' = 0`, `tau = c - Q`, at times along the driven motion.
+#[test]
+fn both_cranks_driven_efforts_match_lagrange() {
+    let p = params!(BothDriven, w: W, w2: -0.7);
+    let y = Vector::<0>::zeros();
+    for k in 0..6 {
+        let t = 0.1 * k as f64;
+        let q = [2.0 + W * t, 1.0 - 0.7 * t];
+        let (_, c, f) = lagrange(q, [W, -0.7]);
+        let out = p.outputs(t, &y).unwrap();
+        for (got, want) in [(out.effort1, c[0] - f[0]), (out.effort2, c[1] - f[1])] {
+            assert!((got - want).abs() < 1e-7 * want.abs().max(1.0), "t {t}: {got} vs {want}");
+        }
     }
 }

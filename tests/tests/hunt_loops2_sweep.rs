@@ -163,3 +163,53 @@ fn sweeps_stay_on_the_elbow_they_start_on_at_every_sampling() {
         }
     }
 }
+
+/// Assembly from a rough guess (each dependent angle up to 0.4 rad off, the crank held):
+/// the elbow the guess is nearer to, at every crank angle of a turn, including the
+/// transmission-angle extremes.
+#[test]
+fn assembly_from_a_rough_guess_keeps_the_guesss_elbow() {
+    use mbd::analysis::assemble;
+    let held = Tilted {
+        th0: 0.0,
+        w: 1.0,
+        ..P
+    };
+    let mut worst: f64 = 0.0;
+    for k in 0..48 {
+        let th = k as f64 * PI / 24.0;
+        for sign in [1.0, -1.0] {
+            let exact = close(th, sign);
+            let other = close(th, -sign);
+            for (db, dg) in [
+                (0.4, 0.4),
+                (0.4, -0.4),
+                (-0.4, 0.4),
+                (-0.4, -0.4),
+                (0.2, -0.3),
+            ] {
+                let guess = Vector::<2>::new(exact[0] + db, exact[1] + dg);
+                // Only guesses nearer to this elbow than to the other.
+                let dist = |e: [f64; 2]| wrap(guess[0] - e[0]).hypot(wrap(guess[1] - e[1]));
+                if dist(exact) >= 0.5 * dist(other) {
+                    continue;
+                }
+                let q = assemble(
+                    &held,
+                    th,
+                    &guess,
+                    &[false, false],
+                    &NewtonOptions::default(),
+                )
+                .unwrap_or_else(|e| panic!("th {th} side {sign}: {e}"));
+                let err = wrap(q[0] - exact[0]).abs().max(wrap(q[1] - exact[1]).abs());
+                worst = worst.max(err);
+                assert!(
+                    err < 1e-10,
+                    "th {th} side {sign} guess {guess}: {q} vs {exact:?}"
+                );
+            }
+        }
+    }
+    println!("worst {worst:e}");
+}
