@@ -13,6 +13,11 @@
 //! `c = sum m J^T (q'^T p_qq q') + I j^T (q'^T phi_qq q')` (five-point second differences
 //! along `q'`) and `Q = -g sum m J_y`. Energy `T + V` from the same functions.
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::integrate::{Dop853, Dopri5, Integrator, Radau5, Vern9};
 use mbd::prelude::*;
 use std::f64::consts::PI;

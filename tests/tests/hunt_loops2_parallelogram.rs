@@ -11,6 +11,11 @@
 //! rocker turns with the crank (`ga = th`), so `T = (Ic + Ir + mc a^2) th'^2 / 2` with the
 //! crank's and rocker's inertias about their pivots, no gravity: `th' ` is constant.
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::integrate::{
     Auto, Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Radau5, Rk4, Vern9,
 };

@@ -10,6 +10,11 @@
 //! in `th`, `J th'' + C th'^2 = Q_g`, from the mass points and the two rotations
 //! (`J = sum m |p'|^2 + Iz + Ix ps'^2`, five-point differences in `th`).
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::integrate::{Dop853, Dopri5, Integrator, Radau5, Vern9};
 use mbd::prelude::*;
 use std::f64::consts::PI;

@@ -10,6 +10,11 @@
 //! equilibrium equations of the three bars (forces and moments), unknowns the pin forces at
 //! `O`, `A` (crank on coupler), `C` (rocker on coupler), `D` and the drive's torque.
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::prelude::*;
 use mbd::{Matrix, Vector};
 use std::f64::consts::PI;

@@ -13,6 +13,11 @@
 //! `J th'' + C th'^2 = Q`, `J = sum m |p'|^2 + I phi'^2`, `C = sum m p'.p'' + I phi' phi''`,
 //! `Q = -g sum m p'_y`. Energy `T + V` by hand from the full state.
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::integrate::{Ali3, Dop853, Dopri5, GeneralizedAlpha, Integrator, Radau5, Vern9};
 use mbd::prelude::*;
 use mbd::{Matrix, Vector};

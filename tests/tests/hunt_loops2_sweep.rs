@@ -8,6 +8,11 @@
 //! init's side of `AD`; rates and accelerations by five-point differences of that closure in
 //! time (the crank turns at `w`).
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::analysis::{NewtonOptions, kinematic_sweep};
 use mbd::prelude::*;
 use std::f64::consts::PI;

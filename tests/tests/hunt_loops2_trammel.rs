@@ -9,6 +9,11 @@
 //! `J th'' + l^2 (ma - mb) sin th cos th th'^2 + g l (mb + m / 2) cos th = 0`, integrated
 //! here by a separately written RK4 at a small step.
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the references index bodies and components of parallel arrays"
+)]
+
 use mbd::integrate::{
     Auto, Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Radau5, Rk4, Vern9,
 };
@@ -177,7 +182,13 @@ fn the_state_is_the_first_listed_coordinate() {
     assert_eq!(ByAngle::COORDINATES, ["th"]);
     assert_eq!(BySlider::COORDINATES, ["xa"]);
     assert_eq!(Augmented::COORDINATES, ["th", "xa", "yb"]);
-    assert!(ByAngle::GENERATED.constraints == 0 && Augmented::GENERATED.constraints == 2);
+    assert_eq!(
+        (
+            ByAngle::GENERATED.constraints,
+            Augmented::GENERATED.constraints
+        ),
+        (0, 2)
+    );
 }
 
 #[test]
