@@ -6,7 +6,7 @@
 //! rather than pass a NaN on or switch branch silently.
 
 use crate::error::{Error, Result};
-use crate::model::Vector;
+use crate::model::{OdeSystem, Vector};
 
 /// `Ok` when `-1 < arg < 1`; else the error naming `coord`, the time and the configuration
 /// (`names[i] = q[i]`).
@@ -194,6 +194,19 @@ impl<const D: usize> ChartWatch<D> {
         Some((ts, Self::boundary(&ys, &far.2, margin)))
     }
 
+    /// The oldest accepted `(t, y)` in the window.
+    pub fn oldest(&self) -> Option<(f64, Vector<D>)> {
+        self.window.as_ref()?.first().map(|&(t, _, y)| (t, y))
+    }
+
+    /// The last accepted `(t, y)` when its margin is at most `within`: a run that fails
+    /// there (its steps shrinking to nothing) is at the chart's edge, where the closed
+    /// forms' rates are rounding (`sqrt` of the margin).
+    pub fn at_edge(&self, within: f64) -> Option<(f64, Vector<D>)> {
+        let (t, m, y) = *self.window.as_ref()?.last()?;
+        (m <= within).then_some((t, y))
+    }
+
     /// The first state outside the chart on the line from `far` through `ys` (the margin
     /// is close to linear in the coordinates there): found by doubling then bisection,
     /// keeping the outside end, so the configuration named is at or just past the limit.
@@ -236,11 +249,57 @@ pub fn passed_limit<const D: usize>(t: f64, y: &Vector<D>, model: Option<Error>)
         _ => Error::SingularPosition {
             t,
             detail: format!(
-                "a fixed step passed a limit position of the loop's closed forms it could not \
+                "a step passed a limit position of the loop's closed forms it could not \
                  resolve, at y = {:?}: the motion continues on another assembly branch",
                 y.as_slice()
             ),
         },
+    }
+}
+
+/// A chart margin this small is the chart's edge to rounding (`sqrt(eps)`).
+const EDGE: f64 = 1.5e-8;
+
+/// `cause` (an adaptive run's failure to step on: too many steps, a step size underflow),
+/// or the limit position of a loop's closed forms the last accepted steps were closing on,
+/// or stalled at (margin below [`EDGE`]). At a change point (a parallelogram folding flat)
+/// the closed form's argument touches its domain's edge and comes back, so no stage lands
+/// outside it: adaptive steps passed it and went on, `Ok`, on the other assembly branch (the
+/// crossed linkage), or stalled there (DOP853, Vern9) until `TooManySteps`. Both now stop
+/// with [`Error::SingularPosition`], as the fixed-step methods do.
+#[cold]
+pub fn stalled<F: OdeSystem<D>, const D: usize>(
+    sys: &F,
+    chart: &ChartWatch<D>,
+    cause: Error,
+) -> Error {
+    let t = match cause {
+        Error::TooManySteps { t, .. } | Error::StepSizeUnderflow { t, .. } => t,
+        _ => return cause,
+    };
+    let passed = chart.passed(f64::INFINITY, &|y: &Vector<D>| sys.chart_margin(t, y));
+    match passed.or_else(|| chart.at_edge(EDGE)) {
+        Some((ts, yb)) => passed_limit(ts, &yb, sys.rhs(ts, &yb).err()),
+        None => cause,
+    }
+}
+
+/// For an adaptive run whose window ([`ChartWatch::accept`]) shows a limit position passed
+/// by `t_end`: the error when the window's span, stepped again by RK4 in 256 steps under the
+/// same watch, stops there too; `None` for a near miss the adaptive steps were too long to
+/// tell (a nearly parallelogram linkage turning past its flat positions at `tol = 1e-3`
+/// was stopped: margin 0.03, steps of 0.3 rad).
+#[cold]
+pub fn confirmed<F: OdeSystem<D>, const D: usize>(
+    sys: &F,
+    chart: &ChartWatch<D>,
+    t_end: f64,
+) -> Option<Error> {
+    use crate::integrate::{Integrator, Rk4};
+    let (t0, y0) = chart.oldest()?;
+    match Rk4::new((t_end - t0) / 256.0).solve(sys, t0, y0, t_end, &[]) {
+        Err(e @ Error::SingularPosition { .. }) => Some(e),
+        _ => None,
     }
 }
 

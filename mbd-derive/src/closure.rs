@@ -276,18 +276,35 @@ fn single(
         return None;
     }
     let (cs, ss) = (sym(g, c), sym(g, s));
-    let (p, q) = (g.diff(r, cs), g.diff(r, ss));
-    if [p, q]
-        .iter()
-        .any(|&k| g.depends_on(k, cs) || g.depends_on(k, ss))
-    {
-        return None;
-    }
-    let zero = g.zero();
-    let a = g.substitute(r, &[(cs, zero), (ss, zero)].into());
+    let (p, q, a) = trig_linear(g, r, cs, ss)?;
     let minus_a = g.neg(a);
     let (u, cands) = angle_from(g, p, q, minus_a)?;
     Some((choose(g, &cands, x, env), vec![u]))
+}
+
+/// `(P, Q, A)` with `r = P c + Q s + A` on the circle `c^2 + s^2 = 1`, `P`, `Q`, `A` free of
+/// `c` and `s`: `r` linear in them, or quadratic with `k (c^2 + s^2)` as its only quadratic
+/// part (a distance closure `|A - C|^2 = b^2` written out, the spatial four-bar's), which
+/// is the constant `k` there.
+fn trig_linear(g: &mut Graph, r: Expr, cs: Sym, ss: Sym) -> Option<(Expr, Expr, Expr)> {
+    let free = |g: &Graph, k: Expr| !g.depends_on(k, cs) && !g.depends_on(k, ss);
+    let (p, q) = (g.diff(r, cs), g.diff(r, ss));
+    let zero = g.zero();
+    let at_zero: HashMap<Sym, Expr> = [(cs, zero), (ss, zero)].into();
+    let a = g.substitute(r, &at_zero);
+    if free(g, p) && free(g, q) {
+        return Some((p, q, a));
+    }
+    let (pcc, qss, pcs) = (g.diff(p, cs), g.diff(q, ss), g.diff(p, ss));
+    let same = g.sub(pcc, qss);
+    if !(free(g, pcc) && free(g, qss) && g.is_zero(pcs) && g.is_zero(same)) {
+        return None;
+    }
+    let (p0, q0) = (g.substitute(p, &at_zero), g.substitute(q, &at_zero));
+    let half = g.constant(0.5);
+    let k = g.mul(half, pcc);
+    let a = g.add(a, k);
+    Some((p0, q0, a))
 }
 
 /// `sqrt(1 - u^2)`, built as the derivative of `asin` builds it (so the two share it).

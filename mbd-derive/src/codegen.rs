@@ -613,6 +613,28 @@ fn parameter_checks(
             }
         }
     });
+    // In minimal coordinates of a closed loop, `M = J^T M_bodies J` (`J` the closed form's
+    // Jacobian) with valid parameters fails its factorisation only where `J` loses rank or
+    // grows without bound: a singular position of the chart the `asin`/`acos` domain does not
+    // bound (a five-bar's crank tips meeting). Say so, not "a negative mass".
+    let chart_singular = if eq.closure_domain.is_some() {
+        quote! {
+            match err {
+                ::mbd::__private::Error::MassMatrixNotPositiveDefinite { t }
+                | ::mbd::__private::Error::SingularMassMatrix { t } => ::mbd::__private::Error::SingularPosition {
+                    t,
+                    detail: ::std::string::String::from(
+                        "the mass matrix in the loop's minimal coordinates is singular (every parameter valid): \
+                         the loop is at, or within rounding of, a singular position of its closed form \
+                         (two of its joints meeting, say), where the closure does not determine the motion; \
+                         `#[mechanism(augmented)]` keeps every coordinate and can pass it"),
+                },
+                e => e,
+            }
+        }
+    } else {
+        quote!(err)
+    };
     let code = quote! {
         /// Whether the parameters mean a mechanism: each finite, and every mass, inertia,
         /// stiffness, damping and friction coefficient of its sign. The accelerations report
@@ -628,7 +650,7 @@ fn parameter_checks(
         /// `err`, or the failed parameter check that explains it.
         #[cold]
         fn diagnose(&self, err: ::mbd::__private::Error) -> ::mbd::__private::Error {
-            self.check_parameters().err().unwrap_or(err)
+            self.check_parameters().err().unwrap_or_else(|| #chart_singular)
         }
     };
     (code, eager.map(|_| quote!(self.check_elements(t)?;)))

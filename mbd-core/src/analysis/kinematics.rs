@@ -4,7 +4,7 @@
 //! positions from `Phi(q, t) = 0` (Newton), velocities from `Phi_q qd = -Phi_t`,
 //! accelerations from `Phi_q qdd = gamma`.
 
-use super::{NewtonOptions, assemble, min_norm_solve};
+use super::{NewtonOptions, assemble, max_norm, min_norm_solve};
 use crate::error::{Error, Result};
 use crate::model::{Constrained, Vector};
 
@@ -49,7 +49,11 @@ pub fn kinematics<S: Constrained<N, M>, const N: usize, const M: usize>(
 
 /// The kinematic state at each of `times` (in order), each assembly starting from the
 /// previous state's second-order Taylor prediction `q + qd dt + qdd dt^2 / 2`, which keeps
-/// Newton on the same branch (assembly mode) of the mechanism.
+/// Newton on the same branch (assembly mode) of the mechanism. Where the samples are too
+/// far apart for that prediction (Newton corrects it by more than a quarter of the predicted
+/// move), the interval is marched in halved sub-steps (not returned), so a coarse sampling
+/// cannot land Newton on another branch: a crank-rocker sampled 5 times a turn switched
+/// elbows.
 pub fn kinematic_sweep<S: Constrained<N, M>, const N: usize, const M: usize>(
     sys: &S,
     times: &[f64],
@@ -58,14 +62,50 @@ pub fn kinematic_sweep<S: Constrained<N, M>, const N: usize, const M: usize>(
 ) -> Result<Vec<KinematicState<N>>> {
     let mut out: Vec<KinematicState<N>> = Vec::with_capacity(times.len());
     for &t in times {
-        let guess = match out.last() {
-            Some(s) => {
-                let dt = t - s.t;
-                s.q + s.qd * dt + s.qdd * (0.5 * dt * dt)
-            }
-            None => *q_guess,
+        let next = match out.last() {
+            Some(s) => continued(sys, s, t, opts)?,
+            None => kinematics(sys, t, q_guess, opts)?,
         };
-        out.push(kinematics(sys, t, &guess, opts)?);
+        out.push(next);
     }
     Ok(out)
+}
+
+/// Most halvings of a sub-step in [`continued`]; past them the step is taken as Newton
+/// gives it (at a toggle position no sub-step predicts well, and the error is Newton's).
+const MAX_HALVINGS: u32 = 24;
+
+/// The state at `t` continued from `from` by Taylor-predicted sub-steps, each halved until
+/// Newton moves its prediction by at most a quarter of the predicted move (plus rounding).
+fn continued<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    from: &KinematicState<N>,
+    t: f64,
+    opts: &NewtonOptions,
+) -> Result<KinematicState<N>> {
+    let mut s = *from;
+    let mut h = t - s.t;
+    let mut halvings = 0;
+    loop {
+        let last = (t - s.t).abs() <= h.abs();
+        let tn = if last { t } else { s.t + h };
+        let dt = tn - s.t;
+        let guess = s.q + s.qd * dt + s.qdd * (0.5 * dt * dt);
+        let next = kinematics(sys, tn, &guess, opts);
+        let slack = 1e-9 * (1.0 + max_norm(&s.q));
+        let predicted = next
+            .as_ref()
+            .is_ok_and(|n| max_norm(&(n.q - guess)) <= 0.25 * max_norm(&(guess - s.q)) + slack);
+        if !predicted && halvings < MAX_HALVINGS {
+            h = 0.5 * dt;
+            halvings += 1;
+            continue;
+        }
+        s = next?;
+        if last {
+            return Ok(s);
+        }
+        h = 2.0 * dt;
+        halvings = halvings.saturating_sub(1);
+    }
 }

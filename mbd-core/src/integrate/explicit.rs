@@ -9,6 +9,7 @@ use super::control::{PiController, StiffnessDetector, error_norm_sq};
 use super::non_finite;
 use super::tableau::Erk;
 use super::{Event, Flow, Observer, Options, Recorder, Segment, Solution, Stats, validate_problem};
+use crate::closure::{ChartWatch, confirmed, stalled};
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
 
@@ -283,15 +284,18 @@ where
     let (mut t, mut y) = (t0, y0);
     let mut last = false;
     let mut stiff = StiffnessDetector::new(opts.stiffness_check, M::STIFF_LIMIT);
+    // A change point of a loop's closed forms stepped over or stalled at (`closure::stalled`).
+    let mut chart = ChartWatch::<D>::default();
     loop {
         if stats.n_steps >= opts.max_steps {
-            return Err(Error::TooManySteps {
+            let e = Error::TooManySteps {
                 t,
                 steps: stats.n_steps,
-            });
+            };
+            return Err(stalled(sys, &chart, e));
         }
         if M::underflow(h, t) || h.is_nan() {
-            return Err(Error::StepSizeUnderflow { t, h });
+            return Err(stalled(sys, &chart, Error::StepSizeUnderflow { t, h }));
         }
         let mut land = None;
         if t + 1.01 * h - t1 > 0.0 {
@@ -377,6 +381,13 @@ where
                 stats.n_rhs += 1;
                 f_acc = rhs_finite(sys, t_new, &y_acc, t_new)?;
             }
+        }
+        if chart
+            .accept(t_new, &y_acc, |y| sys.chart_margin(t_new, y))
+            .is_some()
+            && let Some(e) = confirmed(sys, &chart, t_new)
+        {
+            return Err(e);
         }
         // The segment interpolates the step as computed (before any projection).
         let flow = if !rec.needs_segment_to(t_new) {

@@ -23,6 +23,7 @@ use super::{
     Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
     validate_problem,
 };
+use crate::closure::{ChartWatch, confirmed, stalled};
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, OdeSystem, Vector};
@@ -397,6 +398,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
         let mut singular = 0;
         // Step and error of the last accepted step, for Gustafsson's controller.
         let (mut h_acc, mut err_acc) = (h, 1.0);
+        let mut chart = ChartWatch::<D>::default();
 
         loop {
             if refresh == Refresh::Jacobian {
@@ -423,17 +425,22 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
 
             // One attempt at the step [t, t + h].
             if self.stats.n_steps >= self.opts.max_steps {
-                return Err(Error::TooManySteps {
+                let e = Error::TooManySteps {
                     t,
                     steps: self.stats.n_steps,
-                });
+                };
+                return Err(stalled(self.sys, &chart, e));
             }
             if !last && h < 16.0 * f64::EPSILON * t.abs() {
-                return Err(match setback {
-                    Setback::NonFinite => Error::NonFinite { t },
-                    Setback::Newton => Error::NewtonFailed { t, h },
-                    Setback::ErrorTest | Setback::None => Error::StepSizeUnderflow { t, h },
-                });
+                return Err(stalled(
+                    self.sys,
+                    &chart,
+                    match setback {
+                        Setback::NonFinite => Error::NonFinite { t },
+                        Setback::Newton => Error::NewtonFailed { t, h },
+                        Setback::ErrorTest | Setback::None => Error::StepSizeUnderflow { t, h },
+                    },
+                ));
             }
             self.stats.n_steps += 1;
             let z_start = match &previous {
@@ -509,6 +516,14 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
             }
             if !y1.iter().all(|v| v.is_finite()) {
                 return Err(Error::NonFinite { t: t_new });
+            }
+            // A change point of a loop's closed forms stepped over (`closure::ChartWatch`).
+            if chart
+                .accept(t_new, &y1, |y| self.sys.chart_margin(t_new, y))
+                .is_some()
+                && let Some(e) = confirmed(self.sys, &chart, t_new)
+            {
+                return Err(e);
             }
             let segment = collocation_segment(t, h, &y, a, &y1);
             let coeffs = [segment.coeffs[1], segment.coeffs[2], segment.coeffs[3]];
