@@ -222,139 +222,15 @@ fn quadrature_reference_is_the_reduction() {
     assert!(worst < 1e-9, "{worst:e}");
 }
 
-/// The assembly with its closure residual written by hand in a form without cancellation:
-/// loop `i` closes where coupler `i`'s tip (crank `i` at `c_i` from the pin at `i l`, then
-/// the coupler at the absolute angle `s = c_i + k_i`) meets crank `i + 1`'s tip (pin at
-/// `(i + 1) l`): `l (cos c_i + cos s - 1 - cos c_{i+1})` and `l (sin c_i + sin s - sin
-/// c_{i+1})`, with `cos a - cos b = -2 sin((a + b)/2) sin((a - b)/2)`, `sin a - sin b = 2
-/// cos((a + b)/2) sin((a - b)/2)` and `cos s - 1 = -2 sin^2(s/2)`. The generated residual
-/// sums the pins' ground positions (up to 40 m: rounding 7e-15); this one rounds relative
-/// to its own size, so a state rebuilt on it lies on the exact constraints to rounding.
-struct HandResidual<'a>(&'a FourBarAssembly);
-
-impl mbd::Mechanism<{ fa::N }> for HandResidual<'_> {
-    const COORDINATES: [&'static str; fa::N] =
-        <FourBarAssembly as mbd::Mechanism<{ fa::N }>>::COORDINATES;
-    fn mass_matrix(&self, t: f64, q: &mbd::Vector<{ fa::N }>) -> mbd::Matrix<{ fa::N }, { fa::N }> {
-        self.0.mass_matrix(t, q)
-    }
-    fn forces(
-        &self,
-        t: f64,
-        q: &mbd::Vector<{ fa::N }>,
-        qd: &mbd::Vector<{ fa::N }>,
-    ) -> mbd::Vector<{ fa::N }> {
-        self.0.forces(t, q, qd)
-    }
-    fn acceleration(
-        &self,
-        t: f64,
-        q: &mbd::Vector<{ fa::N }>,
-        qd: &mbd::Vector<{ fa::N }>,
-    ) -> mbd::Result<mbd::Vector<{ fa::N }>> {
-        self.0.acceleration(t, q, qd)
-    }
-    fn energy(&self, t: f64, q: &mbd::Vector<{ fa::N }>, qd: &mbd::Vector<{ fa::N }>) -> f64 {
-        self.0.energy(t, q, qd)
-    }
-}
-
-impl mbd::Constrained<{ fa::N }, { fa::M }> for HandResidual<'_> {
-    fn phi(&self, _t: f64, q: &mbd::Vector<{ fa::N }>) -> mbd::Vector<{ fa::M }> {
-        let l = self.0.l;
-        let mut p = mbd::Vector::<{ fa::M }>::zeros();
-        for i in 0..fa::LOOPS {
-            let (a, b, s) = (q[2 * i], q[2 * i + 2], q[2 * i] + q[2 * i + 1]);
-            let (mean, half) = (0.5 * (a + b), 0.5 * (a - b));
-            p[2 * i] = l * (-2.0 * mean.sin() * half.sin() - 2.0 * (0.5 * s).sin().powi(2));
-            p[2 * i + 1] = l * (2.0 * mean.cos() * half.sin() + s.sin());
-        }
-        p
-    }
-    fn phi_q(&self, t: f64, q: &mbd::Vector<{ fa::N }>) -> mbd::Matrix<{ fa::M }, { fa::N }> {
-        self.0.phi_q(t, q)
-    }
-    fn phi_t(&self, t: f64, q: &mbd::Vector<{ fa::N }>) -> mbd::Vector<{ fa::M }> {
-        self.0.phi_t(t, q)
-    }
-    fn gamma(
-        &self,
-        t: f64,
-        q: &mbd::Vector<{ fa::N }>,
-        qd: &mbd::Vector<{ fa::N }>,
-    ) -> mbd::Vector<{ fa::M }> {
-        self.0.gamma(t, q, qd)
-    }
-    fn acceleration_and_multipliers(
-        &self,
-        t: f64,
-        q: &mbd::Vector<{ fa::N }>,
-        qd: &mbd::Vector<{ fa::N }>,
-    ) -> mbd::Result<(mbd::Vector<{ fa::N }>, mbd::Vector<{ fa::M }>)> {
-        self.0.acceleration_and_multipliers(t, q, qd)
-    }
-}
-
-/// The parallelogram state with every crank at `th` turning at `w` (couplers translating).
-fn parallelogram(th: f64, w: f64) -> mbd::Vector<{ fa::D }> {
-    mbd::Vector::<{ fa::D }>::from_fn(|i, _| {
-        let crank = (i % fa::N) % 2 == 0;
-        let value = if i < fa::N { th } else { w };
-        if crank { value } else { -value }
-    })
-}
-
-/// The right-hand side the bridge integrates (`mbd::partition::Partitioned`) near a flat
-/// position, against the reduction: on the parallelogram at `d` rad from flat, turning at
-/// the energy's rate, every crank's acceleration is `th'' = -k cos d` (module docs). Its
-/// rates and accelerations come from a QR of `Phi_d`, whose condition grows like `1/d`; the
-/// rates' error goes into `gamma` and is divided by `d` again. Unrefined it was 8e-11 off at
-/// 0.1 rad, 1.2e-9 at 0.03 and 4.8e-8 at 3e-3; refined against residuals summed in twice
-/// the precision, 1e-12 .. 3e-11 (the index-1 solve's own accuracy on these states). The
-/// residual is the hand-written one above, so that the positions rebuilt are the exact
-/// ones: with the generated residual's 7e-15 rounding, the positions move by `7e-15 / d`
-/// and the accelerations by that over `d^2` (3.6e-8 at 1e-2 rad).
-#[test]
-fn partitioned_accelerations_near_flat_match_the_reduction() {
-    use mbd::OdeSystem;
-    let a = FourBarAssembly::benchmark();
-    let hand = HandResidual(&a);
-    let r = fa::Reduced::of(&a);
-    let k = r.moment / r.inertia;
-    let start = parallelogram(0.05, -4.0)
-        .fixed_rows::<{ fa::N }>(0)
-        .into_owned();
-    let view =
-        mbd::partition::Partitioned::<_, { fa::N }, { fa::M }>::new(&hand, 0.0, &start, fa::M)
-            .unwrap();
-    for d in [0.1, 0.03, 0.01, 3e-3] {
-        // Turned by pi/2 - d from the start's th = pi/2, th' = -1.
-        let w = -(1.0 + 4.0 * k * (0.5 * (std::f64::consts::FRAC_PI_2 - d)).sin().powi(2)).sqrt();
-        view.forget();
-        let f = view.rhs(0.0, &parallelogram(d, w)).unwrap();
-        let worst = (0..=fa::LOOPS)
-            .map(|i| {
-                (f[fa::N + 2 * i] + k * d.cos())
-                    .abs()
-                    .max((f[2 * i] - w).abs())
-            })
-            .fold(0.0, f64::max);
-        assert!(
-            worst < 1e-10,
-            "d = {d}: cranks' accelerations or rates {worst:e} off"
-        );
-    }
-}
-
 /// DOPRI5 through the ordinary solve over the first 3 s (three flat positions), against
 /// the quadrature reference: the error converges with the tolerance, at least fourfold a
-/// decade from 1e-7 to 1e-10 (measured 4.1e-8 at 1e-9, 3.8e-9 at 1e-10), and no run
-/// returns `Ok` off the parallelogram. From 1e-11 on it stops falling: each step across a
-/// flat position carries the generated closure residual's rounding (7e-15, the pins' ground
-/// positions up to 40 m) into the rebuilt positions over the distance `d` from flat, and
-/// into the accelerations over `d^3` (the test above: exact with a residual written
-/// without cancellation), about `1e-10` rad/s per passage, which the slow turn over the
-/// top multiplies; measured 1.2e-9 at 1e-11 and 1.6e-9 .. 5.8e-9 at 1e-12 (docs/STABILITY.md).
+/// decade from 1e-7 to 1e-10 (measured 4.7e-6, 4.4e-7, 3.9e-8, 3.7e-9), and no run
+/// returns `Ok` off the parallelogram. From 1e-11 on it stops falling (measured 4.0e-9 at
+/// 1e-11, 1.6e-9 at 1e-12): the bridge's right-hand side near a flat position rebuilds the
+/// dependent positions from the generated closure residual, whose rounding (7e-15: it sums
+/// the pins' ground positions, up to 40 m) moves them by `7e-15 / d` at `d` rad from flat
+/// and the accelerations by that over `d^2`; a step across the instant then carries about
+/// `1e-10` rad/s, which the slow turn over the top multiplies (docs/STABILITY.md).
 #[test]
 fn dopri5_error_converges_with_the_tolerance_to_the_floor() {
     use mbd::integrate::Integrator;
