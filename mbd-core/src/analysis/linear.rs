@@ -138,7 +138,7 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
         what: "modes",
         detail: "the Schur iteration did not converge".into(),
     })?;
-    let mut out = Vec::new();
+    let mut out: Vec<Mode> = Vec::new();
     for lambda in eigenvalues.iter().copied() {
         let modulus = lambda.norm();
         // A pair once; neutral eigenvalues each (a double zero may come out as `+-i eps`).
@@ -164,7 +164,7 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
             },
             damping_ratio: (!neutral).then(|| -lambda.re / modulus),
             unstable: lambda.re > tol,
-            shape: shape(&a, lambda, norm),
+            shape: shape(&a, lambda, norm, &repeated(&out, lambda, tol)),
         });
     }
     out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
@@ -187,12 +187,52 @@ fn eigenvalues(a: &DMatrix<f64>) -> Option<DVector<Complex<f64>>> {
     schur(&h * a * &h).map(|s| s.complex_eigenvalues())
 }
 
+/// The shapes already found for eigenvalues within `tol` of `lambda` (a repeated one).
+fn repeated(found: &[Mode], lambda: Complex<f64>, tol: f64) -> Vec<DVector<Complex<f64>>> {
+    found
+        .iter()
+        .filter(|m| (m.eigenvalue - lambda).norm() <= tol)
+        .map(|m| m.shape.clone())
+        .collect()
+}
+
 /// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it
-/// (three solves; an exactly singular shift is moved further).
-fn shape(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> DVector<Complex<f64>> {
+/// (three solves; an exactly singular shift is moved further). A repeated eigenvalue's
+/// later shapes are kept orthogonal to its earlier ones (`others`), so a semisimple one
+/// (two identical uncoupled oscillators) gets independent shapes spanning its eigenspace;
+/// a defective one (a Jordan block: a free coordinate's double zero) has a single
+/// eigenvector, which is then repeated.
+fn shape(
+    a: &DMatrix<f64>,
+    lambda: Complex<f64>,
+    norm: f64,
+    others: &[DVector<Complex<f64>>],
+) -> DVector<Complex<f64>> {
+    let plain = inverse_iteration(a, lambda, norm, &[]);
+    if others.is_empty() {
+        return plain;
+    }
+    let v = inverse_iteration(a, lambda, norm, others);
+    let ac = a.map(|x| Complex::new(x, 0.0));
+    let residual = (&ac * &v - &v * lambda).norm();
+    if residual <= 1e-6 * norm.max(f64::MIN_POSITIVE) * v.norm() {
+        v
+    } else {
+        plain
+    }
+}
+
+/// Inverse iteration on `lambda` with each iterate made orthogonal to `others`.
+fn inverse_iteration(
+    a: &DMatrix<f64>,
+    lambda: Complex<f64>,
+    norm: f64,
+    others: &[DVector<Complex<f64>>],
+) -> DVector<Complex<f64>> {
     let n = a.nrows();
     let ac = a.map(|v| Complex::new(v, 0.0));
     let mut v = DVector::from_fn(n, |i, _| Complex::new(1.0, 0.1 * i as f64));
+    orthogonalise(&mut v, others);
     for k in 0..4 {
         let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * norm.max(1.0);
         let lu = (&ac - DMatrix::<Complex<f64>>::identity(n, n) * shift).lu();
@@ -204,12 +244,25 @@ fn shape(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> DVector<Complex<f
                 Some(w) if w.iter().all(|x| x.re.is_finite() && x.im.is_finite()) => v = w,
                 _ => break,
             }
+            orthogonalise(&mut v, others);
             let big = largest(&v);
             v /= big;
         }
         return v;
     }
     v
+}
+
+/// Gram-Schmidt (twice, for rounding) of `v` against `others`.
+fn orthogonalise(v: &mut DVector<Complex<f64>>, others: &[DVector<Complex<f64>>]) {
+    for _ in 0..2 {
+        for u in others {
+            let uu = u.dotc(u);
+            if uu.norm() > 0.0 {
+                *v -= u * (u.dotc(v) / uu);
+            }
+        }
+    }
 }
 
 /// The entry of largest modulus (1 for a zero vector).
@@ -221,10 +274,17 @@ fn largest(v: &DVector<Complex<f64>>) -> Complex<f64> {
         .unwrap_or(Complex::new(1.0, 0.0))
 }
 
+/// Eigenvalues of `K v = w^2 M v` with `|w^2| <= NEUTRAL_W2 max |w^2|` are rigid-body
+/// (zero-frequency) modes and are returned as exactly `w^2 = 0`: their computed values are
+/// rounding of either sign (`O(eps cond(M) |K|)`), and a negative one would read as
+/// unstable.
+pub const NEUTRAL_W2: f64 = 1e-10;
+
 /// A mode of `K v = w^2 M v`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NormalMode<const N: usize> {
-    /// `w^2` in (rad/s)^2; negative at an unstable equilibrium.
+    /// `w^2` in (rad/s)^2; negative at an unstable equilibrium, exactly 0 for a rigid-body
+    /// mode (see [`NEUTRAL_W2`]).
     pub omega_squared: f64,
     /// `v`, mass-normalised (`v^T M v = 1`).
     pub shape: Vector<N>,
@@ -239,7 +299,8 @@ impl<const N: usize> NormalMode<N> {
 
 /// The modes of an undamped conservative model at its equilibrium `q` (at rest), slowest
 /// first: `K v = w^2 M v` with `K = -M dqdd/dq` from the exact Jacobian, reduced by the
-/// Cholesky factor of `M` to a symmetric eigenproblem.
+/// Cholesky factor of `M` to a symmetric eigenproblem. Rigid-body modes have `w^2 = 0`
+/// ([`NEUTRAL_W2`]).
 ///
 /// Errors ([`Error::InvalidInput`]) when `q` is not an equilibrium (`|qdd| > 1e-9 |A|`),
 /// when the model is damped (`dqdd/dqd != 0` at rest), when `K` is not symmetric (to
@@ -290,11 +351,18 @@ where
     let c = &linv * dk * linv.transpose();
     let eig = SymmetricEigen::try_new(c, f64::EPSILON, 10_000)
         .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
+    let top = eig.eigenvalues.amax();
     let mut out: Vec<NormalMode<N>> = (0..N)
         .map(|i| {
             let v = linv.transpose() * eig.eigenvectors.column(i);
+            let w2 = eig.eigenvalues[i];
             NormalMode {
-                omega_squared: eig.eigenvalues[i],
+                // A rigid-body mode comes out as a rounding-size `w^2` of either sign.
+                omega_squared: if w2.abs() <= NEUTRAL_W2 * top {
+                    0.0
+                } else {
+                    w2
+                },
                 shape: Vector::<N>::from_fn(|r, _| v[r]),
             }
         })

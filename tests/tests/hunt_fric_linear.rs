@@ -1,0 +1,217 @@
+//! Hunting linear-analysis defects as a new user: repeated eigenvalues, rigid-body (zero
+//! frequency) modes, proportional damping, a state space with a feed-through, frequency
+//! responses, and operating points that are not equilibria. Each reference is derived
+//! beside its test.
+
+use mbd::analysis::linear::{
+    ModeKind, constrained_modes, linearize, modes, state_space, undamped_modes,
+};
+use mbd::prelude::*;
+use nalgebra::{Complex, DMatrix};
+
+/// Two identical pendulums (point masses on massless rods), not coupled: the same
+/// frequency twice, `w^2 = g / l`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(a, b)]
+#[particle(p1, mass = m, at = [l * sin(a), -l * cos(a)])]
+#[particle(p2, mass = m, at = [d + l * sin(b), -l * cos(b)])]
+pub struct Twins {
+    pub m: f64,
+    pub l: f64,
+    pub d: f64,
+    pub g: f64,
+}
+
+const TWINS: Twins = Twins {
+    m: 0.5,
+    l: 0.8,
+    d: 2.0,
+    g: 9.81,
+};
+
+/// A repeated eigenvalue `+-i sqrt(g / l)` of multiplicity two (semisimple: the
+/// pendulums swing independently). `modes` must report the pair twice with two
+/// independent shapes spanning its eigenspace (each satisfying `A v = lambda v`), as
+/// `undamped_modes` does with two `M`-orthonormal shapes.
+#[test]
+fn a_repeated_frequency_has_two_independent_shapes() {
+    let w = (TWINS.g / TWINS.l).sqrt();
+    let a = linearize(&TWINS, 0.0, &Vector::<4>::zeros()).unwrap();
+    let found = modes(&a).unwrap();
+    assert_eq!(found.len(), 2);
+    let ad = DMatrix::from_iterator(4, 4, a.iter().copied()).map(|v| Complex::new(v, 0.0));
+    for m in &found {
+        assert_eq!(m.kind, ModeKind::Oscillatory);
+        assert!((m.omega_d - w).abs() < 1e-12 * w, "{}", m.omega_d);
+        let residual = (&ad * &m.shape - &m.shape * m.eigenvalue).norm();
+        assert!(residual < 1e-10, "A v - lambda v = {residual:.3e}");
+    }
+    // Independent: the 4 x 2 matrix of the two shapes has rank two (its smallest singular
+    // value is of the order of the shapes themselves, which are scaled to a largest entry 1).
+    let s = DMatrix::from_columns(&[found[0].shape.clone(), found[1].shape.clone()]);
+    let sv = s.singular_values();
+    assert!(sv.min() > 1e-3, "the two shapes are parallel: {sv}");
+
+    let normal = undamped_modes(&TWINS, 0.0, &Vector::<2>::zeros()).unwrap();
+    let mass = TWINS.m * TWINS.l * TWINS.l;
+    for nm in &normal {
+        assert!((nm.omega_squared - w * w).abs() < 1e-12 * w * w);
+    }
+    let cross = normal[0].shape.dot(&normal[1].shape) * mass;
+    assert!(cross.abs() < 1e-12, "not M-orthogonal: {cross}");
+}
+
+/// Two masses on a line joined by a spring `k` of rest length `l0`, free otherwise: a
+/// rigid-body translation (`w = 0`, shape `(1, 1) / sqrt(m1 + m2)` mass-normalised) and
+/// the stretch at `w^2 = k (1 / m1 + 1 / m2)`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(x1, x2)]
+#[particle(p1, mass = m1, at = [x1, 0.0])]
+#[particle(p2, mass = m2, at = [x2, 0.0])]
+#[spring(s, from = p1, to = p2, k = k, length = l0)]
+pub struct FreePair {
+    pub m1: f64,
+    pub m2: f64,
+    pub k: f64,
+    pub l0: f64,
+}
+
+/// The rigid-body mode is a mode at zero frequency, not an unstable one: its
+/// `frequency_hz` is `Some(0)` (to rounding), and `modes` of `A` calls its double zero
+/// neutral and stable.
+#[test]
+fn a_free_pair_has_a_zero_frequency_rigid_body_mode() {
+    for (m1, m2, k, l0) in [
+        (1.5, 0.7, 12.0, 0.4),
+        (1.0, 1.0, 1.0, 1.0),
+        (0.3, 7.0, 1e4, 2.5),
+        (1e-3, 2.0, 5.0, 0.1),
+        (3.7, 0.11, 0.9, 3.3),
+    ] {
+        rigid_body_mode(&FreePair { m1, m2, k, l0 });
+    }
+}
+
+fn rigid_body_mode(pair: &FreePair) {
+    let rest = Vector::<2>::new(0.0, pair.l0);
+    let found = undamped_modes(pair, 0.0, &rest).unwrap();
+    let stretch = pair.k * (1.0 / pair.m1 + 1.0 / pair.m2);
+    assert!(found[0].omega_squared.abs() < 1e-12 * stretch);
+    let hz = found[0].frequency_hz();
+    assert!(
+        hz.is_some_and(|f| f.abs() < 1e-6),
+        "rigid-body mode: {hz:?} (w^2 = {:e})",
+        found[0].omega_squared
+    );
+    let rigid = 1.0 / (pair.m1 + pair.m2).sqrt();
+    let sign = found[0].shape[0].signum();
+    assert!((found[0].shape[0] * sign - rigid).abs() < 1e-12);
+    assert!((found[0].shape[1] * sign - rigid).abs() < 1e-12);
+    assert!((found[1].omega_squared - stretch).abs() < 1e-12 * stretch);
+    let want_hz = stretch.sqrt() / std::f64::consts::TAU;
+    assert!((found[1].frequency_hz().unwrap() - want_hz).abs() < 1e-12 * want_hz);
+
+    let y = Vector::<4>::new(0.0, pair.l0, 0.0, 0.0);
+    let m = modes(&linearize(pair, 0.0, &y).unwrap()).unwrap();
+    assert_eq!(m.len(), 3);
+    assert_eq!(
+        (m[0].kind, m[1].kind),
+        (ModeKind::Neutral, ModeKind::Neutral)
+    );
+    assert!(m.iter().all(|m| !m.unstable));
+    assert_eq!(m[2].kind, ModeKind::Oscillatory);
+    assert!((m[2].omega_d - stretch.sqrt()).abs() < 1e-12 * stretch.sqrt());
+}
+
+/// An upright pendulum (`q` from the upward vertical): `q'' = (g / l) sin q`, so about
+/// `q = 0` the eigenvalues are `+-sqrt(g / l)`, one unstable, and `undamped_modes` gives
+/// `w^2 = -g / l` with no frequency.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[coords(q)]
+#[particle(bob, mass = m, at = [l * sin(q), l * cos(q)])]
+pub struct Upright {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+#[test]
+fn an_inverted_pendulum_diverges_at_the_closed_form_rate() {
+    let p = Upright {
+        m: 0.3,
+        l: 0.6,
+        g: 9.81,
+    };
+    let s = (p.g / p.l).sqrt();
+    let a = linearize(&p, 0.0, &Vector::<2>::zeros()).unwrap();
+    assert_eq!((a[(0, 0)], a[(0, 1)], a[(1, 1)]), (0.0, 1.0, 0.0));
+    assert!((a[(1, 0)] - s * s).abs() < 1e-14 * s * s);
+    let found = modes(&a).unwrap();
+    assert_eq!(found.len(), 2);
+    let (down, up) = if found[0].eigenvalue.re < 0.0 {
+        (&found[0], &found[1])
+    } else {
+        (&found[1], &found[0])
+    };
+    assert_eq!((down.kind, up.kind), (ModeKind::Real, ModeKind::Real));
+    assert!((up.eigenvalue.re - s).abs() < 1e-13 * s && up.unstable);
+    assert!((down.eigenvalue.re + s).abs() < 1e-13 * s && !down.unstable);
+    assert_eq!(up.damping_ratio, Some(-1.0));
+    let normal = undamped_modes(&p, 0.0, &Vector::<1>::zeros()).unwrap();
+    assert!((normal[0].omega_squared + s * s).abs() < 1e-13 * s * s);
+    assert_eq!(normal[0].frequency_hz(), None);
+}
+
+/// Two equal masses `m` in a row from a wall, springs `k` (wall to 1, 1 to 2) with dampers
+/// `c = beta k` beside them (stiffness-proportional damping). `K = k [[2, -1], [-1, 1]]`,
+/// `M = m I`: `w^2 = (k / m) (3 -+ sqrt(5)) / 2`, and since `C = beta K` the modes decouple
+/// with `2 zeta w = beta w^2`, `zeta = beta w / 2`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(x1, x2)]
+#[point(wall, at = [0.0, 0.0])]
+#[particle(p1, mass = m, at = [x1, 0.0])]
+#[particle(p2, mass = m, at = [x2, 0.0])]
+#[spring(s1, from = wall, to = p1, k = k, length = l0)]
+#[spring(s2, from = p1, to = p2, k = k, length = l0)]
+#[damper(d1, from = wall, to = p1, c = beta * k)]
+#[damper(d2, from = p1, to = p2, c = beta * k)]
+pub struct DampedRow {
+    pub m: f64,
+    pub k: f64,
+    pub l0: f64,
+    pub beta: f64,
+}
+
+#[test]
+fn proportional_damping_has_the_closed_form_damping_ratios() {
+    let p = DampedRow {
+        m: 2.0,
+        k: 50.0,
+        l0: 1.0,
+        beta: 0.04,
+    };
+    let y = Vector::<4>::new(p.l0, 2.0 * p.l0, 0.0, 0.0);
+    let found = modes(&linearize(&p, 0.0, &y).unwrap()).unwrap();
+    assert_eq!(found.len(), 2);
+    let s5 = 5f64.sqrt();
+    for (m, r) in found.iter().zip([(3.0 - s5) / 2.0, (3.0 + s5) / 2.0]) {
+        let w = (p.k / p.m * r).sqrt();
+        let zeta = p.beta * w / 2.0;
+        assert_eq!(m.kind, ModeKind::Oscillatory);
+        assert!((m.omega_n - w).abs() < 1e-12 * w, "{} vs {w}", m.omega_n);
+        let z = m.damping_ratio.unwrap();
+        assert!((z - zeta).abs() < 1e-12, "{z} vs {zeta}");
+        assert!((m.omega_d - w * (1.0 - zeta * zeta).sqrt()).abs() < 1e-12 * w);
+    }
+    // Damped: the undamped analysis refuses and says which to use.
+    match undamped_modes(&p, 0.0, &Vector::<2>::new(p.l0, 2.0 * p.l0)) {
+        Err(Error::InvalidInput { detail, .. }) => assert!(detail.contains("modes"), "{detail}"),
+        other => panic!("{other:?}"),
+    }
+}
