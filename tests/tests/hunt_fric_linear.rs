@@ -215,3 +215,87 @@ fn proportional_damping_has_the_closed_form_damping_ratios() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A block on a spring and a damper to a wall, pushed by an input force `u`, with its
+/// position, velocity and acceleration as outputs. By hand, `m x'' = -k (x - l0) - c x' + u`:
+/// `A = [[0, 1], [-k/m, -c/m]]`, `B = [0, 1/m]`; the position has `C = [1, 0]`, the velocity
+/// `[0, 1]`, the acceleration `[-k/m, -c/m]` with a feed-through `D = 1/m`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(x)]
+#[point(wall, at = [0.0, 0.0])]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[spring(s, from = wall, to = block, k = k, length = l0)]
+#[damper(d, from = wall, to = block, c = c)]
+#[generalized_force(push, along = x, value = u)]
+#[input(u)]
+#[output(pos = x, vel = der(x), acc = acceleration(block)[0])]
+pub struct Pushed {
+    pub m: f64,
+    pub k: f64,
+    pub c: f64,
+    pub l0: f64,
+    pub u: f64,
+}
+
+const PUSHED: Pushed = Pushed {
+    m: 2.0,
+    k: 18.0,
+    c: 1.2,
+    l0: 0.5,
+    u: 0.0,
+};
+
+#[test]
+fn a_pushed_block_has_the_hand_state_space_with_feed_through() {
+    let p = &PUSHED;
+    let ss = state_space(p, 0.0, &Vector::<2>::new(p.l0, 0.0)).unwrap();
+    assert_eq!(ss.inputs, vec!["u"]);
+    assert_eq!(ss.outputs, vec!["pos", "vel", "acc"]);
+    let (km, cm) = (p.k / p.m, p.c / p.m);
+    let want_a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -km, -cm]);
+    let want_b = DMatrix::from_row_slice(2, 1, &[0.0, 1.0 / p.m]);
+    let want_c = DMatrix::from_row_slice(3, 2, &[1.0, 0.0, 0.0, 1.0, -km, -cm]);
+    let want_d = DMatrix::from_row_slice(3, 1, &[0.0, 0.0, 1.0 / p.m]);
+    for (got, want, name) in [
+        (&ss.a, &want_a, "A"),
+        (&ss.b, &want_b, "B"),
+        (&ss.c, &want_c, "C"),
+        (&ss.d, &want_d, "D"),
+    ] {
+        assert!((got - want).amax() < 1e-14, "{name}: {got} vs {want}");
+    }
+}
+
+/// The frequency response `G(i w) = C (i w I - A)^-1 B + D` of the pushed block: the
+/// receptance `x / u = 1 / (k - m w^2 + i c w)`, the mobility `i w` times it and the
+/// accelerance `-w^2` times it. At resonance of the undamped block (`c = 0`, `w^2 = k/m`)
+/// `i w` is an eigenvalue of `A`: a typed error, not an infinity.
+#[test]
+fn the_frequency_response_is_the_receptance_by_hand() {
+    let p = &PUSHED;
+    let ss = state_space(p, 0.0, &Vector::<2>::new(p.l0, 0.0)).unwrap();
+    for w in [0.0, 0.5, 3.0, 2.9, 40.0] {
+        let g = ss.frequency_response(w).unwrap();
+        assert_eq!((g.nrows(), g.ncols()), (3, 1));
+        let iw = Complex::new(0.0, w);
+        let x = Complex::new(1.0, 0.0) / Complex::new(p.k - p.m * w * w, p.c * w);
+        for (got, want) in [
+            (g[(0, 0)], x),
+            (g[(1, 0)], iw * x),
+            (g[(2, 0)], iw * iw * x),
+        ] {
+            assert!(
+                (got - want).norm() < 1e-13 * (1.0 + want.norm()),
+                "w = {w}: {got} vs {want}"
+            );
+        }
+    }
+    let undamped = Pushed { c: 0.0, ..PUSHED };
+    let ss = state_space(&undamped, 0.0, &Vector::<2>::new(p.l0, 0.0)).unwrap();
+    match ss.frequency_response((p.k / p.m).sqrt()) {
+        Err(Error::InvalidInput { what, .. }) => assert_eq!(what, "frequency_response"),
+        other => panic!("{other:?}"),
+    }
+    assert!(ss.frequency_response(f64::NAN).is_err());
+}

@@ -466,6 +466,34 @@ pub struct StateSpace {
     pub outputs: Vec<&'static str>,
 }
 
+impl StateSpace {
+    /// The frequency response `G(i w) = C (i w I - A)^-1 B + D` at `w` rad/s (outputs by
+    /// inputs): the complex amplitude of each output per unit input `e^{i w t}` in steady
+    /// state, meaningful where the operating point is stable.
+    ///
+    /// Errors: [`Error::InvalidInput`] for a non-finite `w` or where `i w` is an eigenvalue
+    /// of `A` (an undamped resonance, a rigid-body mode at `w = 0`: the response is
+    /// unbounded).
+    pub fn frequency_response(&self, w: f64) -> Result<DMatrix<Complex<f64>>> {
+        let bad = |detail: String| Error::InvalidInput {
+            what: "frequency_response",
+            detail,
+        };
+        if !w.is_finite() {
+            return Err(bad(format!("w = {w}")));
+        }
+        let n = self.a.nrows();
+        let c = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
+        let shifted = DMatrix::<Complex<f64>>::identity(n, n) * Complex::new(0.0, w) - c(&self.a);
+        let x = shifted
+            .lu()
+            .solve(&c(&self.b))
+            .filter(|x| x.iter().all(|v| v.re.is_finite() && v.im.is_finite()))
+            .ok_or_else(|| bad(format!("i w is an eigenvalue of A at w = {w}")))?;
+        Ok(c(&self.c) * x + c(&self.d))
+    }
+}
+
 /// `A, B, C, D` at `(t, y)`, exact from one generated evaluation
 /// ([`Parametric::linear_parts`]): `B = df/du`, `C = d out/dy`, `D = d out/du` for the
 /// inputs `u` (`#[input(..)]`) and outputs (`#[output(..)]`).
