@@ -299,3 +299,109 @@ fn the_frequency_response_is_the_receptance_by_hand() {
     }
     assert!(ss.frequency_response(f64::NAN).is_err());
 }
+
+/// A pendulum in Cartesian coordinates held on its circle by a constraint (augmented
+/// form). On the circle the motion is `q'' = -(g / l) sin q` in the angle `q` from the
+/// downward vertical, so at rest at `q0` the linearisation on the manifold is
+/// `dq'' = -(g / l) cos(q0) dq`: `lambda^2 = -(g / l) cos q0`.
+#[derive(Debug, Mechanism)]
+#[mechanism(augmented, jacobian)]
+#[gravity(0.0, -g)]
+#[coords(x, y)]
+#[constraint(x * x + y * y == l * l)]
+#[particle(bob, mass = m, at = [x, y])]
+pub struct CartesianPendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+const CART: CartesianPendulum = CartesianPendulum {
+    m: 0.4,
+    l: 1.3,
+    g: 9.81,
+};
+
+/// Hanging at rest: one oscillatory mode at `sqrt(g / l)`, its shape along the circle's
+/// tangent (`x` only).
+#[test]
+fn a_cartesian_pendulum_has_its_frequency_on_the_constraint() {
+    let w = (CART.g / CART.l).sqrt();
+    let found = constrained_modes(&CART, 0.0, &Vector::<2>::new(0.0, -CART.l)).unwrap();
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].kind, ModeKind::Oscillatory);
+    assert!((found[0].omega_d - w).abs() < 1e-12 * w);
+    assert!(found[0].shape[1].norm() < 1e-12, "{}", found[0].shape);
+}
+
+/// At rest off the bottom the point is not an equilibrium (the bob accelerates along the
+/// circle), but the linearisation there still has a meaning in one coordinate: the
+/// restriction to the tangent space must be `lambda^2 = -(g / l) cos q0`, oscillatory
+/// below the horizontal and a real pair `+-sqrt(g |cos q0| / l)` above it.
+#[test]
+fn constrained_modes_at_rest_off_equilibrium_linearise_along_the_circle() {
+    for q0 in [0.6f64, 1.2, 2.0, 2.9] {
+        let q = Vector::<2>::new(CART.l * q0.sin(), -CART.l * q0.cos());
+        let found = constrained_modes(&CART, 0.0, &q).unwrap();
+        let w2 = CART.g / CART.l * q0.cos();
+        let rate = w2.abs().sqrt();
+        if w2 > 0.0 {
+            assert_eq!(found.len(), 1);
+            assert_eq!(found[0].kind, ModeKind::Oscillatory);
+            assert!((found[0].omega_d - rate).abs() < 1e-12 * rate, "q0 = {q0}");
+        } else {
+            assert_eq!(found.len(), 2);
+            for m in &found {
+                assert_eq!(m.kind, ModeKind::Real);
+                assert!(
+                    (m.eigenvalue.re.abs() - rate).abs() < 1e-12 * rate,
+                    "q0 = {q0}"
+                );
+                assert_eq!(m.unstable, m.eigenvalue.re > 0.0);
+            }
+        }
+    }
+}
+
+/// A spherical pendulum (bob `m` on a rod `l`, `th` from the downward vertical, `ph` about
+/// it) in steady conical motion: `th = th0`, `ph' = W` with `W^2 = g / (l cos th0)`.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, jacobian)]
+#[gravity(0.0, 0.0, -g)]
+#[coords(th, ph)]
+#[particle(bob, mass = m, at = [l * sin(th) * cos(ph), l * sin(th) * sin(ph), -l * cos(th)])]
+pub struct Spherical {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// Linearised about the steady motion (not a rest point: `ph` turns): with
+/// `h = sin^2(th) ph'` conserved, `th'' = h^2 cos th / sin^3 th - (g / l) sin th`, whose
+/// derivative in `th` at the steady state, with `h^2 = W^2 sin^4 th0`, is
+/// `-W^2 (sin^2 + 3 cos^2) - (g / l) cos = -W^2 (1 + 3 cos^2 th0)`. `ph` is cyclic and `h`
+/// conserved, so `A` has a double zero and `+-i w`, `w^2 = W^2 (1 + 3 cos^2 th0)`.
+#[test]
+fn a_conical_pendulum_nutates_at_the_closed_form_rate() {
+    let p = Spherical {
+        m: 0.8,
+        l: 0.9,
+        g: 9.81,
+    };
+    for th0 in [0.3f64, 0.8, 1.3] {
+        let big_w = (p.g / (p.l * th0.cos())).sqrt();
+        let y = Vector::<4>::new(th0, 0.4, 0.0, big_w);
+        // A steady motion: th'' = 0 there.
+        assert!(p.rhs(0.0, &y).unwrap()[2].abs() < 1e-13 * big_w * big_w);
+        let found = modes(&linearize(&p, 0.0, &y).unwrap()).unwrap();
+        let w = big_w * (1.0 + 3.0 * th0.cos().powi(2)).sqrt();
+        assert_eq!(found.len(), 3, "th0 = {th0}: {found:?}");
+        assert_eq!(
+            (found[0].kind, found[1].kind),
+            (ModeKind::Neutral, ModeKind::Neutral)
+        );
+        assert_eq!(found[2].kind, ModeKind::Oscillatory);
+        assert!((found[2].omega_d - w).abs() < 1e-12 * w, "th0 = {th0}");
+        assert!(found[2].damping_ratio.unwrap().abs() < 1e-12);
+    }
+}
