@@ -1,0 +1,455 @@
+//! Hunting friction defects as a new user: Coulomb friction with viscous damping, a normal
+//! force that vanishes at rest (a bead in a turning slot) or changes sign in time, a block
+//! on an accelerating platform, static and kinetic coefficients at the friction angle, a
+//! stick-slip belt over thousands of switches, a tiny coefficient over hundreds of turning
+//! points with the energy it takes, and two contacts tied by a rigid link. Each closed form
+//! is derived beside its test; every run goes through `mbd::hybrid::solve`.
+
+use mbd::Slip;
+use mbd::integrate::{Dop853, Dopri5, Integrator, Radau5, Vern9};
+use mbd::prelude::*;
+use std::f64::consts::PI;
+
+fn tight() -> Options {
+    Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    }
+}
+
+/// Runs the body with four adaptive methods at tight tolerances, naming each and giving
+/// the accuracy its runs reach here (`acc`, in the state's units): 1e-10 for the explicit
+/// methods; Radau IIA's error estimate is of order 3 and its dense output of degree 3, so
+/// at the same tolerances its global error on these runs is a few 1e-10 to 2e-9: 1e-8.
+macro_rules! each_method {
+    (|$name:ident, $m:ident, $acc:ident| $body:block) => {{
+        {
+            let ($name, $m, $acc) = ("DOPRI5", Dopri5::new(tight()), 1e-10);
+            $body
+        }
+        {
+            let ($name, $m, $acc) = ("DOP853", Dop853::new(tight()), 1e-10);
+            $body
+        }
+        {
+            let ($name, $m, $acc) = ("Vern9", Vern9::new(tight()), 1e-10);
+            $body
+        }
+        {
+            let ($name, $m, $acc) = ("Radau5", Radau5::new(tight()), 1e-8);
+            $body
+        }
+    }};
+}
+
+/// A block launched at `v0` along a rough floor with a viscous damper `c` to the wall
+/// behind it (the block stays ahead of the wall, so the damper's rate is `x'`).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[point(wall, at = [0.0, 0.0])]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[damper(d, from = wall, to = block, c = c)]
+#[friction(along = x, mu = mu, normal = m * g)]
+#[init(x = x0, der(x) = v0)]
+pub struct ViscousCoulomb {
+    pub m: f64,
+    pub g: f64,
+    pub c: f64,
+    pub mu: f64,
+    pub x0: f64,
+    pub v0: f64,
+}
+
+/// `m v' = -c v - mu m g` while sliding: with `b = mu m g / c` and `tau = m / c`,
+/// `v = (v0 + b) e^{-t / tau} - b`, zero at `t* = tau ln(1 + v0 / b)`, and
+/// `x = x0 + tau (v0 + b)(1 - e^{-t / tau}) - b t`. After the stop nothing loads it.
+#[test]
+fn viscous_and_coulomb_friction_stop_at_the_closed_form_instant() {
+    let p = ViscousCoulomb {
+        m: 2.0,
+        g: 9.81,
+        c: 3.0,
+        mu: 0.15,
+        x0: 0.5,
+        v0: 4.0,
+    };
+    let (b, tau) = (p.mu * p.m * p.g / p.c, p.m / p.c);
+    let t_stop = tau * (1.0 + p.v0 / b).ln();
+    let x = |t: f64| p.x0 + tau * (p.v0 + b) * (1.0 - (-t / tau).exp()) - b * t;
+    each_method!(|name, method, acc| {
+        let run = mbd::hybrid::solve(&method, &p, 0.0, p.initial_state(), 3.0, &[]).unwrap();
+        assert_eq!(run.switches.len(), 1, "{name}: {:?}", run.switches);
+        assert_eq!(run.switches[0].to, [Slip::Stick]);
+        assert!((run.switches[0].t - t_stop).abs() < acc, "{name}");
+        for t in [0.3, 0.9, t_stop] {
+            let y = run.solution.at(t).unwrap();
+            assert!(
+                (y[0] - x(t)).abs() < acc,
+                "{name}: x({t}) off by {:e}",
+                y[0] - x(t)
+            );
+        }
+        let (_, y) = run.solution.last();
+        assert!((y[0] - x(t_stop)).abs() < acc, "{name}");
+        assert_eq!(y[1], 0.0, "{name}");
+    });
+}
+
+/// A bead in a slot of a rod turned at constant `w` in a horizontal plane (no gravity in
+/// it). `r` along the slot, `n` across it, relaxed: `reaction(n)` is the slot's push on
+/// the bead, which gives it the Coriolis acceleration, `N = 2 m w r'`.
+#[derive(Debug, Mechanism)]
+#[coords(r)]
+#[relaxed(n)]
+#[drive(th = w * t)]
+#[particle(bead, mass = m, at = [r * cos(th) - n * sin(th), r * sin(th) + n * cos(th)])]
+#[friction(along = r, mu = mu, normal = reaction(n))]
+#[init(r = r0, der(r) = v0)]
+pub struct Slot {
+    pub m: f64,
+    pub w: f64,
+    pub mu: f64,
+    pub r0: f64,
+    pub v0: f64,
+}
+
+/// Along the slot `m r'' = m w^2 r - mu |N| sign(r')` with `|N| = 2 m w |r'|`, so in either
+/// direction `r'' + 2 mu w r' - w^2 r = 0`: `r = A e^{l1 t} + B e^{l2 t}`,
+/// `l1,2 = w (-mu +- sqrt(1 + mu^2))`. At rest the normal force, hence the friction bound,
+/// is zero while the centrifugal load `m w^2 r` is not: the bead cannot stick, and a bead
+/// thrown inward stops at `t* = ln(-l2 B / (l1 A)) / (l1 - l2)` and slides back out on the
+/// same curve.
+fn slot_reference(p: &Slot) -> (impl Fn(f64) -> f64, f64) {
+    let s = (1.0 + p.mu * p.mu).sqrt();
+    let (l1, l2) = (p.w * (s - p.mu), p.w * (-s - p.mu));
+    let a = (p.v0 - l2 * p.r0) / (l1 - l2);
+    let b = p.r0 - a;
+    let t_stop = (-l2 * b / (l1 * a)).ln() / (l1 - l2);
+    (
+        move |t: f64| a * (l1 * t).exp() + b * (l2 * t).exp(),
+        t_stop,
+    )
+}
+
+#[test]
+fn a_bead_in_a_turning_slot_cannot_stick_where_its_normal_force_vanishes() {
+    for (v0, turns) in [(0.0, false), (-1.2, true)] {
+        let p = Slot {
+            m: 0.3,
+            w: 2.0,
+            mu: 0.4,
+            r0: 1.0,
+            v0,
+        };
+        let (r, t_stop) = slot_reference(&p);
+        // At rest the bead slides out at once, under no friction.
+        let at_rest = p
+            .acceleration(0.0, &Vector::<1>::new(p.r0), &Vector::<1>::zeros())
+            .unwrap();
+        assert!((at_rest[0] - p.w * p.w * p.r0).abs() < 1e-14);
+        each_method!(|name, method, acc| {
+            let run = mbd::hybrid::solve(&method, &p, 0.0, p.initial_state(), 1.5, &[]).unwrap();
+            assert!(run.switches.iter().all(|s| s.to != [Slip::Stick]), "{name}");
+            if turns {
+                assert!(t_stop > 0.0 && r(t_stop) > 0.0);
+                assert_eq!(run.switches.len(), 1, "{name}: {:?}", run.switches);
+                assert!((run.switches[0].t - t_stop).abs() < acc, "{name}");
+                assert_eq!(run.switches[0].to, [Slip::Forward], "{name}");
+            } else {
+                assert!(run.switches.is_empty(), "{name}: {:?}", run.switches);
+            }
+            for t in [0.2, 0.7, 1.5] {
+                let y = run.solution.at(t).unwrap();
+                let want = r(t);
+                assert!(
+                    (y[0] - want).abs() < acc * want,
+                    "{name}: r({t}) off by {:e}",
+                    y[0] - want
+                );
+            }
+        });
+    }
+}
+
+/// A block at rest, pushed by a constant `p`, with a normal force that falls linearly in
+/// time through zero and grows again on the other side (`|n|` is what bounds friction).
+#[derive(Debug, Mechanism)]
+#[coords(x)]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[generalized_force(push, along = x, value = p)]
+#[friction(along = x, mu_k = mu_k, mu_s = mu_s, normal = n0 - c * t)]
+pub struct Unloading {
+    pub m: f64,
+    pub p: f64,
+    pub n0: f64,
+    pub c: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+}
+
+/// Held while `p <= mu_s |n0 - c t|`: breakaway at `t1 = (n0 - p / mu_s) / c`. Then
+/// `m v' = p - mu_k |n0 - c t|`: up to `t0 = n0 / c`,
+/// `m v = (p - mu_k n0)(t - t1) + mu_k c (t^2 - t1^2) / 2`; after it, with `s = t - t0`,
+/// `m v = m v0 + p s - mu_k c s^2 / 2`, zero at `s* = (p + sqrt(p^2 + 2 mu_k c m v0)) /
+/// (mu_k c)`, where `mu_s |n| = mu_s c s* > p` holds it for good. The distance is the
+/// integral of each.
+#[test]
+fn a_normal_force_through_zero_releases_and_recaptures_the_block() {
+    let p = Unloading {
+        m: 1.0,
+        p: 2.0,
+        n0: 10.0,
+        c: 4.0,
+        mu_k: 0.4,
+        mu_s: 0.5,
+    };
+    let t1 = (p.n0 - p.p / p.mu_s) / p.c;
+    let t0 = p.n0 / p.c;
+    let a = p.p - p.mu_k * p.n0;
+    let cc = p.mu_k * p.c;
+    let x_at_t0 = (a * (t0 - t1).powi(2) / 2.0
+        + cc / 2.0 * ((t0.powi(3) - t1.powi(3)) / 3.0 - t1 * t1 * (t0 - t1)))
+        / p.m;
+    let mv0 = a * (t0 - t1) + cc * (t0 * t0 - t1 * t1) / 2.0;
+    let s_star = (p.p + (p.p * p.p + 2.0 * cc * mv0).sqrt()) / cc;
+    let t_stop = t0 + s_star;
+    let x_stop =
+        x_at_t0 + (mv0 * s_star + p.p * s_star.powi(2) / 2.0 - cc * s_star.powi(3) / 6.0) / p.m;
+    // The numbers by hand: t1 = 1.5, t0 = 2.5, m v0 = 1.2, s* = 3, x = 7 / 15 + 5.4.
+    assert!((t1 - 1.5).abs() < 1e-15 && (s_star - 3.0).abs() < 1e-14);
+    assert!((x_stop - (7.0 / 15.0 + 5.4)).abs() < 1e-13);
+    each_method!(|name, method, acc| {
+        let y0 = Vector::<2>::zeros();
+        let run = mbd::hybrid::solve(&method, &p, 0.0, y0, 8.0, &[]).unwrap();
+        let seen: Vec<_> = run.switches.iter().map(|s| (s.to, s.t)).collect();
+        assert_eq!(run.switches.len(), 2, "{name}: {seen:?}");
+        assert_eq!(run.switches[0].to, [Slip::Forward], "{name}");
+        assert!((run.switches[0].t - t1).abs() < 1e-10, "{name}: {seen:?}");
+        assert_eq!(run.switches[1].to, [Slip::Stick], "{name}");
+        assert!((run.switches[1].t - t_stop).abs() < acc, "{name}: {seen:?}");
+        let y = run.solution.at(t0).unwrap();
+        assert!((y[0] - x_at_t0).abs() < acc, "{name}: x(t0) = {}", y[0]);
+        assert!((y[1] - mv0 / p.m).abs() < acc, "{name}: v(t0) = {}", y[1]);
+        let (_, y) = run.solution.last();
+        assert!(
+            (y[0] - x_stop).abs() < acc,
+            "{name}: rests off by {:e}",
+            y[0] - x_stop
+        );
+        assert_eq!(y[1], 0.0, "{name}");
+    });
+}
+
+/// A block on a platform whose position is driven, `xp = c t^3 / 6` (acceleration `c t`);
+/// `s` is the block's place on the platform, so its sliding velocity is `s'`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(s)]
+#[drive(xp = c * t * t * t / 6.0)]
+#[particle(block, mass = m, at = [xp + s, 0.0])]
+#[friction(along = s, mu_k = mu_k, mu_s = mu_s, normal = m * g)]
+pub struct Platform {
+    pub m: f64,
+    pub g: f64,
+    pub c: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+}
+
+/// Riding along, the block needs the force `m c t`: it holds to `t1 = mu_s g / c`. Then it
+/// slips back (`s' < 0`) with `s'' = -c t + mu_k g`:
+/// `s' = -c (t^2 - t1^2) / 2 + mu_k g (t - t1)`,
+/// `s = -c ((t^3 - t1^3) / 3 - t1^2 (t - t1)) / 2 + mu_k g (t - t1)^2 / 2`; `s'` stays
+/// negative (it would vanish again at `(2 mu_k - mu_s) g / c < t1`).
+#[test]
+fn a_block_on_an_accelerating_platform_slips_at_the_static_limit() {
+    let p = Platform {
+        m: 3.0,
+        g: 9.81,
+        c: 2.5,
+        mu_k: 0.25,
+        mu_s: 0.35,
+    };
+    let t1 = p.mu_s * p.g / p.c;
+    let s = |t: f64| {
+        -p.c * ((t.powi(3) - t1.powi(3)) / 3.0 - t1 * t1 * (t - t1)) / 2.0
+            + p.mu_k * p.g * (t - t1).powi(2) / 2.0
+    };
+    each_method!(|name, method, acc| {
+        let run = mbd::hybrid::solve(&method, &p, 0.0, Vector::<2>::zeros(), 3.0, &[]).unwrap();
+        assert_eq!(run.switches.len(), 1, "{name}: {:?}", run.switches);
+        assert_eq!(run.switches[0].to, [Slip::Backward]);
+        assert!((run.switches[0].t - t1).abs() < 1e-10, "{name}");
+        let held = run.solution.at(0.9 * t1).unwrap();
+        assert_eq!((held[0], held[1]), (0.0, 0.0), "{name}: crept while held");
+        for t in [1.5, 2.2, 3.0] {
+            let y = run.solution.at(t).unwrap();
+            assert!(
+                (y[0] - s(t)).abs() < acc,
+                "{name}: s({t}) = {} vs {}",
+                y[0],
+                s(t)
+            );
+        }
+    });
+}
+
+/// A block on an incline of angle `a` (`s` down the slope, `n` across it, relaxed), with
+/// `mu_k < mu_s`.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(s)]
+#[relaxed(n)]
+#[particle(block, mass = m, at = [s * cos(a) + n * sin(a), -s * sin(a) + n * cos(a)])]
+#[friction(along = s, mu_k = mu_k, mu_s = mu_s, normal = reaction(n))]
+pub struct Slope {
+    pub m: f64,
+    pub g: f64,
+    pub a: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+}
+
+/// From rest the block holds while `tan a <= mu_s` (the load `m g sin a` within
+/// `mu_s m g cos a`), even above the kinetic angle `atan(mu_k)`; a hair above the static
+/// angle it slides with the full kinetic acceleration `g (sin a - mu_k cos a)`, not a
+/// small one: `s = g (sin a - mu_k cos a) t^2 / 2`.
+#[test]
+fn a_block_at_rest_holds_to_the_static_angle_and_jumps_past_it() {
+    let (mu_k, mu_s) = (0.3, 0.5);
+    let base = Slope {
+        m: 4.0,
+        g: 9.81,
+        a: 0.0,
+        mu_k,
+        mu_s,
+    };
+    let (kinetic, fixed) = (mu_k.atan(), mu_s.atan());
+    for (a, holds) in [
+        (0.5 * kinetic, true),
+        (kinetic, true),
+        (0.5 * (kinetic + fixed), true),
+        (fixed - 1e-9, true),
+        (fixed + 1e-9, false),
+        (fixed + 0.1, false),
+    ] {
+        let p = Slope { a, ..base };
+        let down = p.g * (a.sin() - mu_k * a.cos());
+        each_method!(|name, method, _acc| {
+            let run = mbd::hybrid::solve(&method, &p, 0.0, Vector::<2>::zeros(), 2.0, &[]).unwrap();
+            let (_, y) = run.solution.last();
+            if holds {
+                assert_eq!((y[0], y[1]), (0.0, 0.0), "{name} a = {a}");
+                assert_eq!(run.mode, [Slip::Stick], "{name} a = {a}");
+            } else {
+                assert_eq!(run.mode, [Slip::Forward], "{name} a = {a}");
+                assert!(
+                    (y[0] - down * 2.0).abs() < 1e-11,
+                    "{name} a = {a}: {}",
+                    y[0]
+                );
+                assert!(
+                    (y[1] - down * 2.0).abs() < 1e-11,
+                    "{name} a = {a}: {}",
+                    y[1]
+                );
+            }
+        });
+    }
+}
+
+/// The classical stick-slip oscillator: a mass on a spring `k` to a wall, on a belt moving
+/// at `v`; `s` is the mass's place on the belt (`x = v t + s`), friction along `s` with
+/// normal force `m g`.
+#[derive(Debug, Mechanism)]
+#[coords(s)]
+#[drive(b = v * t)]
+#[particle(mass, mass = m, at = [b + s, 0.0])]
+#[point(wall, at = [0.0, 0.0])]
+#[spring(spring, from = wall, to = mass, k = k)]
+#[friction(along = s, mu_k = mu_k, mu_s = mu_s, normal = m * g)]
+pub struct Belt {
+    pub m: f64,
+    pub k: f64,
+    pub g: f64,
+    pub v: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+}
+
+/// The limit cycle by hand (`w^2 = k / m`, `x_s = mu_s g / w^2`, `x_k = mu_k g / w^2`). Stuck,
+/// the mass rides the belt (`x' = v`) until the spring's pull `k x` reaches `mu_s m g` at
+/// `x_s`. Slipping back (`s' < 0`), kinetic friction pushes it forward:
+/// `x'' = -w^2 (x - x_k)`, a circle in `(x - x_k, x' / w)` through `(D, v / w)`,
+/// `D = x_s - x_k`, turned clockwise at rate `w`; slipping ends where `x' = v` again, at the
+/// mirror point `x_a = 2 x_k - x_s`, after the arc `2 pi - 2 atan(w D / v)`, i.e.
+/// `T_slip = (pi + 2 atan(v / (w D))) / w`. There `k |x_a| < mu_s m g`: it sticks, and rides
+/// `2 D` back to `x_s` in `T_stick = 2 D / v`. Started stuck at `x_a`, breakaways fall at
+/// `T_stick + n T` and sticks at `(n + 1) T`, `T = T_stick + T_slip`.
+fn belt_cycle(p: &Belt) -> (f64, f64, f64) {
+    let w = (p.k / p.m).sqrt();
+    let (x_s, x_k) = (p.mu_s * p.g / (w * w), p.mu_k * p.g / (w * w));
+    let d = x_s - x_k;
+    let t_slip = (PI + 2.0 * (p.v / (w * d)).atan()) / w;
+    (2.0 * x_k - x_s, 2.0 * d / p.v, t_slip)
+}
+
+/// Ten thousand switches (5000 periods): every switch in its mode, every period of the
+/// closed-form length. Each period restarts from the same stuck state, so errors do not
+/// compound; but the belt coordinate grows (`s = x - v t`, to 8500 m here) and the
+/// tolerance is relative, `rtol |s|` per step, so a period's error may grow as `rtol t`
+/// (in seconds: the position error over `v`, times `v`): each period is held to
+/// `100 rtol (1 + t)` (about 25 steps a period), and the sum of them bounds the drift.
+#[test]
+fn a_belt_driven_stick_slip_oscillator_keeps_its_limit_cycle_over_ten_thousand_switches() {
+    let p = Belt {
+        m: 1.0,
+        k: 4.0,
+        g: 9.81,
+        v: 0.5,
+        mu_k: 0.3,
+        mu_s: 0.4,
+    };
+    let (x_a, t_stick, t_slip) = belt_cycle(&p);
+    let period = t_stick + t_slip;
+    let periods = 5000;
+    let t1 = period * periods as f64 + 0.5 * t_stick;
+    let opts = Options {
+        max_steps: 10_000_000,
+        dense: false,
+        ..tight()
+    };
+    let rtol = opts.rtol;
+    let method = Dop853::new(opts);
+    let run = mbd::hybrid::solve(&method, &p, 0.0, Vector::<2>::new(x_a, 0.0), t1, &[]).unwrap();
+    assert_eq!(run.switches.len(), 2 * periods);
+    let (mut drift_bound, mut last_stick) = (0.0, 0.0);
+    for (i, sw) in run.switches.iter().enumerate() {
+        let n = (i / 2) as f64;
+        let (want, mode) = if i % 2 == 0 {
+            (t_stick + n * period, [Slip::Backward])
+        } else {
+            ((n + 1.0) * period, [Slip::Stick])
+        };
+        assert_eq!(sw.to, mode, "switch {i}");
+        if i % 2 == 1 {
+            let bound = 100.0 * rtol * (1.0 + sw.t);
+            let err = (sw.t - last_stick - period).abs();
+            assert!(err <= bound, "period {n}: off by {err:e} (bound {bound:e})");
+            drift_bound += bound;
+            last_stick = sw.t;
+        }
+        assert!((sw.t - want).abs() <= drift_bound + 1e-10, "switch {i}");
+    }
+    let (_, y) = run.solution.last();
+    assert_eq!(run.mode, [Slip::Stick]);
+    // Riding the belt since the last stick, which was at `x_a`.
+    let x = y[0] + p.v * t1;
+    let want = x_a + p.v * (t1 - last_stick);
+    assert!(
+        (x - want).abs() < 100.0 * rtol * p.v * t1,
+        "at {x} vs {want}"
+    );
+}
