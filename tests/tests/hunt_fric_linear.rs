@@ -405,3 +405,80 @@ fn a_conical_pendulum_nutates_at_the_closed_form_rate() {
         assert!(found[2].damping_ratio.unwrap().abs() < 1e-12);
     }
 }
+
+/// The bead in a turning slot (horizontal plane) with Coulomb friction whose normal force
+/// is the slot's push, `N = 2 m w r'`, and its Jacobian generated.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(r)]
+#[relaxed(n)]
+#[drive(th = w * t)]
+#[particle(bead, mass = m, at = [r * cos(th) - n * sin(th), r * sin(th) + n * cos(th)])]
+#[friction(along = r, mu = mu, normal = reaction(n))]
+pub struct RoughSlot {
+    pub m: f64,
+    pub w: f64,
+    pub mu: f64,
+}
+
+/// Sliding either way, `r'' = w^2 r - mu |2 w r'| sign(r') = w^2 r - 2 mu w r'`: the
+/// friction force depends on the velocity through the normal force, so
+/// `A = [[0, 1], [w^2, -2 mu w]]`, not the `[[0, 1], [w^2, 0]]` of a constant friction.
+#[test]
+fn a_velocity_dependent_normal_force_enters_the_sliding_jacobian() {
+    let p = RoughSlot {
+        m: 0.3,
+        w: 2.0,
+        mu: 0.4,
+    };
+    for v in [0.7, -0.7] {
+        let y = Vector::<2>::new(1.1, v);
+        let a = linearize(&p, 0.5, &y).unwrap();
+        let want = Matrix::<2, 2>::new(0.0, 1.0, p.w * p.w, -2.0 * p.mu * p.w);
+        assert!((a - want).amax() < 1e-13, "v = {v}: {a} vs {want}");
+    }
+}
+
+/// A pendulum (point mass `m` on a massless arm `l`, a joint tree) with pin friction on the
+/// pin's force along the arm, `R_r = m (g cos th + l th'^2)` (the projection of the joint's
+/// reaction; its tangential part, which carries `th''`, drops out). Sliding,
+/// `m l^2 th'' = -m g l sin th - c m (g cos th + l th'^2) s`, `s = sign(th')`, so
+/// `d th''/d th = (-g cos th + s c g sin th / l) / l` and `d th''/d th' = -2 s c th' / l`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[gravity(0.0, -g)]
+#[body(arm, joint = revolute(th), com = [0.0, -l], mass = m, inertia = 0.0, reaction)]
+#[friction(along = th, mu = c, normal = reaction(arm_rx) * sin(th) - reaction(arm_ry) * cos(th))]
+pub struct PinJ {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+    pub c: f64,
+}
+
+#[test]
+fn pin_friction_on_a_reaction_has_the_closed_form_sliding_jacobian() {
+    let p = PinJ {
+        m: 1.5,
+        l: 0.8,
+        g: 9.81,
+        c: 0.1,
+    };
+    for (th, thd) in [(0.4, 1.3), (-0.2, -0.9), (1.0, -2.0)] {
+        let s = f64::signum(thd);
+        let a = linearize(&p, 0.0, &Vector::<2>::new(th, thd)).unwrap();
+        let d_th = (-p.g * th.cos() + s * p.c * p.g * th.sin() / p.l) / p.l;
+        let d_thd = -2.0 * s * p.c * thd / p.l;
+        assert_eq!((a[(0, 0)], a[(0, 1)]), (0.0, 1.0));
+        assert!(
+            (a[(1, 0)] - d_th).abs() < 1e-12 * d_th.abs().max(1.0),
+            "({th}, {thd}): {} vs {d_th}",
+            a[(1, 0)]
+        );
+        assert!(
+            (a[(1, 1)] - d_thd).abs() < 1e-12 * d_thd.abs().max(1.0),
+            "({th}, {thd}): {} vs {d_thd}",
+            a[(1, 1)]
+        );
+    }
+}
