@@ -113,9 +113,10 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
     let mut rhs = Vector::<A>::zeros();
     rhs.fixed_rows_mut::<N>(0).copy_from(&f);
     rhs.fixed_rows_mut::<M>(N).copy_from(&c.gamma);
-    let x = Lu::factor(k)
-        .ok_or(Error::SingularConstraintJacobian { t })?
-        .solve(&rhs);
+    let x = match Lu::factor(k) {
+        Some(lu) => lu.solve(&rhs),
+        None => redundant(t, c, modes, &k, &rhs)?,
+    };
     let x = finite(t, x)?;
     let mut qdd = x.fixed_rows::<N>(0).into_owned();
     let lambda = x.fixed_rows::<M>(N).into_owned();
@@ -137,6 +138,110 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
         }
     });
     Ok(InModes { qdd, lambda, load })
+}
+
+/// The solve of [`solve_in`] when its matrix is singular. With contacts stuck that is
+/// either an impossible stick (a stuck row contradicting the constraints: a piston at a
+/// dead centre, which the loop moves at second order; [`Error::SingularConstraintJacobian`],
+/// so the modes without it decide) or stuck contacts tied to each other by the constraints
+/// (two blocks joined by a bar): the accelerations are still unique, but the holding loads
+/// are not, only their combination the ties transmit. Then the loads are taken along the
+/// one-dimensional family to spread the load as evenly as the bounds allow (least
+/// `max |h_k| / (mu_s |N_k|)`), so the stick holds exactly when some split of the load
+/// holds. More than one independent tie is refused (an `InvalidInput`), not guessed.
+fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    c: &Contacts<N, M, F>,
+    modes: &[Slip; F],
+    k: &Matrix<A, A>,
+    rhs: &Vector<A>,
+) -> Result<Vector<A>> {
+    let singular = Error::SingularConstraintJacobian { t };
+    let stuck: Vec<usize> = (0..F).filter(|&j| modes[j] == Slip::Stick).collect();
+    if stuck.is_empty() {
+        return Err(singular);
+    }
+    let kd = nalgebra::DMatrix::from_iterator(A, A, k.iter().copied());
+    let b = nalgebra::DVector::from_iterator(A, rhs.iter().copied());
+    let svd = kd.clone().svd(true, true);
+    let top = svd.singular_values.max();
+    let tol = 1e-9 * top;
+    let x = svd.solve(&b, tol).map_err(|_| singular.clone())?;
+    // Inconsistent (no solution at all): the stick is impossible.
+    if (&kd * &x - &b).amax() > 1e-9 * (top * x.amax() + b.amax()) {
+        return Err(singular);
+    }
+    let v_t = svd.v_t.as_ref().ok_or_else(|| singular.clone())?;
+    let null: Vec<usize> = (0..A).filter(|&i| svd.singular_values[i] <= tol).collect();
+    let alpha = match null.as_slice() {
+        [] => 0.0,
+        [i] => {
+            let z = v_t.row(*i).transpose();
+            let pairs: Vec<(f64, f64, f64)> = stuck
+                .iter()
+                .map(|&j| (x[N + M + j], z[N + M + j], c.mu_s[j] * c.normal[j].abs()))
+                .collect();
+            even_split(&pairs)
+        }
+        more => {
+            return Err(Error::InvalidInput {
+                what: "friction",
+                detail: format!(
+                    "stuck contacts tied by the constraints in {} independent ways at t = {t}: \
+                     the split of the holding loads is not determined",
+                    more.len()
+                ),
+            });
+        }
+    };
+    let x = match null.first() {
+        Some(&i) => x + v_t.row(i).transpose() * alpha,
+        None => x,
+    };
+    Ok(Vector::<A>::from_fn(|i, _| x[i]))
+}
+
+/// The `a` minimising `max_k |h_k + z_k a| / b_k` over `(h_k, z_k, b_k)` (a zero bound
+/// admits only a zero load): the minimum of a convex piecewise-linear function of one
+/// variable lies at a zero of one term or where two terms are equal.
+fn even_split(terms: &[(f64, f64, f64)]) -> f64 {
+    let ratio = |h: f64, b: f64| {
+        if b > 0.0 {
+            h.abs() / b
+        } else if h == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
+    };
+    let worst = |a: f64| {
+        terms
+            .iter()
+            .map(|&(h, z, b)| ratio(h + z * a, b))
+            .fold(0.0, f64::max)
+    };
+    let mut candidates = vec![0.0];
+    for (i, &(hi, zi, bi)) in terms.iter().enumerate() {
+        if zi != 0.0 {
+            candidates.push(-hi / zi);
+        }
+        for &(hj, zj, bj) in &terms[i + 1..] {
+            if bi > 0.0 && bj > 0.0 {
+                // (hi + zi a) / bi = +-(hj + zj a) / bj.
+                for s in [1.0, -1.0] {
+                    let den = zi / bi - s * zj / bj;
+                    if den != 0.0 {
+                        candidates.push((s * hj / bj - hi / bi) / den);
+                    }
+                }
+            }
+        }
+    }
+    candidates
+        .into_iter()
+        .filter(|a| a.is_finite())
+        .min_by(|a, b| worst(*a).total_cmp(&worst(*b)))
+        .unwrap_or(0.0)
 }
 
 /// [`solve_in`] without constraints and with a contact stuck: the stuck coordinates' rows
@@ -561,6 +666,7 @@ where
         });
     } else {
         y[N + along[k]] = 0.0;
+        stop_tied::<S, N, M, F, A, D>(sys, t, y, modes, k);
     }
     // Stuck contacts keep exactly zero velocity, so they count as at rest here.
     let (q, qd) = split::<N, D>(y);
@@ -572,6 +678,55 @@ where
         choose_in::<N, M, F, A>(t, c, along, &fixed, n)
     })?;
     Ok(chosen.0)
+}
+
+/// When sliding contact `k` stops, the contacts the constraints tie to it and to the stuck
+/// ones (two blocks joined by a bar) stop with it: their velocities are then zero to
+/// rounding only (the velocity constraint holds to the integration's accuracy), and taking
+/// that rounding for sliding would give a contact at rest kinetic friction and the wrong
+/// mode. A contact is tied when its velocity is zero on every velocity allowed by
+/// `Phi_q qd = 0` with the stopped and stuck contacts at rest (its row lies in their span).
+fn stop_tied<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &mut Vector<D>,
+    modes: &[Slip; F],
+    k: usize,
+) where
+    S: Frictional<N, M, F, A>,
+{
+    if M == 0 {
+        return;
+    }
+    let (q, qd) = split::<N, D>(y);
+    let phi_q = sys.contacts(t, &q, &qd).phi_q;
+    let held: Vec<usize> = (0..F)
+        .filter(|&j| j == k || modes[j] == Slip::Stick)
+        .map(|j| S::ALONG[j])
+        .collect();
+    let mut g = nalgebra::DMatrix::<f64>::zeros(M + held.len(), N);
+    g.view_mut((0, 0), (M, N)).copy_from(&phi_q);
+    for (r, &s) in held.iter().enumerate() {
+        g[(M + r, s)] = 1.0;
+    }
+    // The allowed velocities: the null space of `g`, from the eigenvectors of `g^T g`.
+    let Some(eig) = nalgebra::SymmetricEigen::try_new(g.transpose() * &g, f64::EPSILON, 10_000)
+    else {
+        return;
+    };
+    let top = eig.eigenvalues.amax();
+    if !top.is_finite() {
+        return;
+    }
+    let free: Vec<usize> = (0..N)
+        .filter(|&i| eig.eigenvalues[i] <= 1e-10 * top)
+        .collect();
+    for j in (0..F).filter(|&j| modes[j] != Slip::Stick && j != k) {
+        let s = S::ALONG[j];
+        if free.iter().all(|&i| eig.eigenvectors[(s, i)].abs() <= 1e-9) {
+            y[N + s] = 0.0;
+        }
+    }
 }
 
 /// The accelerations in given modes ([`resolve`]): the sliding view of a model whose

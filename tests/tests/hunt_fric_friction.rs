@@ -6,7 +6,7 @@
 //! is derived beside its test; every run goes through `mbd::hybrid::solve`.
 
 use mbd::Slip;
-use mbd::integrate::{Dop853, Dopri5, Integrator, Radau5, Vern9};
+use mbd::integrate::{Dop853, Dopri5, Radau5, Vern9};
 use mbd::prelude::*;
 use std::f64::consts::PI;
 
@@ -452,4 +452,90 @@ fn a_belt_driven_stick_slip_oscillator_keeps_its_limit_cycle_over_ten_thousand_s
         (x - want).abs() < 100.0 * rtol * p.v * t1,
         "at {x} vs {want}"
     );
+}
+
+/// Two blocks on one rough floor joined by a rigid bar of length `d` (a constraint,
+/// augmented form), each with its own contact: the contacts' coordinates are tied, so
+/// both cannot be "stuck" as independent rows (with the constraint that is three equations
+/// for two accelerations; the split of the holding force between them is indeterminate,
+/// the motion is not). Pushed by `p` on the first, the pair moves as one body of mass
+/// `M = m1 + m2`: at rest it holds while `p <= mu_s M g`; else it slides at
+/// `(p - mu_k M g) / M`. Launched at `v0` unpushed, it stops after `v0 / (mu_k g)` and stays.
+#[derive(Debug, Mechanism)]
+#[mechanism(augmented)]
+#[gravity(0.0, -g)]
+#[coords(x1, x2)]
+#[constraint(x2 - x1 == d)]
+#[particle(b1, mass = m1, at = [x1, 0.0])]
+#[particle(b2, mass = m2, at = [x2, 0.0])]
+#[generalized_force(push, along = x1, value = p)]
+#[friction(along = x1, mu_k = mu_k, mu_s = mu_s, normal = m1 * g)]
+#[friction(along = x2, mu_k = mu_k, mu_s = mu_s, normal = m2 * g)]
+pub struct Linked {
+    pub m1: f64,
+    pub m2: f64,
+    pub g: f64,
+    pub d: f64,
+    pub p: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+}
+
+const LINKED: Linked = Linked {
+    m1: 1.0,
+    m2: 3.0,
+    g: 9.81,
+    d: 0.5,
+    p: 0.0,
+    mu_k: 0.2,
+    mu_s: 0.3,
+};
+
+#[test]
+fn two_contacts_tied_by_a_bar_move_as_one_block() {
+    let total = LINKED.m1 + LINKED.m2;
+    let q = Vector::<2>::new(0.0, LINKED.d);
+    let rest = Vector::<2>::zeros();
+    for (p, holds) in [
+        (0.0, true),
+        (5.0, true),
+        (11.0, true),
+        (11.9, false),
+        (20.0, false),
+    ] {
+        let m = Linked { p, ..LINKED };
+        let qdd = m.acceleration(0.0, &q, &rest).unwrap();
+        let want = if holds {
+            0.0
+        } else {
+            (p - m.mu_k * total * m.g) / total
+        };
+        assert_eq!(p <= m.mu_s * total * m.g, holds);
+        for (i, a) in qdd.iter().enumerate() {
+            assert!(
+                (a - want).abs() < 1e-12,
+                "p = {p}: qdd[{i}] = {a} vs {want}"
+            );
+        }
+        each_method!(|name, method, acc| {
+            let y0 = Vector::<4>::new(0.0, m.d, 0.0, 0.0);
+            let run = mbd::hybrid::solve(&method, &m, 0.0, y0, 1.0, &[]).unwrap();
+            let (_, y) = run.solution.last();
+            assert!((y[0] - want / 2.0).abs() < acc, "{name} p = {p}: {}", y[0]);
+            assert!((y[1] - y[0] - m.d).abs() < acc, "{name} p = {p}");
+        });
+    }
+    // Launched, it stops at v0 / (mu_k g), at v0^2 / (2 mu_k g), and stays.
+    let v0 = 1.5;
+    let t_stop = v0 / (LINKED.mu_k * LINKED.g);
+    each_method!(|name, method, acc| {
+        let y0 = Vector::<4>::new(0.0, LINKED.d, v0, v0);
+        let run = mbd::hybrid::solve(&method, &LINKED, 0.0, y0, 1.5, &[]).unwrap();
+        let stuck = run.switches.iter().find(|s| s.to == [Slip::Stick; 2]);
+        let stuck = stuck.unwrap_or_else(|| panic!("{name}: {:?}", run.switches));
+        assert!((stuck.t - t_stop).abs() < acc, "{name}: {}", stuck.t);
+        let (_, y) = run.solution.last();
+        assert!((y[0] - v0 * t_stop / 2.0).abs() < acc, "{name}: {}", y[0]);
+        assert_eq!((y[2], y[3]), (0.0, 0.0), "{name}");
+    });
 }
