@@ -539,3 +539,179 @@ fn two_contacts_tied_by_a_bar_move_as_one_block() {
         assert_eq!((y[2], y[3]), (0.0, 0.0), "{name}");
     });
 }
+
+/// A mass on a spring on a rough floor with a tiny coefficient (`mu = 2e-5`): hundreds of
+/// half-swings before it sticks.
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[point(wall, at = [0.0, 0.0])]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[spring(s, from = wall, to = block, k = k)]
+#[friction(along = x, mu = mu, normal = m * g)]
+#[init(x = x0)]
+pub struct Slippery {
+    pub m: f64,
+    pub k: f64,
+    pub g: f64,
+    pub mu: f64,
+    pub x0: f64,
+}
+
+/// Released at rest from `x0`, each half-swing is a half cosine of duration `pi / w`
+/// (`w^2 = k / m`) about the shifted centre `c = sign(x_j) x_f`, `x_f = mu g / w^2`, to the
+/// turning point `2 c - x_j`, until one lies within `x_f` (the spring then pulls less than
+/// `mu m g`: it sticks). Energy: friction takes `mu m g` per metre slid, so at any time
+/// `m x'^2 / 2 + k x^2 / 2 = k x0^2 / 2 - mu m g (distance slid)`.
+#[test]
+fn a_tiny_coefficient_damps_hundreds_of_swings_by_the_friction_work() {
+    let p = Slippery {
+        m: 1.0,
+        k: 4.0,
+        g: 9.81,
+        mu: 2e-5,
+        x0: 0.01,
+    };
+    let w = (p.k / p.m).sqrt();
+    let x_f = p.mu * p.g / (w * w);
+    let mut turns = vec![p.x0];
+    while turns.last().unwrap().abs() > x_f {
+        let x = *turns.last().unwrap();
+        turns.push(2.0 * x.signum() * x_f - x);
+    }
+    let n = turns.len() - 1;
+    assert!(n > 100, "{n} half-swings");
+    let half = PI / w;
+    let t1 = half * (n as f64 + 1.5);
+    let energy = |y: &Vector<2>| 0.5 * p.m * y[1] * y[1] + 0.5 * p.k * y[0] * y[0];
+    each_method!(|name, method, acc| {
+        let run = mbd::hybrid::solve(&method, &p, 0.0, p.initial_state(), t1, &[]).unwrap();
+        assert_eq!(run.switches.len(), n, "{name}");
+        for (j, sw) in run.switches.iter().enumerate() {
+            let want = half * (j + 1) as f64;
+            // Each half-swing adds at most the method's error: they accumulate.
+            let bound = acc * (j + 1) as f64;
+            assert!((sw.t - want).abs() < bound, "{name}: turn {j} at {}", sw.t);
+        }
+        assert_eq!(run.switches[n - 1].to, [Slip::Stick], "{name}");
+        let (_, y) = run.solution.last();
+        assert!((y[0] - turns[n]).abs() < acc, "{name}: rests at {}", y[0]);
+        assert_eq!(y[1], 0.0, "{name}");
+        // Energy against the friction work, mid-swing: the distance slid is the sum of the
+        // completed half-swings and the part of the current one.
+        for j in [0, n / 2, n - 1] {
+            let t = half * (j as f64 + 0.37);
+            let y = run.solution.at(t).unwrap();
+            let slid: f64 = turns
+                .windows(2)
+                .take(j)
+                .map(|s| (s[1] - s[0]).abs())
+                .sum::<f64>()
+                + (y[0] - turns[j]).abs();
+            let want = 0.5 * p.k * p.x0 * p.x0 - p.mu * p.m * p.g * slid;
+            assert!(
+                (energy(&y) - want).abs() < acc * p.k * p.x0,
+                "{name}: energy at swing {j}: {} vs {want}",
+                energy(&y)
+            );
+        }
+    });
+}
+
+/// A ball (mass `m`, radius `r`, inertia `2 m r^2 / 5`) on a rough floor. `th` is its
+/// rolling angle (clockwise) and `s` the slip of its contact point, so its centre is at
+/// `x = s + r th` and the contact slides at `s'`: friction acts along `s` only (the contact
+/// force does work on the slip alone).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(s, th)]
+#[rigid(ball, mass = m, inertia = 0.4 * m * r * r, at = [s + r * th, r], angle = -th)]
+#[friction(along = s, mu_k = mu_k, mu_s = mu_s, normal = m * g)]
+#[init(der(s) = v0)]
+pub struct Bowling {
+    pub m: f64,
+    pub r: f64,
+    pub g: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+    pub v0: f64,
+}
+
+/// Thrown without spin at `v0`: sliding, `x'' = -mu_k g` and `I th'' = mu_k m g r`, so the
+/// slip `s' = x' - r th'` falls at `mu_k g (1 + m r^2 / I) = 7 mu_k g / 2`: it rolls from
+/// `t* = 2 v0 / (7 mu_k g)` at `5 v0 / 7`, at `x* = v0 t* - mu_k g t*^2 / 2`, and rolling
+/// needs no friction, so it rolls on: `x = x* + 5 v0 (t - t*) / 7`.
+#[test]
+fn a_bowled_ball_starts_rolling_at_the_closed_form_instant() {
+    let p = Bowling {
+        m: 7.0,
+        r: 0.11,
+        g: 9.81,
+        mu_k: 0.2,
+        mu_s: 0.25,
+        v0: 8.0,
+    };
+    let t_roll = 2.0 * p.v0 / (7.0 * p.mu_k * p.g);
+    let x_roll = p.v0 * t_roll - p.mu_k * p.g * t_roll * t_roll / 2.0;
+    let t1 = 2.0;
+    each_method!(|name, method, acc| {
+        let run = mbd::hybrid::solve(&method, &p, 0.0, p.initial_state(), t1, &[]).unwrap();
+        assert_eq!(run.switches.len(), 1, "{name}: {:?}", run.switches);
+        assert_eq!(run.switches[0].to, [Slip::Stick]);
+        assert!((run.switches[0].t - t_roll).abs() < acc, "{name}");
+        let (_, y) = run.solution.last();
+        let x = y[0] + p.r * y[1];
+        let v = y[2] + p.r * y[3];
+        assert_eq!(y[2], 0.0, "{name}: slipping at the end");
+        assert!((v - 5.0 * p.v0 / 7.0).abs() < acc, "{name}: v = {v}");
+        let want = x_roll + 5.0 * p.v0 / 7.0 * (t1 - t_roll);
+        assert!((x - want).abs() < acc, "{name}: x = {x} vs {want}");
+    });
+}
+
+/// The ball at rest on an incline of angle `a` (gravity turned with it): rolling needs the
+/// friction `m g sin a * I / (I + m r^2) = 2 m g sin a / 7`, so it rolls without slipping
+/// while `tan a <= 7 mu_s / 2`, at `x'' = 5 g sin a / 7`; beyond, it slips with
+/// `x'' = g (sin a - mu_k cos a)`, `r th'' = 5 mu_k g cos a / 2`.
+#[derive(Debug, Mechanism)]
+#[gravity(g * sin(a), -g * cos(a))]
+#[coords(s, th)]
+#[rigid(ball, mass = m, inertia = 0.4 * m * r * r, at = [s + r * th, r], angle = -th)]
+#[friction(along = s, mu_k = mu_k, mu_s = mu_s, normal = m * g * cos(a))]
+pub struct RollingDown {
+    pub m: f64,
+    pub r: f64,
+    pub g: f64,
+    pub a: f64,
+    pub mu_k: f64,
+    pub mu_s: f64,
+}
+
+#[test]
+fn a_ball_on_an_incline_rolls_below_its_angle_and_slips_above() {
+    let base = RollingDown {
+        m: 2.0,
+        r: 0.3,
+        g: 9.81,
+        a: 0.0,
+        mu_k: 0.1,
+        mu_s: 0.12,
+    };
+    let limit = (3.5 * base.mu_s).atan();
+    let rest = Vector::<2>::zeros();
+    for a in [0.2, limit - 1e-6, limit + 1e-6, 0.9] {
+        let p = RollingDown { a, ..base };
+        let qdd = p.acceleration(0.0, &rest, &rest).unwrap();
+        let (x_dd, th_dd) = (qdd[0] + p.r * qdd[1], qdd[1]);
+        if a < limit {
+            let want = 5.0 * p.g * a.sin() / 7.0;
+            assert_eq!(qdd[0], 0.0, "a = {a}: slips");
+            assert!((x_dd - want).abs() < 1e-13, "a = {a}: {x_dd} vs {want}");
+        } else {
+            let want = p.g * (a.sin() - p.mu_k * a.cos());
+            let spin = 2.5 * p.mu_k * p.g * a.cos() / p.r;
+            assert!((x_dd - want).abs() < 1e-13, "a = {a}: {x_dd} vs {want}");
+            assert!((th_dd - spin).abs() < 1e-12, "a = {a}: {th_dd} vs {spin}");
+        }
+    }
+}
