@@ -144,11 +144,10 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
 /// either an impossible stick (a stuck row contradicting the constraints: a piston at a
 /// dead centre, which the loop moves at second order; [`Error::SingularConstraintJacobian`],
 /// so the modes without it decide) or stuck contacts tied to each other by the constraints
-/// (two blocks joined by a bar): the accelerations are still unique, but the holding loads
-/// are not, only their combination the ties transmit. Then the loads are taken along the
-/// one-dimensional family to spread the load as evenly as the bounds allow (least
-/// `max |h_k| / (mu_s |N_k|)`), so the stick holds exactly when some split of the load
-/// holds. More than one independent tie is refused (an `InvalidInput`), not guessed.
+/// (blocks joined by bars): the accelerations are still unique, but the holding loads are
+/// not, only the combinations the ties transmit. Then the loads are taken in that family to
+/// spread the load as evenly as the bounds allow (least `max |h_k| / (mu_s |N_k|)`), so the
+/// stick holds exactly when some split of the load holds.
 fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
     t: f64,
     c: &Contacts<N, M, F>,
@@ -156,13 +155,14 @@ fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
     k: &Matrix<A, A>,
     rhs: &Vector<A>,
 ) -> Result<Vector<A>> {
+    use nalgebra::{DMatrix, DVector};
     let singular = Error::SingularConstraintJacobian { t };
     let stuck: Vec<usize> = (0..F).filter(|&j| modes[j] == Slip::Stick).collect();
     if stuck.is_empty() {
         return Err(singular);
     }
-    let kd = nalgebra::DMatrix::from_iterator(A, A, k.iter().copied());
-    let b = nalgebra::DVector::from_iterator(A, rhs.iter().copied());
+    let kd = DMatrix::from_iterator(A, A, k.iter().copied());
+    let b = DVector::from_iterator(A, rhs.iter().copied());
     let svd = kd.clone().svd(true, true);
     let top = svd.singular_values.max();
     let tol = 1e-9 * top;
@@ -173,75 +173,87 @@ fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
     }
     let v_t = svd.v_t.as_ref().ok_or_else(|| singular.clone())?;
     let null: Vec<usize> = (0..A).filter(|&i| svd.singular_values[i] <= tol).collect();
-    let alpha = match null.as_slice() {
-        [] => 0.0,
-        [i] => {
-            let z = v_t.row(*i).transpose();
-            let pairs: Vec<(f64, f64, f64)> = stuck
-                .iter()
-                .map(|&j| (x[N + M + j], z[N + M + j], c.mu_s[j] * c.normal[j].abs()))
-                .collect();
-            even_split(&pairs)
-        }
-        more => {
-            return Err(Error::InvalidInput {
-                what: "friction",
-                detail: format!(
-                    "stuck contacts tied by the constraints in {} independent ways at t = {t}: \
-                     the split of the holding loads is not determined",
-                    more.len()
-                ),
-            });
-        }
-    };
-    let x = match null.first() {
-        Some(&i) => x + v_t.row(i).transpose() * alpha,
-        None => x,
-    };
+    // The null directions `Z` (the accelerations do not move along them) and the loads.
+    let z = DMatrix::from_fn(A, null.len(), |r, col| v_t[(null[col], r)]);
+    let h: Vec<f64> = stuck.iter().map(|&j| x[N + M + j]).collect();
+    let zh = DMatrix::from_fn(stuck.len(), null.len(), |r, col| z[(N + M + stuck[r], col)]);
+    let bound: Vec<f64> = stuck
+        .iter()
+        .map(|&j| c.mu_s[j] * c.normal[j].abs())
+        .collect();
+    let x = x + z * even_split(&h, &zh, &bound);
     Ok(Vector::<A>::from_fn(|i, _| x[i]))
 }
 
-/// The `a` minimising `max_k |h_k + z_k a| / b_k` over `(h_k, z_k, b_k)` (a zero bound
-/// admits only a zero load): the minimum of a convex piecewise-linear function of one
-/// variable lies at a zero of one term or where two terms are equal.
-fn even_split(terms: &[(f64, f64, f64)]) -> f64 {
-    let ratio = |h: f64, b: f64| {
-        if b > 0.0 {
-            h.abs() / b
-        } else if h == 0.0 {
-            0.0
-        } else {
-            f64::INFINITY
-        }
-    };
-    let worst = |a: f64| {
-        terms
-            .iter()
-            .map(|&(h, z, b)| ratio(h + z * a, b))
+/// The `a` minimising `max_k |h_k + (Z a)_k| / b_k` (a zero bound admits only a zero load).
+/// In `(a, r)` that is a linear programme (`|h_k + (Z a)_k| <= b_k r`, least `r`) whose
+/// optimum lies at a vertex, where `rank + 1` of the constraints hold with equality
+/// (`rank` that of `Z`, whose column space is the only part of `a` that matters): every
+/// such choice of rows and signs is solved and the best kept. Only for stuck contacts tied
+/// by constraints; a dozen contacts at most.
+fn even_split(h: &[f64], z: &nalgebra::DMatrix<f64>, b: &[f64]) -> nalgebra::DVector<f64> {
+    use nalgebra::{DMatrix, DVector};
+    let (rows, dim) = z.shape();
+    let worst = |a: &DVector<f64>| {
+        let v = z * a;
+        (0..rows)
+            .map(|k| {
+                let load = (h[k] + v[k]).abs();
+                if b[k] > 0.0 {
+                    load / b[k]
+                } else if load <= 1e-12 * (h[k].abs() + 1.0) {
+                    0.0
+                } else {
+                    f64::INFINITY
+                }
+            })
             .fold(0.0, f64::max)
     };
-    let mut candidates = vec![0.0];
-    for (i, &(hi, zi, bi)) in terms.iter().enumerate() {
-        if zi != 0.0 {
-            candidates.push(-hi / zi);
+    let zero = DVector::<f64>::zeros(dim);
+    if rows == 0 || dim == 0 {
+        return zero;
+    }
+    // `a = V_r c`: the directions of `a` that move the loads.
+    let svd = z.clone().svd(false, true);
+    let Some(v_t) = svd.v_t.as_ref() else {
+        return zero;
+    };
+    let big = svd.singular_values.max();
+    let keep: Vec<usize> = (0..svd.singular_values.len())
+        .filter(|&i| svd.singular_values[i] > 1e-12 * big)
+        .collect();
+    let basis = DMatrix::from_fn(dim, keep.len(), |r, col| v_t[(keep[col], r)]);
+    let zr = z * &basis;
+    let n = keep.len() + 1;
+    let mut best = (worst(&zero), zero);
+    for mask in 0u32..(1 << rows) {
+        if mask.count_ones() as usize != n {
+            continue;
         }
-        for &(hj, zj, bj) in &terms[i + 1..] {
-            if bi > 0.0 && bj > 0.0 {
-                // (hi + zi a) / bi = +-(hj + zj a) / bj.
-                for s in [1.0, -1.0] {
-                    let den = zi / bi - s * zj / bj;
-                    if den != 0.0 {
-                        candidates.push((s * hj / bj - hi / bi) / den);
-                    }
+        let picked: Vec<usize> = (0..rows).filter(|&k| mask & (1 << k) != 0).collect();
+        for signs in 0u32..(1 << n) {
+            // Row `i`: (Z_r c)_k - sigma b_k r = -h_k.
+            let m = DMatrix::from_fn(n, n, |i, col| {
+                if col < keep.len() {
+                    zr[(picked[i], col)]
+                } else if signs & (1 << i) != 0 {
+                    b[picked[i]]
+                } else {
+                    -b[picked[i]]
                 }
+            });
+            let rhs = DVector::from_fn(n, |i, _| -h[picked[i]]);
+            let Some(sol) = m.lu().solve(&rhs) else {
+                continue;
+            };
+            let a = &basis * sol.rows(0, keep.len());
+            let w = worst(&a);
+            if w < best.0 {
+                best = (w, a);
             }
         }
     }
-    candidates
-        .into_iter()
-        .filter(|a| a.is_finite())
-        .min_by(|a, b| worst(*a).total_cmp(&worst(*b)))
-        .unwrap_or(0.0)
+    best.1
 }
 
 /// [`solve_in`] without constraints and with a contact stuck: the stuck coordinates' rows

@@ -715,3 +715,88 @@ fn a_ball_on_an_incline_rolls_below_its_angle_and_slips_above() {
         }
     }
 }
+
+/// Three blocks in a train joined by two rigid bars (two constraints, augmented form),
+/// each on the floor with its own coefficients: the holding loads have two free
+/// combinations. Pushed at the first, the train holds while the push is within the sum of
+/// the three static bounds, `P_s = sum mu_s_i m_i g`, and otherwise slides at
+/// `(p - sum mu_k_i m_i g) / (m1 + m2 + m3)`.
+#[derive(Debug, Mechanism)]
+#[mechanism(augmented)]
+#[gravity(0.0, -g)]
+#[coords(x1, x2, x3)]
+#[constraint(x2 - x1 == d)]
+#[constraint(x3 - x2 == d)]
+#[particle(b1, mass = m1, at = [x1, 0.0])]
+#[particle(b2, mass = m2, at = [x2, 0.0])]
+#[particle(b3, mass = m3, at = [x3, 0.0])]
+#[generalized_force(push, along = x1, value = p)]
+#[friction(along = x1, mu_k = k1, mu_s = s1, normal = m1 * g)]
+#[friction(along = x2, mu_k = k2, mu_s = s2, normal = m2 * g)]
+#[friction(along = x3, mu_k = k3, mu_s = s3, normal = m3 * g)]
+pub struct Train {
+    pub m1: f64,
+    pub m2: f64,
+    pub m3: f64,
+    pub g: f64,
+    pub d: f64,
+    pub p: f64,
+    pub k1: f64,
+    pub s1: f64,
+    pub k2: f64,
+    pub s2: f64,
+    pub k3: f64,
+    pub s3: f64,
+}
+
+#[test]
+fn a_train_of_three_tied_blocks_holds_to_the_sum_of_its_static_bounds() {
+    let base = Train {
+        m1: 1.0,
+        m2: 2.0,
+        m3: 0.5,
+        g: 9.81,
+        d: 0.4,
+        p: 0.0,
+        k1: 0.1,
+        s1: 0.5,
+        k2: 0.2,
+        s2: 0.25,
+        k3: 0.3,
+        s3: 0.6,
+    };
+    let total = base.m1 + base.m2 + base.m3;
+    let hold = (base.s1 * base.m1 + base.s2 * base.m2 + base.s3 * base.m3) * base.g;
+    let kinetic = (base.k1 * base.m1 + base.k2 * base.m2 + base.k3 * base.m3) * base.g;
+    let q = Vector::<3>::new(0.0, base.d, 2.0 * base.d);
+    let rest = Vector::<3>::zeros();
+    for (p, holds) in [
+        (3.0, true),
+        (0.99 * hold, true),
+        (1.01 * hold, false),
+        (-0.99 * hold, true),
+    ] {
+        let m = Train { p, ..base };
+        let qdd = m.acceleration(0.0, &q, &rest).unwrap();
+        let want = if holds { 0.0 } else { (p - kinetic) / total };
+        for (i, a) in qdd.iter().enumerate() {
+            assert!(
+                (a - want).abs() < 1e-12,
+                "p = {p}: qdd[{i}] = {a} vs {want}"
+            );
+        }
+    }
+    // Launched unpushed at v0, it decelerates at `sum mu_k_i m_i g / M` and stops together.
+    let v0 = 1.2;
+    let t_stop = v0 * total / kinetic;
+    each_method!(|name, method, acc| {
+        let y0 = Vector::<6>::new(0.0, base.d, 2.0 * base.d, v0, v0, v0);
+        let run = mbd::hybrid::solve(&method, &base, 0.0, y0, 1.0, &[]).unwrap();
+        assert_eq!(run.mode, [Slip::Stick; 3], "{name}: {:?}", run.switches);
+        let stuck = run.switches.last().unwrap();
+        assert!((stuck.t - t_stop).abs() < acc, "{name}: {}", stuck.t);
+        let (_, y) = run.solution.last();
+        assert_eq!((y[3], y[4], y[5]), (0.0, 0.0, 0.0), "{name}");
+        assert!((y[0] - v0 * t_stop / 2.0).abs() < acc, "{name}: {}", y[0]);
+    });
+}
