@@ -482,3 +482,59 @@ fn pin_friction_on_a_reaction_has_the_closed_form_sliding_jacobian() {
         );
     }
 }
+
+/// A bead on a hoop of radius `R` spun about its vertical diameter by a drive
+/// `ph = W t`; `th` is the bead's angle from the bottom.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, jacobian)]
+#[gravity(0.0, 0.0, -g)]
+#[coords(th)]
+#[drive(ph = big_w * t)]
+#[particle(bead, mass = m, at = [r * sin(th) * cos(ph), r * sin(th) * sin(ph), -r * cos(th)])]
+pub struct Hoop {
+    pub m: f64,
+    pub r: f64,
+    pub g: f64,
+    pub big_w: f64,
+}
+
+/// `th'' = sin th (W^2 cos th - g / R)`, so the bottom is stable with `w^2 = g / R - W^2`
+/// below the critical spin `W^2 = g / R`; above it the bottom diverges at
+/// `sqrt(W^2 - g / R)` and the bead rests at `cos th0 = g / (R W^2)`, where
+/// `d th''/d th = cos th0 (W^2 cos th0 - g / R) - W^2 sin^2 th0 = -W^2 sin^2 th0`:
+/// `w^2 = W^2 sin^2 th0`.
+#[test]
+fn a_bead_on_a_spun_hoop_has_the_closed_form_frequencies_at_its_rest_points() {
+    let slow = Hoop {
+        m: 0.1,
+        r: 0.5,
+        g: 9.81,
+        big_w: 3.0,
+    };
+    let w2 = slow.g / slow.r - slow.big_w * slow.big_w;
+    let found = undamped_modes(&slow, 0.0, &Vector::<1>::zeros()).unwrap();
+    assert!((found[0].omega_squared - w2).abs() < 1e-12 * w2);
+
+    let fast = Hoop { big_w: 8.0, ..slow };
+    let spin2 = fast.big_w * fast.big_w;
+    let bottom = undamped_modes(&fast, 0.0, &Vector::<1>::zeros()).unwrap();
+    let diverge = spin2 - fast.g / fast.r;
+    assert!((bottom[0].omega_squared + diverge).abs() < 1e-12 * diverge);
+    let th0 = (fast.g / (fast.r * spin2)).acos();
+    for t in [0.0, 0.37] {
+        let found = undamped_modes(&fast, t, &Vector::<1>::new(th0)).unwrap();
+        let want = spin2 * th0.sin().powi(2);
+        assert!(
+            (found[0].omega_squared - want).abs() < 1e-12 * want,
+            "t = {t}: {} vs {want}",
+            found[0].omega_squared
+        );
+    }
+    // Off its rest point the bead accelerates: refused, not a frequency.
+    match undamped_modes(&fast, 0.0, &Vector::<1>::new(0.5 * th0)) {
+        Err(Error::InvalidInput { detail, .. }) => {
+            assert!(detail.contains("not an equilibrium"), "{detail}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
