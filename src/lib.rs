@@ -287,7 +287,9 @@
 //!   friction (exactly at `mu_s |n|` it slides when `mu_k < mu_s` and sticks when they are
 //!   equal). With several contacts at rest, the first consistent combination of stick and
 //!   slip is taken, most contacts stuck first. A body at rest with no tangential load has
-//!   zero acceleration.
+//!   zero acceleration. Contacts that constraints tie together (blocks joined by a bar)
+//!   stick and stop together, and hold while some split of the load between them is within
+//!   their bounds (the split reported spreads it evenly relative to them).
 //!
 //! That is what `acceleration`, `forces` (the friction at rest is the holding force) and
 //! `rhs` of the model compute at any state. Integrating `rhs` straight through a stop would

@@ -10,6 +10,11 @@
 //! Both convert to `DMatrix`: nalgebra's fixed-size decompositions need typenum bounds that
 //! a bare `const D: usize` does not meet.
 //!
+//! At a state that is neither an equilibrium nor a steady motion, [`linearize`] is still the
+//! Jacobian there and [`modes`] its eigen-decomposition (local rates, which depend on the
+//! coordinates); [`undamped_modes`] refuses such a point. [`StateSpace::frequency_response`]
+//! evaluates a linear model's transfer matrix on the imaginary axis.
+//!
 //! Closed loops in the augmented form: `A` of the index-1 equations also has the directions
 //! that leave the constraint manifold (a double zero per constraint, the drift).
 //! [`constrained_modes`] restricts `A` to the constraints' tangent space (independent
