@@ -800,3 +800,104 @@ fn a_train_of_three_tied_blocks_holds_to_the_sum_of_its_static_bounds() {
         assert!((y[0] - v0 * t_stop / 2.0).abs() < acc, "{name}: {}", y[0]);
     });
 }
+
+/// A double pendulum (point masses on massless links, a joint tree in relative angles)
+/// with a friction torque bound at each joint (`mu` the torque, normal 1).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[body(b1, joint = revolute(q1), com = [0.0, -l1], mass = m1)]
+#[body(b2, parent = b1, joint = revolute(q2), at = [0.0, -l1], com = [0.0, -l2], mass = m2)]
+#[friction(along = q1, mu = t1, normal = 1.0)]
+#[friction(along = q2, mu = t2, normal = 1.0)]
+pub struct StiffJoints {
+    pub m1: f64,
+    pub m2: f64,
+    pub l1: f64,
+    pub l2: f64,
+    pub g: f64,
+    pub t1: f64,
+    pub t2: f64,
+}
+
+/// At rest, by hand: `M = [[m1 l1^2 + m2 (l1^2 + l2^2 + 2 l1 l2 cos q2), m2 (l2^2 + l1 l2
+/// cos q2)], [.., m2 l2^2]]`, gravity's torques `f2 = -m2 g l2 sin(q1 + q2)`,
+/// `f1 = -g (m1 + m2) l1 sin q1 + f2`. Every combination of stick and slip is solved
+/// (stuck: `q_i'' = 0`, its holding torque the residual; sliding in `d`: torque `-d t_i`) and
+/// the strictly consistent ones kept (a holding torque within its bound, a slide
+/// accelerating its way); the configurations below have exactly one.
+fn stiff_joints_at_rest(p: &StiffJoints, q1: f64, q2: f64) -> [f64; 2] {
+    let c = q2.cos();
+    let m11 = p.m1 * p.l1 * p.l1 + p.m2 * (p.l1 * p.l1 + p.l2 * p.l2 + 2.0 * p.l1 * p.l2 * c);
+    let m12 = p.m2 * (p.l2 * p.l2 + p.l1 * p.l2 * c);
+    let m22 = p.m2 * p.l2 * p.l2;
+    let f2 = -p.m2 * p.g * p.l2 * (q1 + q2).sin();
+    let f1 = -(p.m1 + p.m2) * p.g * p.l1 * q1.sin() + f2;
+    let mut found = Vec::new();
+    for d1 in [0.0, 1.0, -1.0] {
+        for d2 in [0.0, 1.0, -1.0] {
+            let (g1, g2) = (f1 - d1 * p.t1, f2 - d2 * p.t2);
+            let qdd = match (d1 == 0.0, d2 == 0.0) {
+                (true, true) => [0.0, 0.0],
+                (true, false) => [0.0, g2 / m22],
+                (false, true) => [g1 / m11, 0.0],
+                (false, false) => {
+                    let det = m11 * m22 - m12 * m12;
+                    [(m22 * g1 - m12 * g2) / det, (m11 * g2 - m12 * g1) / det]
+                }
+            };
+            let h1 = g1 - m11 * qdd[0] - m12 * qdd[1];
+            let h2 = g2 - m12 * qdd[0] - m22 * qdd[1];
+            let ok1 = if d1 == 0.0 {
+                h1.abs() < p.t1
+            } else {
+                d1 * qdd[0] > 0.0
+            };
+            let ok2 = if d2 == 0.0 {
+                h2.abs() < p.t2
+            } else {
+                d2 * qdd[1] > 0.0
+            };
+            if ok1 && ok2 {
+                found.push(qdd);
+            }
+        }
+    }
+    assert_eq!(found.len(), 1, "({q1}, {q2}): {found:?}");
+    found[0]
+}
+
+#[test]
+fn joint_friction_of_a_double_pendulum_at_rest_takes_the_consistent_modes() {
+    let p = StiffJoints {
+        m1: 1.0,
+        m2: 0.6,
+        l1: 0.5,
+        l2: 0.4,
+        g: 9.81,
+        t1: 1.5,
+        t2: 0.4,
+    };
+    let rest = Vector::<2>::zeros();
+    let mut kinds = std::collections::BTreeSet::new();
+    for (q1, q2) in [
+        (0.05, 0.02),
+        (0.2, 1.0),
+        (0.6, -0.6),
+        (1.2, 0.9),
+        (-0.3, -0.5),
+    ] {
+        let want = stiff_joints_at_rest(&p, q1, q2);
+        kinds.insert((want[0] != 0.0, want[1] != 0.0));
+        let got = p
+            .acceleration(0.0, &Vector::<2>::new(q1, q2), &rest)
+            .unwrap();
+        for i in 0..2 {
+            assert!(
+                (got[i] - want[i]).abs() < 1e-12,
+                "({q1}, {q2}): qdd = {got} vs {want:?}"
+            );
+        }
+    }
+    // Both held, one slipping, the other slipping, both slipping: all four seen.
+    assert_eq!(kinds.len(), 4, "{kinds:?}");
+}
