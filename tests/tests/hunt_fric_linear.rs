@@ -538,3 +538,96 @@ fn a_bead_on_a_spun_hoop_has_the_closed_form_frequencies_at_its_rest_points() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A critically damped block (`c = 2 sqrt(k m)`): `lambda = -w` twice (a Jordan block),
+/// `zeta = 1`. Rounding splits a defective double eigenvalue by `O(sqrt(eps) w)`, maybe
+/// into a complex pair: the modes must still say `zeta = 1` and `w_n = w` to that
+/// accuracy, and must not invent an oscillation.
+#[test]
+fn a_critically_damped_block_is_reported_with_unit_damping_ratio() {
+    for (m, k) in [
+        (2.0, 18.0),
+        (0.7, 3.1),
+        (1.3, 1e4),
+        (5e-3, 0.37),
+        (3.3, 0.011),
+    ] {
+        critical(m, k);
+    }
+}
+
+fn critical(m: f64, k: f64) {
+    let p = Pushed {
+        m,
+        k,
+        c: 2.0 * (k * m).sqrt(),
+        l0: 0.5,
+        u: 0.0,
+    };
+    let w = (k / m).sqrt();
+    let found = modes(&linearize(&p, 0.0, &Vector::<2>::new(p.l0, 0.0)).unwrap()).unwrap();
+    let count: usize = found
+        .iter()
+        .map(|m| {
+            if m.kind == ModeKind::Oscillatory {
+                2
+            } else {
+                1
+            }
+        })
+        .sum();
+    assert_eq!(count, 2, "{found:?}");
+    for m in &found {
+        assert!((m.omega_n - w).abs() < 1e-6 * w, "{m:?}");
+        assert!((m.damping_ratio.unwrap() - 1.0).abs() < 1e-6, "{m:?}");
+        assert!(m.omega_d < 1e-6 * w, "{m:?}");
+        assert!(!m.unstable);
+    }
+}
+
+/// A puck held to the centre of a turntable by an isotropic spring `k` (zero rest length),
+/// in coordinates `(u, v)` that turn with the table (`ph = W t`, a drive).
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(u, v)]
+#[drive(ph = big_w * t)]
+#[particle(puck, mass = m, at = [u * cos(ph) - v * sin(ph), u * sin(ph) + v * cos(ph)])]
+#[potential(k * (u * u + v * v) / 2.0)]
+pub struct Turntable {
+    pub m: f64,
+    pub k: f64,
+    pub big_w: f64,
+}
+
+/// In the turning frame `z = u + i v` obeys `z'' + 2 i W z' + (w0^2 - W^2) z = 0`
+/// (`w0^2 = k / m`; Coriolis and centrifugal terms), so `z = e^{s t}` with
+/// `s = i (-W +- w0)`: the frequencies seen on the table are `|w0 - W|` and `w0 + W`,
+/// undamped. The velocity terms are gyroscopic (skew), not damping: `undamped_modes`
+/// cannot take them and must say so, and `modes` gives the two frequencies.
+#[test]
+fn a_puck_on_a_turntable_splits_its_frequency_by_the_spin() {
+    let p = Turntable {
+        m: 0.5,
+        k: 8.0,
+        big_w: 1.5,
+    };
+    let w0 = (p.k / p.m).sqrt();
+    let found = modes(&linearize(&p, 0.3, &Vector::<4>::zeros()).unwrap()).unwrap();
+    assert_eq!(found.len(), 2, "{found:?}");
+    for (m, want) in found.iter().zip([w0 - p.big_w, w0 + p.big_w]) {
+        assert_eq!(m.kind, ModeKind::Oscillatory);
+        assert!(
+            (m.omega_d - want).abs() < 1e-12 * want,
+            "{} vs {want}",
+            m.omega_d
+        );
+        assert!(m.damping_ratio.unwrap().abs() < 1e-12);
+    }
+    match undamped_modes(&p, 0.3, &Vector::<2>::zeros()) {
+        Err(Error::InvalidInput { detail, .. }) => {
+            assert!(detail.contains("gyroscopic"), "{detail}");
+            assert!(detail.contains("`modes`"), "{detail}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

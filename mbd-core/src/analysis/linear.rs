@@ -308,7 +308,8 @@ impl<const N: usize> NormalMode<N> {
 /// ([`NEUTRAL_W2`]).
 ///
 /// Errors ([`Error::InvalidInput`]) when `q` is not an equilibrium (`|qdd| > 1e-9 |A|`),
-/// when the model is damped (`dqdd/dqd != 0` at rest), when `K` is not symmetric (to
+/// when the model is damped or gyroscopic (`dqdd/dqd != 0` at rest; the message says
+/// which), when `K` is not symmetric (to
 /// `1e-9 |K|`: non-conservative forces), or when `M` is not positive definite; plus the
 /// errors of [`linearize`].
 pub fn undamped_modes<S, const N: usize, const D: usize>(
@@ -331,13 +332,21 @@ where
     if qdd > 1e-9 * scale {
         return Err(bad(format!("not an equilibrium: |qdd| = {qdd:.3e}")));
     }
+    let mass = sys.mass_matrix(t, q)?;
     let damping = a.fixed_view::<N, N>(N, N).abs().max();
     if damping > 1e-12 * scale {
+        // `M dqdd/dqd = -(C + G)`: a skew `G` is gyroscopic (Coriolis of a spin or a turning
+        // frame), which conserves energy but still couples the velocities.
+        let c = mass * a.fixed_view::<N, N>(N, N);
+        let kind = if (c + c.transpose()).abs().max() <= 1e-9 * c.abs().max() {
+            "gyroscopic (skew velocity terms: a spin or a turning frame)"
+        } else {
+            "damped"
+        };
         return Err(bad(format!(
-            "damped: |dqdd/dqd| = {damping:.3e}; use `modes`"
+            "{kind}: |dqdd/dqd| = {damping:.3e}; use `modes`"
         )));
     }
-    let mass = sys.mass_matrix(t, q)?;
     let k = -(mass * a.fixed_view::<N, N>(N, 0));
     let asym = (k - k.transpose()).abs().max();
     if asym > 1e-9 * k.abs().max() {
