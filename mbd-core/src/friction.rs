@@ -158,7 +158,16 @@ fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
     use nalgebra::{DMatrix, DVector};
     let singular = Error::SingularConstraintJacobian { t };
     let stuck: Vec<usize> = (0..F).filter(|&j| modes[j] == Slip::Stick).collect();
-    if stuck.is_empty() {
+    // Only the stuck rows may be at fault: a singular loop (constraints dependent by
+    // themselves) keeps its typed error.
+    let mut loose = *k;
+    for &j in &stuck {
+        let r = N + M + j;
+        loose.row_mut(r).fill(0.0);
+        loose.column_mut(r).fill(0.0);
+        loose[(r, r)] = 1.0;
+    }
+    if stuck.is_empty() || Lu::factor(loose).is_none() {
         return Err(singular);
     }
     let kd = DMatrix::from_iterator(A, A, k.iter().copied());
