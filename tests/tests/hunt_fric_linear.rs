@@ -4,7 +4,8 @@
 //! beside its test.
 
 use mbd::analysis::linear::{
-    ModeKind, constrained_modes, linearize, modes, state_space, undamped_modes,
+    ModeKind, constrained_modes, constrained_state_space, linearize, modes, state_space,
+    undamped_modes,
 };
 use mbd::prelude::*;
 use nalgebra::{Complex, DMatrix};
@@ -629,5 +630,47 @@ fn a_puck_on_a_turntable_splits_its_frequency_by_the_spin() {
             assert!(detail.contains("`modes`"), "{detail}");
         }
         other => panic!("{other:?}"),
+    }
+}
+
+/// The Cartesian pendulum pushed sideways at the bob by an input force `f`, its `x` as
+/// output, for the state space in independent coordinates.
+#[derive(Debug, Mechanism)]
+#[mechanism(augmented, jacobian)]
+#[gravity(0.0, -g)]
+#[coords(x, y)]
+#[constraint(x * x + y * y == l * l)]
+#[particle(bob, mass = m, at = [x, y])]
+#[generalized_force(push, along = x, value = f)]
+#[input(f)]
+#[output(sway = x)]
+pub struct PushedCartesian {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+    pub f: f64,
+}
+
+/// Hanging at rest, small swings `x = l q`: `m l q'' = -m g q + f`, so the receptance is
+/// `x / f = 1 / (m (g / l - w^2))` (static gain `l / (m g)`), whatever basis the reduced
+/// state uses.
+#[test]
+fn a_constrained_state_space_has_the_pendulum_receptance() {
+    let p = PushedCartesian {
+        m: 0.4,
+        l: 1.3,
+        g: 9.81,
+        f: 0.0,
+    };
+    let (ss, t) = constrained_state_space(&p, 0.0, &Vector::<2>::new(0.0, -p.l)).unwrap();
+    assert_eq!((ss.a.nrows(), t.nrows(), t.ncols()), (2, 4, 2));
+    for w in [0.0, 1.0, 2.5, 7.0] {
+        let g = ss.frequency_response(w).unwrap();
+        let want = 1.0 / (p.m * (p.g / p.l - w * w));
+        assert!(
+            (g[(0, 0)] - Complex::new(want, 0.0)).norm() < 1e-12 * want.abs(),
+            "w = {w}: {} vs {want}",
+            g[(0, 0)]
+        );
     }
 }
