@@ -901,3 +901,64 @@ fn joint_friction_of_a_double_pendulum_at_rest_takes_the_consistent_modes() {
     // Both held, one slipping, the other slipping, both slipping: all four seen.
     assert_eq!(kinds.len(), 4, "{kinds:?}");
 }
+
+/// A parallelogram four-bar hanging from pivots `(0, 0)` and `(d, 0)`: massless cranks of
+/// length `r` at `phi`, `psi` from the downward vertical, a coupler of length `d` with its
+/// mass `m` lumped half at each pin; the loop closes by one distance constraint (augmented
+/// form). Pin friction at both ground pivots, torque bounds `t1`, `t2` (normal 1): two
+/// contacts on a one-degree-of-freedom loop, tied through a nonlinear constraint.
+#[derive(Debug, Mechanism)]
+#[mechanism(augmented)]
+#[gravity(0.0, -g)]
+#[coords(phi, psi)]
+#[constraint((d + r * sin(psi) - r * sin(phi)) * (d + r * sin(psi) - r * sin(phi))
+    + (r * cos(phi) - r * cos(psi)) * (r * cos(phi) - r * cos(psi)) == d * d)]
+#[particle(pin_a, mass = 0.5 * m, at = [r * sin(phi), -r * cos(phi)])]
+#[particle(pin_b, mass = 0.5 * m, at = [d + r * sin(psi), -r * cos(psi)])]
+#[friction(along = phi, mu = t1, normal = 1.0)]
+#[friction(along = psi, mu = t2, normal = 1.0)]
+pub struct RoughParallelogram {
+    pub m: f64,
+    pub r: f64,
+    pub d: f64,
+    pub g: f64,
+    pub t1: f64,
+    pub t2: f64,
+}
+
+/// On the parallelogram branch `psi = phi`: `T = m r^2 phi'^2 / 2`, `V = -m g r cos phi`,
+/// and the two pins turn together, so the friction torques add: at rest at `phi0` it holds
+/// while `m g r |sin phi0| <= t1 + t2` (some split of the load holds), and otherwise falls
+/// back with `m r^2 phi'' = -m g r sin phi0 + (t1 + t2) sign(phi0)`, both cranks alike.
+#[test]
+fn a_parallelogram_with_two_rough_pivots_holds_by_their_sum() {
+    let base = RoughParallelogram {
+        m: 2.0,
+        r: 0.5,
+        d: 1.5,
+        g: 9.81,
+        t1: 1.0,
+        t2: 2.0,
+    };
+    let limit = ((base.t1 + base.t2) / (base.m * base.g * base.r)).asin();
+    let rest = Vector::<2>::zeros();
+    for phi0 in [0.1, 0.9 * limit, -0.9 * limit, 1.1 * limit, -1.2 * limit] {
+        let q = Vector::<2>::new(phi0, phi0);
+        let qdd = base.acceleration(0.0, &q, &rest).unwrap();
+        let want = if phi0.abs() <= limit {
+            0.0
+        } else {
+            (-base.m * base.g * base.r * phi0.sin() + (base.t1 + base.t2) * phi0.signum())
+                / (base.m * base.r * base.r)
+        };
+        for i in 0..2 {
+            assert!(
+                (qdd[i] - want).abs() < 1e-11 * want.abs().max(1.0),
+                "phi0 = {phi0}: qdd = {qdd} vs {want}"
+            );
+        }
+    }
+    // Either pivot alone could not hold 0.9 of the limit (each bound is below the load).
+    let load = base.m * base.g * base.r * (0.9 * limit).sin();
+    assert!(load > base.t1 && load > base.t2);
+}
