@@ -287,7 +287,9 @@
 //!   friction (exactly at `mu_s |n|` it slides when `mu_k < mu_s` and sticks when they are
 //!   equal). With several contacts at rest, the first consistent combination of stick and
 //!   slip is taken, most contacts stuck first. A body at rest with no tangential load has
-//!   zero acceleration.
+//!   zero acceleration. Contacts that constraints tie together (blocks joined by a bar)
+//!   stick and stop together, and hold while some split of the load between them is within
+//!   their bounds (the split reported spreads it evenly relative to them).
 //!
 //! That is what `acceleration`, `forces` (the friction at rest is the holding force) and
 //! `rhs` of the model compute at any state. Integrating `rhs` straight through a stop would
@@ -301,7 +303,11 @@
 //! spaced by the function's own slope and curvature: a body stuck under a load that varies
 //! in time has a constant state, so its steps grow, and a breakaway that comes and goes
 //! within one step is still found, without `Options::h_max` (a pulse shorter than the
-//! sample spacing its approach allows is the limit). One `friction` per coordinate. With
+//! sample spacing its approach allows is the limit). One `friction` per coordinate. Each
+//! contact is one-dimensional: two contacts on a body's `x` and `y` (a puck sliding on a
+//! table) act separately, a box rather than a disc (a diagonal slide meets `sqrt(2) mu |n|`);
+//! isotropic planar friction is not available. Friction on a moving surface (a belt) is
+//! written along the body's place on it (`x = v t + s`, friction along `s`). With
 //! `#[mechanism(jacobian)]` the exact Jacobian and the linear parts are those of a sliding
 //! state; at a contact at rest, where the accelerations have no derivative, they return
 //! `InvalidInput { what: "friction at rest", .. }`. The friction

@@ -113,9 +113,10 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
     let mut rhs = Vector::<A>::zeros();
     rhs.fixed_rows_mut::<N>(0).copy_from(&f);
     rhs.fixed_rows_mut::<M>(N).copy_from(&c.gamma);
-    let x = Lu::factor(k)
-        .ok_or(Error::SingularConstraintJacobian { t })?
-        .solve(&rhs);
+    let x = match Lu::factor(k) {
+        Some(lu) => lu.solve(&rhs),
+        None => redundant(t, c, modes, &k, &rhs)?,
+    };
     let x = finite(t, x)?;
     let mut qdd = x.fixed_rows::<N>(0).into_owned();
     let lambda = x.fixed_rows::<M>(N).into_owned();
@@ -137,6 +138,131 @@ pub fn solve_in<const N: usize, const M: usize, const F: usize, const A: usize>(
         }
     });
     Ok(InModes { qdd, lambda, load })
+}
+
+/// The solve of [`solve_in`] when its matrix is singular. With contacts stuck that is
+/// either an impossible stick (a stuck row contradicting the constraints: a piston at a
+/// dead centre, which the loop moves at second order; [`Error::SingularConstraintJacobian`],
+/// so the modes without it decide) or stuck contacts tied to each other by the constraints
+/// (blocks joined by bars): the accelerations are still unique, but the holding loads are
+/// not, only the combinations the ties transmit. Then the loads are taken in that family to
+/// spread the load as evenly as the bounds allow (least `max |h_k| / (mu_s |N_k|)`), so the
+/// stick holds exactly when some split of the load holds.
+fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
+    t: f64,
+    c: &Contacts<N, M, F>,
+    modes: &[Slip; F],
+    k: &Matrix<A, A>,
+    rhs: &Vector<A>,
+) -> Result<Vector<A>> {
+    use nalgebra::{DMatrix, DVector};
+    let singular = Error::SingularConstraintJacobian { t };
+    let stuck: Vec<usize> = (0..F).filter(|&j| modes[j] == Slip::Stick).collect();
+    // Only the stuck rows may be at fault: a singular loop (constraints dependent by
+    // themselves) keeps its typed error.
+    let mut loose = *k;
+    for &j in &stuck {
+        let r = N + M + j;
+        loose.row_mut(r).fill(0.0);
+        loose.column_mut(r).fill(0.0);
+        loose[(r, r)] = 1.0;
+    }
+    if stuck.is_empty() || Lu::factor(loose).is_none() {
+        return Err(singular);
+    }
+    let kd = DMatrix::from_iterator(A, A, k.iter().copied());
+    let b = DVector::from_iterator(A, rhs.iter().copied());
+    let svd = kd.clone().svd(true, true);
+    let top = svd.singular_values.max();
+    let tol = 1e-9 * top;
+    let x = svd.solve(&b, tol).map_err(|_| singular.clone())?;
+    // Inconsistent (no solution at all): the stick is impossible.
+    if (&kd * &x - &b).amax() > 1e-9 * (top * x.amax() + b.amax()) {
+        return Err(singular);
+    }
+    let v_t = svd.v_t.as_ref().ok_or_else(|| singular.clone())?;
+    let null: Vec<usize> = (0..A).filter(|&i| svd.singular_values[i] <= tol).collect();
+    // The null directions `Z` (the accelerations do not move along them) and the loads.
+    let z = DMatrix::from_fn(A, null.len(), |r, col| v_t[(null[col], r)]);
+    let h: Vec<f64> = stuck.iter().map(|&j| x[N + M + j]).collect();
+    let zh = DMatrix::from_fn(stuck.len(), null.len(), |r, col| z[(N + M + stuck[r], col)]);
+    let bound: Vec<f64> = stuck
+        .iter()
+        .map(|&j| c.mu_s[j] * c.normal[j].abs())
+        .collect();
+    let x = x + z * even_split(&h, &zh, &bound);
+    Ok(Vector::<A>::from_fn(|i, _| x[i]))
+}
+
+/// The `a` minimising `max_k |h_k + (Z a)_k| / b_k` (a zero bound admits only a zero load).
+/// In `(a, r)` that is a linear programme (`|h_k + (Z a)_k| <= b_k r`, least `r`) whose
+/// optimum lies at a vertex, where `rank + 1` of the constraints hold with equality
+/// (`rank` that of `Z`, whose column space is the only part of `a` that matters): every
+/// such choice of rows and signs is solved and the best kept. Only for stuck contacts tied
+/// by constraints; a dozen contacts at most.
+fn even_split(h: &[f64], z: &nalgebra::DMatrix<f64>, b: &[f64]) -> nalgebra::DVector<f64> {
+    use nalgebra::{DMatrix, DVector};
+    let (rows, dim) = z.shape();
+    let worst = |a: &DVector<f64>| {
+        let v = z * a;
+        (0..rows)
+            .map(|k| {
+                let load = (h[k] + v[k]).abs();
+                if b[k] > 0.0 {
+                    load / b[k]
+                } else if load <= 1e-12 * (h[k].abs() + 1.0) {
+                    0.0
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .fold(0.0, f64::max)
+    };
+    let zero = DVector::<f64>::zeros(dim);
+    if rows == 0 || dim == 0 {
+        return zero;
+    }
+    // `a = V_r c`: the directions of `a` that move the loads.
+    let svd = z.clone().svd(false, true);
+    let Some(v_t) = svd.v_t.as_ref() else {
+        return zero;
+    };
+    let big = svd.singular_values.max();
+    let keep: Vec<usize> = (0..svd.singular_values.len())
+        .filter(|&i| svd.singular_values[i] > 1e-12 * big)
+        .collect();
+    let basis = DMatrix::from_fn(dim, keep.len(), |r, col| v_t[(keep[col], r)]);
+    let zr = z * &basis;
+    let n = keep.len() + 1;
+    let mut best = (worst(&zero), zero);
+    for mask in 0u32..(1 << rows) {
+        if mask.count_ones() as usize != n {
+            continue;
+        }
+        let picked: Vec<usize> = (0..rows).filter(|&k| mask & (1 << k) != 0).collect();
+        for signs in 0u32..(1 << n) {
+            // Row `i`: (Z_r c)_k - sigma b_k r = -h_k.
+            let m = DMatrix::from_fn(n, n, |i, col| {
+                if col < keep.len() {
+                    zr[(picked[i], col)]
+                } else if signs & (1 << i) != 0 {
+                    b[picked[i]]
+                } else {
+                    -b[picked[i]]
+                }
+            });
+            let rhs = DVector::from_fn(n, |i, _| -h[picked[i]]);
+            let Some(sol) = m.lu().solve(&rhs) else {
+                continue;
+            };
+            let a = &basis * sol.rows(0, keep.len());
+            let w = worst(&a);
+            if w < best.0 {
+                best = (w, a);
+            }
+        }
+    }
+    best.1
 }
 
 /// [`solve_in`] without constraints and with a contact stuck: the stuck coordinates' rows
@@ -561,6 +687,7 @@ where
         });
     } else {
         y[N + along[k]] = 0.0;
+        stop_tied::<S, N, M, F, A, D>(sys, t, y, modes, k);
     }
     // Stuck contacts keep exactly zero velocity, so they count as at rest here.
     let (q, qd) = split::<N, D>(y);
@@ -572,6 +699,55 @@ where
         choose_in::<N, M, F, A>(t, c, along, &fixed, n)
     })?;
     Ok(chosen.0)
+}
+
+/// When sliding contact `k` stops, the contacts the constraints tie to it and to the stuck
+/// ones (two blocks joined by a bar) stop with it: their velocities are then zero to
+/// rounding only (the velocity constraint holds to the integration's accuracy), and taking
+/// that rounding for sliding would give a contact at rest kinetic friction and the wrong
+/// mode. A contact is tied when its velocity is zero on every velocity allowed by
+/// `Phi_q qd = 0` with the stopped and stuck contacts at rest (its row lies in their span).
+fn stop_tied<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &mut Vector<D>,
+    modes: &[Slip; F],
+    k: usize,
+) where
+    S: Frictional<N, M, F, A>,
+{
+    if M == 0 {
+        return;
+    }
+    let (q, qd) = split::<N, D>(y);
+    let phi_q = sys.contacts(t, &q, &qd).phi_q;
+    let held: Vec<usize> = (0..F)
+        .filter(|&j| j == k || modes[j] == Slip::Stick)
+        .map(|j| S::ALONG[j])
+        .collect();
+    let mut g = nalgebra::DMatrix::<f64>::zeros(M + held.len(), N);
+    g.view_mut((0, 0), (M, N)).copy_from(&phi_q);
+    for (r, &s) in held.iter().enumerate() {
+        g[(M + r, s)] = 1.0;
+    }
+    // The allowed velocities: the null space of `g`, from the eigenvectors of `g^T g`.
+    let Some(eig) = nalgebra::SymmetricEigen::try_new(g.transpose() * &g, f64::EPSILON, 10_000)
+    else {
+        return;
+    };
+    let top = eig.eigenvalues.amax();
+    if !top.is_finite() {
+        return;
+    }
+    let free: Vec<usize> = (0..N)
+        .filter(|&i| eig.eigenvalues[i] <= 1e-10 * top)
+        .collect();
+    for j in (0..F).filter(|&j| modes[j] != Slip::Stick && j != k) {
+        let s = S::ALONG[j];
+        if free.iter().all(|&i| eig.eigenvectors[(s, i)].abs() <= 1e-9) {
+            y[N + s] = 0.0;
+        }
+    }
 }
 
 /// The accelerations in given modes ([`resolve`]): the sliding view of a model whose

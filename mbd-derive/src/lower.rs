@@ -433,10 +433,18 @@ impl Lowerer<'_> {
             );
         }
         if fname == "der" {
-            if matches!(ctx, Context::Constant | Context::Kinematics) {
+            if ctx == Context::Kinematics {
                 return self.fail(
                     name.span(),
                     "`der(..)` is not allowed in kinematics or constants",
+                );
+            }
+            if ctx == Context::Constant {
+                return self.fail(
+                    name.span(),
+                    "`der(..)` is not allowed in a constant (a coefficient, mass, stiffness, \
+                     length or initial value): a velocity-dependent load is a force \
+                     (`damper`, `generalized_force`, or in a friction's `normal`)",
                 );
             }
             let v = self.expr(&args[0], ctx)?;

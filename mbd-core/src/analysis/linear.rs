@@ -10,6 +10,11 @@
 //! Both convert to `DMatrix`: nalgebra's fixed-size decompositions need typenum bounds that
 //! a bare `const D: usize` does not meet.
 //!
+//! At a state that is neither an equilibrium nor a steady motion, [`linearize`] is still the
+//! Jacobian there and [`modes`] its eigen-decomposition (local rates, which depend on the
+//! coordinates); [`undamped_modes`] refuses such a point. [`StateSpace::frequency_response`]
+//! evaluates a linear model's transfer matrix on the imaginary axis.
+//!
 //! Closed loops in the augmented form: `A` of the index-1 equations also has the directions
 //! that leave the constraint manifold (a double zero per constraint, the drift).
 //! [`constrained_modes`] restricts `A` to the constraints' tangent space (independent
@@ -138,7 +143,7 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
         what: "modes",
         detail: "the Schur iteration did not converge".into(),
     })?;
-    let mut out = Vec::new();
+    let mut out: Vec<Mode> = Vec::new();
     for lambda in eigenvalues.iter().copied() {
         let modulus = lambda.norm();
         // A pair once; neutral eigenvalues each (a double zero may come out as `+-i eps`).
@@ -164,7 +169,7 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
             },
             damping_ratio: (!neutral).then(|| -lambda.re / modulus),
             unstable: lambda.re > tol,
-            shape: shape(&a, lambda, norm),
+            shape: shape(&a, lambda, norm, &repeated(&out, lambda, tol)),
         });
     }
     out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
@@ -187,12 +192,52 @@ fn eigenvalues(a: &DMatrix<f64>) -> Option<DVector<Complex<f64>>> {
     schur(&h * a * &h).map(|s| s.complex_eigenvalues())
 }
 
+/// The shapes already found for eigenvalues within `tol` of `lambda` (a repeated one).
+fn repeated(found: &[Mode], lambda: Complex<f64>, tol: f64) -> Vec<DVector<Complex<f64>>> {
+    found
+        .iter()
+        .filter(|m| (m.eigenvalue - lambda).norm() <= tol)
+        .map(|m| m.shape.clone())
+        .collect()
+}
+
 /// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it
-/// (three solves; an exactly singular shift is moved further).
-fn shape(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> DVector<Complex<f64>> {
+/// (three solves; an exactly singular shift is moved further). A repeated eigenvalue's
+/// later shapes are kept orthogonal to its earlier ones (`others`), so a semisimple one
+/// (two identical uncoupled oscillators) gets independent shapes spanning its eigenspace;
+/// a defective one (a Jordan block: a free coordinate's double zero) has a single
+/// eigenvector, which is then repeated.
+fn shape(
+    a: &DMatrix<f64>,
+    lambda: Complex<f64>,
+    norm: f64,
+    others: &[DVector<Complex<f64>>],
+) -> DVector<Complex<f64>> {
+    let plain = inverse_iteration(a, lambda, norm, &[]);
+    if others.is_empty() {
+        return plain;
+    }
+    let v = inverse_iteration(a, lambda, norm, others);
+    let ac = a.map(|x| Complex::new(x, 0.0));
+    let residual = (&ac * &v - &v * lambda).norm();
+    if residual <= 1e-6 * norm.max(f64::MIN_POSITIVE) * v.norm() {
+        v
+    } else {
+        plain
+    }
+}
+
+/// Inverse iteration on `lambda` with each iterate made orthogonal to `others`.
+fn inverse_iteration(
+    a: &DMatrix<f64>,
+    lambda: Complex<f64>,
+    norm: f64,
+    others: &[DVector<Complex<f64>>],
+) -> DVector<Complex<f64>> {
     let n = a.nrows();
     let ac = a.map(|v| Complex::new(v, 0.0));
     let mut v = DVector::from_fn(n, |i, _| Complex::new(1.0, 0.1 * i as f64));
+    orthogonalise(&mut v, others);
     for k in 0..4 {
         let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * norm.max(1.0);
         let lu = (&ac - DMatrix::<Complex<f64>>::identity(n, n) * shift).lu();
@@ -204,12 +249,25 @@ fn shape(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> DVector<Complex<f
                 Some(w) if w.iter().all(|x| x.re.is_finite() && x.im.is_finite()) => v = w,
                 _ => break,
             }
+            orthogonalise(&mut v, others);
             let big = largest(&v);
             v /= big;
         }
         return v;
     }
     v
+}
+
+/// Gram-Schmidt (twice, for rounding) of `v` against `others`.
+fn orthogonalise(v: &mut DVector<Complex<f64>>, others: &[DVector<Complex<f64>>]) {
+    for _ in 0..2 {
+        for u in others {
+            let uu = u.dotc(u);
+            if uu.norm() > 0.0 {
+                *v -= u * (u.dotc(v) / uu);
+            }
+        }
+    }
 }
 
 /// The entry of largest modulus (1 for a zero vector).
@@ -221,10 +279,17 @@ fn largest(v: &DVector<Complex<f64>>) -> Complex<f64> {
         .unwrap_or(Complex::new(1.0, 0.0))
 }
 
+/// Eigenvalues of `K v = w^2 M v` with `|w^2| <= NEUTRAL_W2 max |w^2|` are rigid-body
+/// (zero-frequency) modes and are returned as exactly `w^2 = 0`: their computed values are
+/// rounding of either sign (`O(eps cond(M) |K|)`), and a negative one would read as
+/// unstable.
+pub const NEUTRAL_W2: f64 = 1e-10;
+
 /// A mode of `K v = w^2 M v`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NormalMode<const N: usize> {
-    /// `w^2` in (rad/s)^2; negative at an unstable equilibrium.
+    /// `w^2` in (rad/s)^2; negative at an unstable equilibrium, exactly 0 for a rigid-body
+    /// mode (see [`NEUTRAL_W2`]).
     pub omega_squared: f64,
     /// `v`, mass-normalised (`v^T M v = 1`).
     pub shape: Vector<N>,
@@ -239,10 +304,12 @@ impl<const N: usize> NormalMode<N> {
 
 /// The modes of an undamped conservative model at its equilibrium `q` (at rest), slowest
 /// first: `K v = w^2 M v` with `K = -M dqdd/dq` from the exact Jacobian, reduced by the
-/// Cholesky factor of `M` to a symmetric eigenproblem.
+/// Cholesky factor of `M` to a symmetric eigenproblem. Rigid-body modes have `w^2 = 0`
+/// ([`NEUTRAL_W2`]).
 ///
 /// Errors ([`Error::InvalidInput`]) when `q` is not an equilibrium (`|qdd| > 1e-9 |A|`),
-/// when the model is damped (`dqdd/dqd != 0` at rest), when `K` is not symmetric (to
+/// when the model is damped or gyroscopic (`dqdd/dqd != 0` at rest; the message says
+/// which), when `K` is not symmetric (to
 /// `1e-9 |K|`: non-conservative forces), or when `M` is not positive definite; plus the
 /// errors of [`linearize`].
 pub fn undamped_modes<S, const N: usize, const D: usize>(
@@ -265,13 +332,21 @@ where
     if qdd > 1e-9 * scale {
         return Err(bad(format!("not an equilibrium: |qdd| = {qdd:.3e}")));
     }
+    let mass = sys.mass_matrix(t, q)?;
     let damping = a.fixed_view::<N, N>(N, N).abs().max();
     if damping > 1e-12 * scale {
+        // `M dqdd/dqd = -(C + G)`: a skew `G` is gyroscopic (Coriolis of a spin or a turning
+        // frame), which conserves energy but still couples the velocities.
+        let c = mass * a.fixed_view::<N, N>(N, N);
+        let kind = if (c + c.transpose()).abs().max() <= 1e-9 * c.abs().max() {
+            "gyroscopic (skew velocity terms: a spin or a turning frame)"
+        } else {
+            "damped"
+        };
         return Err(bad(format!(
-            "damped: |dqdd/dqd| = {damping:.3e}; use `modes`"
+            "{kind}: |dqdd/dqd| = {damping:.3e}; use `modes`"
         )));
     }
-    let mass = sys.mass_matrix(t, q)?;
     let k = -(mass * a.fixed_view::<N, N>(N, 0));
     let asym = (k - k.transpose()).abs().max();
     if asym > 1e-9 * k.abs().max() {
@@ -290,11 +365,18 @@ where
     let c = &linv * dk * linv.transpose();
     let eig = SymmetricEigen::try_new(c, f64::EPSILON, 10_000)
         .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
+    let top = eig.eigenvalues.amax();
     let mut out: Vec<NormalMode<N>> = (0..N)
         .map(|i| {
             let v = linv.transpose() * eig.eigenvectors.column(i);
+            let w2 = eig.eigenvalues[i];
             NormalMode {
-                omega_squared: eig.eigenvalues[i],
+                // A rigid-body mode comes out as a rounding-size `w^2` of either sign.
+                omega_squared: if w2.abs() <= NEUTRAL_W2 * top {
+                    0.0
+                } else {
+                    w2
+                },
                 shape: Vector::<N>::from_fn(|r, _| v[r]),
             }
         })
@@ -396,6 +478,34 @@ pub struct StateSpace {
     pub d: DMatrix<f64>,
     pub inputs: Vec<&'static str>,
     pub outputs: Vec<&'static str>,
+}
+
+impl StateSpace {
+    /// The frequency response `G(i w) = C (i w I - A)^-1 B + D` at `w` rad/s (outputs by
+    /// inputs): the complex amplitude of each output per unit input `e^{i w t}` in steady
+    /// state, meaningful where the operating point is stable.
+    ///
+    /// Errors: [`Error::InvalidInput`] for a non-finite `w` or where `i w` is an eigenvalue
+    /// of `A` (an undamped resonance, a rigid-body mode at `w = 0`: the response is
+    /// unbounded).
+    pub fn frequency_response(&self, w: f64) -> Result<DMatrix<Complex<f64>>> {
+        let bad = |detail: String| Error::InvalidInput {
+            what: "frequency_response",
+            detail,
+        };
+        if !w.is_finite() {
+            return Err(bad(format!("w = {w}")));
+        }
+        let n = self.a.nrows();
+        let c = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
+        let shifted = DMatrix::<Complex<f64>>::identity(n, n) * Complex::new(0.0, w) - c(&self.a);
+        let x = shifted
+            .lu()
+            .solve(&c(&self.b))
+            .filter(|x| x.iter().all(|v| v.re.is_finite() && v.im.is_finite()))
+            .ok_or_else(|| bad(format!("i w is an eigenvalue of A at w = {w}")))?;
+        Ok(c(&self.c) * x + c(&self.d))
+    }
 }
 
 /// `A, B, C, D` at `(t, y)`, exact from one generated evaluation
