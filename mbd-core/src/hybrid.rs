@@ -156,7 +156,10 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
 /// ([`Integrator::with_first_step`]). Every [`Integrator`] is one.
 pub trait Method<const D: usize> {
     /// [`Integrator::solve_observed`] of `view`.
-    #[allow(clippy::too_many_arguments, reason = "solve_observed's arguments and the step")]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "solve_observed's arguments and the step"
+    )]
     fn run(
         &self,
         view: &View<'_, D>,
@@ -364,6 +367,8 @@ fn drive<S: Hybrid<D>, const D: usize>(
         t = *out.t.last().expect("a step");
         y = *out.y.last().expect("a step");
         mode = sys.switch(t, &mut y, &current, k)?;
+        // The record holds the state the next mode starts from (a stop's velocity exactly 0).
+        *out.y.last_mut().expect("a step") = y;
         let switch = Switch {
             t,
             by: k,
