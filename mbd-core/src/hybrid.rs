@@ -191,6 +191,13 @@ impl<I: Integrator, const D: usize> Method<D> for I {
 /// virtual call away; its Jacobian is the default forward difference, as for [`InMode`].
 pub struct View<'a, const D: usize>(&'a dyn Frozen<D>);
 
+impl<'a, const D: usize> View<'a, D> {
+    /// The view of `frozen` (what the driver runs in each mode).
+    pub fn new<S: Hybrid<D>>(frozen: &'a InMode<'a, S, S::Mode>) -> Self {
+        View(frozen)
+    }
+}
+
 impl<const D: usize> std::fmt::Debug for View<'_, D> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str("View")
@@ -312,7 +319,7 @@ fn drive<S: Hybrid<D>, const D: usize>(
         let current = mode;
         let all = with_switches(sys, &current, events);
         let frozen = InMode { sys, mode };
-        let view = View(&frozen);
+        let view = View::new(&frozen);
         // A crossing inside a step that its ends did not show: (function, time).
         let mut inside: Option<(usize, f64)> = None;
         let mut watch =
