@@ -727,6 +727,32 @@ mod tests {
         }
     }
 
+    /// A hand-written hybrid system opts in to the ordinary solve by returning itself from
+    /// `OdeSystem::hybrid`: the same exact switches, kept in `Solution::switches`.
+    impl OdeSystem<1> for Thermostat {
+        fn rhs(&self, t: f64, y: &Vector<1>) -> Result<Vector<1>> {
+            self.rhs_in(t, y, &self.mode_at(t, y)?)
+        }
+        fn hybrid(&self) -> Option<&dyn Modes<1>> {
+            Some(self)
+        }
+    }
+
+    #[test]
+    fn the_ordinary_solve_switches_a_hand_written_system() {
+        let sol = Rk4::new(0.3)
+            .solve(&Thermostat, 0.0, Vector::<1>::zeros(), 5.5, &[])
+            .unwrap();
+        assert_eq!(sol.switches.len(), 5);
+        for (i, sw) in sol.switches.iter().enumerate() {
+            assert!((sw.t - (i + 1) as f64).abs() <= 1e-14, "{}", sw.t);
+            assert_eq!(sw.to.get::<bool>(), Some(&(i % 2 == 1)));
+            assert_eq!(sw.to, AnyMode::new(i % 2 == 1));
+            assert_ne!(sw.to, AnyMode::new(i as u8));
+        }
+        assert!((sol.last().1[0] - 0.5).abs() <= 1e-13);
+    }
+
     #[test]
     fn too_many_switches_is_a_typed_error() {
         let settings = Settings {

@@ -425,3 +425,23 @@ fn user_events_work_through_the_modes() {
         sol.last().0
     );
 }
+
+/// Generalized-alpha's own second-order form, `ga.solve(&model, t0, q0, qd0, t1, ..)`, takes
+/// any `Mechanism` and so cannot see the modes (its `Integrator::solve` above runs them): on
+/// the plain model its Newton iteration meets the jump of the friction force at the stop and
+/// fails there with the typed error, never a wrong `Ok`.
+#[test]
+fn generalized_alpha_in_mechanism_form_refuses_the_stop() {
+    let (mu, g, v0) = (FLOOR.mu, FLOOR.g, FLOOR.v0);
+    let t_stop = v0 / (mu * g);
+    for h in [1e-2, 1e-3] {
+        let (q0, qd0) = (Vector::<1>::new(0.0), Vector::<1>::new(v0));
+        let run = GeneralizedAlpha::new(0.9, h).solve::<_, 1, 2>(&FLOOR, 0.0, q0, qd0, 3.0, &[]);
+        match run {
+            Err(mbd::Error::NewtonFailed { t, .. }) => {
+                assert!((t - t_stop).abs() <= 2.0 * h, "h = {h}: failed at {t}")
+            }
+            other => panic!("h = {h}: {other:?}"),
+        }
+    }
+}
