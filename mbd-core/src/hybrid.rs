@@ -7,6 +7,11 @@
 //! integrator restarts there. No step crosses a discontinuity, so no step size collapses at
 //! one; the price is the restart (a new initial step) per switch, reported in [`Switch`].
 //!
+//! The ordinary `Integrator::solve` reaches this driver through object-safe hooks: the
+//! system hands over its modes ([`OdeSystem::hybrid`], a `&dyn` [`Modes`]) and the
+//! integrator is erased as a [`Method`] that runs each mode's [`View`] (one virtual call
+//! per right-hand side). [`solve`] runs the same driver, so both give the same states.
+//!
 //! A sign change at step ends is not enough: in a mode where the state is constant while a
 //! switching function varies (a body stuck under a time-dependent push), the method sees no
 //! error and its steps grow without bound, and the function can cross zero and come back
