@@ -327,20 +327,28 @@ fn drive<S: Hybrid<D>, const D: usize>(
         let view = View::new(&frozen);
         // A crossing inside a step that its ends did not show: (function, time).
         let mut inside: Option<(usize, f64)> = None;
-        let mut watch =
-            |step: &Step<'_, D>| match step.segment.and_then(|s| first_inside(sys, &current, s)) {
+        // The last step's segment (cut at a terminal event), also when `dense` keeps none:
+        // the switch is located and the record cut on it.
+        let mut last: Option<Segment<D>> = None;
+        // The lengths of the last two steps, whatever the record keeps.
+        let mut lengths = [f64::NAN; 2];
+        let mut watch = |step: &Step<'_, D>| {
+            last = step.segment.cloned();
+            lengths = [lengths[1], step.segment.map_or(f64::NAN, |s| s.h)];
+            match step.segment.and_then(|s| first_inside(sys, &current, s)) {
                 Some(hit) => {
                     inside = Some(hit);
                     Flow::Stop
                 }
                 None => Flow::Continue,
-            };
+            }
+        };
         // Restart with the step last taken in this mode (a fresh guess from a stuck
         // state starts at 1e-6 and takes a step per tenfold growth).
         let restart = steps_in.iter().find(|(m, _)| *m == mode).map(|&(_, h)| h);
         let part = method.run(&view, (t, y, t1), &all, restart, Some(&mut watch))?;
-        let steps = part.t.len() - 1;
-        if let Some(h) = last_step(&part) {
+        let steps = part.stats.n_accepted;
+        if let Some(h) = restart_step(lengths) {
             match steps_in.iter_mut().find(|(m, _)| *m == mode) {
                 Some(entry) => entry.1 = h,
                 None => steps_in.push((mode, h)),
@@ -365,15 +373,24 @@ fn drive<S: Hybrid<D>, const D: usize>(
         // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
         // segment down to adjacent floating-point times.
         let g = |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k);
-        if let Some(seg) = out.segments.last_mut() {
-            let ts = ts.unwrap_or_else(|| refine(&g, seg));
+        if let Some(mut seg) = last {
+            let ts = ts.unwrap_or_else(|| refine(&g, &seg));
             if ts < seg.t1() {
-                *seg = seg.truncated(ts);
+                seg = seg.truncated(ts);
+                // Output times inside the cut step past the switch did not happen (the
+                // next mode records them).
+                let n = out.t.len();
+                let past = out.t[..n - 1].partition_point(|&t| t <= ts);
+                out.t.drain(past..n - 1);
+                out.y.drain(past..n - 1);
                 *out.t.last_mut().expect("a step") = ts;
                 *out.y.last_mut().expect("a step") = seg.eval(ts);
+                if let Some(kept) = out.segments.last_mut() {
+                    *kept = seg.clone();
+                }
             }
             if settings.polish {
-                polish(method, &view, &mut out, &g)?;
+                polish(method, &view, &mut out, &seg, &g)?;
             }
         }
         t = *out.t.last().expect("a step");
@@ -439,19 +456,20 @@ fn with_switches<'e, S: Hybrid<D>, const D: usize>(
 }
 
 /// The switch from step ends instead of the dense output (whose degree, 3 for Radau IIA,
-/// limits the located time and the restart state): integrate the last step again from its
-/// start to the located time, take one Newton step on the switching function there (its slope
-/// from the dense output), and integrate to that time. The record's last point becomes
-/// that step-end state; the work is added to the statistics.
+/// limits the located time and the restart state): integrate the last step `seg` (cut at
+/// the located time) again from its start to that time, take one Newton step on the
+/// switching function there (its slope from the dense output), and integrate to that time.
+/// The record's last point becomes that step-end state; the work is added to the statistics.
 fn polish<const D: usize>(
     method: &dyn Method<D>,
     view: &View<'_, D>,
     out: &mut Solution<D>,
+    seg: &Segment<D>,
     g: &impl Fn(f64, &Vector<D>) -> f64,
 ) -> Result<()> {
     let n = out.t.len();
-    let (ta, ya, ts) = (out.t[n - 2], out.y[n - 2], out.t[n - 1]);
-    let seg = out.segments.last().expect("a segment").clone();
+    // The polynomial's value at its start (theta = 0) is the step's initial state.
+    let (ta, ya, ts) = (seg.t0, seg.coeffs[0], seg.t1());
     let dt = 1e-3 * (ts - ta);
     // A step of zero length (or NaN) has nothing to polish.
     if dt.is_nan() || dt <= 0.0 {
@@ -472,7 +490,9 @@ fn polish<const D: usize>(
     } else {
         (ts, ys)
     };
-    *out.segments.last_mut().expect("a segment") = seg.truncated(t);
+    if let Some(kept) = out.segments.last_mut() {
+        *kept = seg.truncated(t);
+    }
     out.t[n - 1] = t;
     out.y[n - 1] = y;
     add(&mut out.stats, work);
@@ -480,18 +500,8 @@ fn polish<const D: usize>(
 }
 
 /// The step size to restart a mode with: the longer of the run's last two steps (the last
-/// one may have been cut short by the switch), from the dense segments when kept.
-fn last_step<const D: usize>(part: &Solution<D>) -> Option<f64> {
-    let lengths: Vec<f64> = if part.segments.is_empty() {
-        part.t
-            .windows(2)
-            .rev()
-            .take(2)
-            .map(|w| w[1] - w[0])
-            .collect()
-    } else {
-        part.segments.iter().rev().take(2).map(|s| s.h).collect()
-    };
+/// one may have been cut short by the switch).
+fn restart_step(lengths: [f64; 2]) -> Option<f64> {
     lengths
         .into_iter()
         .filter(|h| *h > 0.0 && h.is_finite())

@@ -22,7 +22,7 @@
 //! degree 2 and 3 that every method but generalized-alpha (second order) integrates exactly.
 
 use mbd::integrate::{
-    Auto, Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Radau5, Rk4, Solution, Vern9,
+    Auto, Dop853, Dopri5, Gauss, GeneralizedAlpha, Integrator, Radau5, Record, Rk4, Solution, Vern9,
 };
 use mbd::prelude::*;
 use mbd::{Slip, Vector};
@@ -442,6 +442,87 @@ fn generalized_alpha_in_mechanism_form_refuses_the_stop() {
                 assert!((t - t_stop).abs() <= 2.0 * h, "h = {h}: failed at {t}")
             }
             other => panic!("h = {h}: {other:?}"),
+        }
+    }
+}
+
+/// A block on a floor under a periodic push `p sin(w t)` just above static friction
+/// (`r = mu m g / p = 0.99`).
+#[derive(Debug, Mechanism)]
+#[gravity(0.0, -g)]
+#[coords(x)]
+#[particle(block, mass = m, at = [x, 0.0])]
+#[friction(along = x, mu = mu, normal = m * g)]
+#[generalized_force(push, along = x, value = p * sin(w * t))]
+pub struct Shaken {
+    pub m: f64,
+    pub g: f64,
+    pub mu: f64,
+    pub p: f64,
+    pub w: f64,
+}
+
+/// Stuck from rest, the state is constant and the steps grow tenfold at a time, so the
+/// breakaway window (`sin(w t) > r`, about `0.094 s` wide around `pi / (2 w)`) lies inside
+/// one step: it is found inside the step, with or without dense output kept. Closed form:
+/// breakaway at `t_b = asin(r) / w`; then `m v = p (cos(w t_b) - cos(w t)) / w - mu m g (t -
+/// t_b)`, which must vanish at the stop the run reports. Without dense output (`dense:
+/// false` with `Record::Final` or output times: what ensembles and reports use) the
+/// switches and the final state are the dense run's, bit for bit, and the output times
+/// are the states at those times (at rest before the breakaway and after the stop).
+#[test]
+fn a_breakaway_inside_one_long_step_is_found_without_dense_output() {
+    let b = Shaken {
+        m: 1.0,
+        g: 9.81,
+        mu: 0.3,
+        p: 0.3 * 9.81 / 0.99,
+        w: 3.0,
+    };
+    let (mg, w) = (b.m * b.g, b.w);
+    let t_b = (b.mu * mg / b.p).asin() / w;
+    let v = |t: f64| (b.p * ((w * t_b).cos() - (w * t).cos()) / w - b.mu * mg * (t - t_b)) / b.m;
+    let zero = Vector::<2>::zeros();
+    let lean = |record| Options {
+        dense: false,
+        record,
+        ..tight()
+    };
+    let times = vec![0.25, 0.5, 0.75, 1.0, 1.25];
+    for name in ["DOPRI5", "Radau5"] {
+        let run = |opts: Options| match name {
+            "DOPRI5" => Dopri5::new(opts).solve(&b, 0.0, zero, 1.5, &[]).unwrap(),
+            _ => Radau5::new(opts).solve(&b, 0.0, zero, 1.5, &[]).unwrap(),
+        };
+        let dense = run(tight());
+        let sw = switches(&dense);
+        assert_eq!(sw.len(), 2, "{name}: {sw:?}");
+        assert_eq!((sw[0].1, sw[0].2), ([Slip::Stick], [Slip::Forward]));
+        assert_eq!((sw[1].1, sw[1].2), ([Slip::Forward], [Slip::Stick]));
+        assert!(
+            (sw[0].0 - t_b).abs() <= 1e-12,
+            "{name}: {} vs {t_b}",
+            sw[0].0
+        );
+        // v' = p sin(w t) / m - mu g ~ -0.09 m/s^2 at the stop: 1e-11 m/s is 1e-10 s.
+        // Radau IIA's dense output is of degree 3 (`hybrid::Settings::polish` is for it):
+        // 1e-10 m/s, 1e-9 s, as its stops are held at this tolerance elsewhere.
+        let v_tol = if name == "Radau5" { 1e-10 } else { 1e-11 };
+        assert!(v(sw[1].0).abs() <= v_tol, "{name}: v = {}", v(sw[1].0));
+        let (t, y) = dense.last();
+        assert_eq!((t, y[1]), (1.5, 0.0), "{name}: {y}");
+        for record in [Record::Final, Record::Times(times.clone())] {
+            let sol = run(lean(record.clone()));
+            assert_eq!(sol.switches, dense.switches, "{name} {record:?}");
+            assert_eq!(sol.last(), dense.last(), "{name} {record:?}");
+            assert!(sol.t.windows(2).all(|w| w[0] < w[1]), "{name}: {:?}", sol.t);
+            for (t, y) in sol.t.iter().zip(&sol.y) {
+                if *t <= sw[0].0 {
+                    assert_eq!(*y, zero, "{name} {record:?}: moved at {t}");
+                } else if *t >= sw[1].0 {
+                    assert_eq!(y, dense.last().1, "{name} {record:?}: moved at {t}");
+                }
+            }
         }
     }
 }
