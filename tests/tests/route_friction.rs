@@ -526,3 +526,35 @@ fn a_breakaway_inside_one_long_step_is_found_without_dense_output() {
         }
     }
 }
+
+/// An ensemble (its members run through the ordinary solve, here without dense output)
+/// of blocks launched at different speeds: each stops at `v0^2 / (2 mu g)` and stays.
+#[test]
+fn an_ensemble_of_sliding_blocks_stops_each_at_its_closed_form() {
+    let (mu, g) = (FLOOR.mu, FLOOR.g);
+    let members: Vec<_> = [1.0, 2.5, 4.0, 6.0]
+        .iter()
+        .map(|&v0| {
+            let block = Floor { v0, ..FLOOR };
+            let y0 = block.initial_state();
+            ensemble::Member::new(block, y0)
+        })
+        .collect();
+    let lean = Options {
+        dense: false,
+        record: Record::Final,
+        ..tight()
+    };
+    let ends = ensemble::final_states(&Dopri5::new(lean), &members, 0.0, 5.0);
+    for (m, end) in members.iter().zip(ends) {
+        let (t, y) = end.unwrap();
+        let x_stop = m.model.v0 * m.model.v0 / (2.0 * mu * g);
+        assert_eq!(t, 5.0);
+        assert!(
+            (y[0] - x_stop).abs() <= 1e-12 * x_stop,
+            "v0 = {}: {y}",
+            m.model.v0
+        );
+        assert_eq!(y[1], 0.0, "v0 = {}", m.model.v0);
+    }
+}
