@@ -60,7 +60,8 @@ pub enum Error {
         cause: Option<Box<Error>>,
     },
     /// An ordinary `Integrator::solve` of a system whose right-hand side switches between
-    /// modes (Coulomb friction: a body that stops and sticks) failed (`cause`: its steps
+    /// modes (`OdeSystem::HYBRID`) but that does not hand over its modes
+    /// (`OdeSystem::hybrid`, which generated friction models do) failed (`cause`: its steps
     /// collapsed at the discontinuity) at `t`; [`crate::hybrid::solve`] integrates such a
     /// system mode by mode, switching exactly.
     ModeSwitch { t: f64, cause: Box<Error> },

@@ -7,6 +7,11 @@
 //! integrator restarts there. No step crosses a discontinuity, so no step size collapses at
 //! one; the price is the restart (a new initial step) per switch, reported in [`Switch`].
 //!
+//! The ordinary `Integrator::solve` reaches this driver through object-safe hooks: the
+//! system hands over its modes ([`OdeSystem::hybrid`], a `&dyn` [`Modes`]) and the
+//! integrator is erased as a [`Method`] that runs each mode's [`View`] (one virtual call
+//! per right-hand side). [`solve`] runs the same driver, so both give the same states.
+//!
 //! A sign change at step ends is not enough: in a mode where the state is constant while a
 //! switching function varies (a body stuck under a time-dependent push), the method sees no
 //! error and its steps grow without bound, and the function can cross zero and come back
@@ -14,8 +19,12 @@
 //! spacing set by the function's own slope and curvature there; no `h_max` is needed.
 
 use crate::error::{Error, Result};
-use crate::integrate::{Direction, Event, Flow, Integrator, Segment, Solution, Stats, Step};
+use crate::integrate::{
+    Direction, Event, Flow, Integrator, Observer, Segment, Solution, Stats, Step,
+};
 use crate::model::{Hybrid, OdeSystem, Vector};
+use std::any::Any;
+use std::sync::Arc;
 
 /// Switches allowed by default before [`Error::TooManySteps`] (an accumulation of
 /// switches, say).
@@ -57,8 +66,22 @@ pub struct Switch<Mode> {
     pub steps: usize,
 }
 
+impl<Mode: Copy + PartialEq + std::fmt::Debug + Send + Sync + 'static> Switch<Mode> {
+    /// The same switch with its modes erased, as [`Solution::switches`] keeps it.
+    pub fn erased(&self) -> Switch<AnyMode> {
+        Switch {
+            t: self.t,
+            by: self.by,
+            from: AnyMode::new(self.from),
+            to: AnyMode::new(self.to),
+            steps: self.steps,
+        }
+    }
+}
+
 /// A run of a hybrid system: the whole solution (its segments, events and work across all
-/// modes, as one [`Solution`]), the switches, and the final mode.
+/// modes, as one [`Solution`], whose `switches` are these with the modes erased), the
+/// switches, and the final mode.
 #[derive(Debug, Clone)]
 pub struct HybridSolution<const D: usize, Mode> {
     pub solution: Solution<D>,
@@ -100,7 +123,9 @@ pub fn hint(e: Error) -> Error {
 
 /// Integrate `sys` from `(t0, y0)` to `t1` with `integrator`, switching modes where the
 /// switching functions cross zero. `events` are the user's (indices in the result refer to
-/// this slice); a terminal one ends the run as usual.
+/// this slice); a terminal one ends the run as usual. (The ordinary `integrator.solve(&sys,
+/// ..)` of a generated friction model runs this with the default [`Settings`] and returns
+/// its `solution`: [`OdeSystem::hybrid`].)
 ///
 /// Switching functions are checked for a sign change at step ends and sampled inside each
 /// accepted step ([`hidden`]): a breakaway under a load that rises above the bound and falls
@@ -127,63 +152,203 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
     events: &[Event<'_, D>],
     settings: &Settings,
 ) -> Result<HybridSolution<D, S::Mode>> {
+    drive(integrator, sys, (t0, y0, t1), events, settings)
+}
+
+/// An integrator with its type erased, so that a hybrid system reached through the
+/// object-safe [`Modes`] can run it: one raw run of one mode's [`View`] from `(t0, y0)` to
+/// `t1`, starting with the step `first_step` when the method has that setting
+/// ([`Integrator::with_first_step`]). Every [`Integrator`] is one.
+pub trait Method<const D: usize> {
+    /// [`Integrator::solve_observed`] of `view`.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "solve_observed's arguments and the step"
+    )]
+    fn run(
+        &self,
+        view: &View<'_, D>,
+        start: (f64, Vector<D>, f64),
+        events: &[Event<'_, D>],
+        first_step: Option<f64>,
+        observer: Option<&mut Observer<'_, D>>,
+    ) -> Result<Solution<D>>;
+}
+
+impl<I: Integrator, const D: usize> Method<D> for I {
+    fn run(
+        &self,
+        view: &View<'_, D>,
+        (t0, y0, t1): (f64, Vector<D>, f64),
+        events: &[Event<'_, D>],
+        first_step: Option<f64>,
+        observer: Option<&mut Observer<'_, D>>,
+    ) -> Result<Solution<D>> {
+        match first_step.and_then(|h| self.with_first_step(h)) {
+            Some(restarted) => restarted.solve_observed(view, t0, y0, t1, events, observer),
+            None => self.solve_observed(view, t0, y0, t1, events, observer),
+        }
+    }
+}
+
+/// A system frozen in one mode with its type erased: what the driver hands a [`Method`].
+/// Its right-hand side and projection are the mode's (`Hybrid::rhs_in`, `project_in`) one
+/// virtual call away; its Jacobian is the default forward difference, as for [`InMode`].
+pub struct View<'a, const D: usize>(&'a dyn Frozen<D>);
+
+impl<'a, const D: usize> View<'a, D> {
+    /// The view of `frozen` (what the driver runs in each mode).
+    pub fn new<S: Hybrid<D>>(frozen: &'a InMode<'a, S, S::Mode>) -> Self {
+        View(frozen)
+    }
+}
+
+impl<const D: usize> std::fmt::Debug for View<'_, D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("View")
+    }
+}
+
+/// The object-safe part of an [`OdeSystem`] that a mode's view needs.
+trait Frozen<const D: usize> {
+    fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>>;
+    fn project(&self, t: f64, y: &mut Vector<D>) -> Result<()>;
+}
+
+impl<S: Hybrid<D>, const D: usize> Frozen<D> for InMode<'_, S, S::Mode> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>> {
+        self.sys.rhs_in(t, y, &self.mode)
+    }
+    fn project(&self, t: f64, y: &mut Vector<D>) -> Result<()> {
+        self.sys.project_in(t, y, &self.mode)
+    }
+}
+
+impl<const D: usize> OdeSystem<D> for View<'_, D> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &Vector<D>) -> Result<Vector<D>> {
+        self.0.rhs(t, y)
+    }
+    fn project(&self, t: f64, y: &mut Vector<D>) -> Result<()> {
+        self.0.project(t, y)
+    }
+}
+
+/// A hybrid system as the ordinary `Integrator::solve` reaches it ([`OdeSystem::hybrid`]):
+/// object-safe, so a generic `S: OdeSystem` can hand itself over without naming its modes.
+/// Every [`Hybrid`] system is one; generated friction models return themselves.
+pub trait Modes<const D: usize> {
+    /// [`solve_with`] from `start = (t0, y0, t1)` with `method`; the switches are in the
+    /// solution's [`Solution::switches`].
+    fn drive(
+        &self,
+        method: &dyn Method<D>,
+        start: (f64, Vector<D>, f64),
+        events: &[Event<'_, D>],
+        settings: &Settings,
+    ) -> Result<Solution<D>>;
+}
+
+impl<S: Hybrid<D>, const D: usize> Modes<D> for S {
+    fn drive(
+        &self,
+        method: &dyn Method<D>,
+        start: (f64, Vector<D>, f64),
+        events: &[Event<'_, D>],
+        settings: &Settings,
+    ) -> Result<Solution<D>> {
+        drive(method, self, start, events, settings).map(|run| run.solution)
+    }
+}
+
+/// A mode of some [`Hybrid`] system with its type erased, as [`Solution::switches`] keeps
+/// it: it prints as the mode does (`[Stick]`) and [`AnyMode::get`] gives the mode back.
+#[derive(Clone)]
+pub struct AnyMode(Arc<dyn ModeValue>);
+
+impl AnyMode {
+    /// Erase `mode`.
+    pub fn new<M: Copy + PartialEq + std::fmt::Debug + Send + Sync + 'static>(mode: M) -> Self {
+        AnyMode(Arc::new(mode))
+    }
+
+    /// The mode, when it is an `M` (for friction: `[Slip; F]`).
+    pub fn get<M: 'static>(&self) -> Option<&M> {
+        self.0.as_any().downcast_ref()
+    }
+}
+
+trait ModeValue: std::fmt::Debug + Send + Sync {
+    fn as_any(&self) -> &dyn Any;
+    fn same(&self, other: &dyn ModeValue) -> bool;
+}
+
+impl<M: Copy + PartialEq + std::fmt::Debug + Send + Sync + 'static> ModeValue for M {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn same(&self, other: &dyn ModeValue) -> bool {
+        other.as_any().downcast_ref::<M>() == Some(self)
+    }
+}
+
+impl std::fmt::Debug for AnyMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl PartialEq for AnyMode {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.same(&*other.0)
+    }
+}
+
+/// [`solve_with`] with the integrator erased (what [`Modes::drive`] runs too).
+fn drive<S: Hybrid<D>, const D: usize>(
+    method: &dyn Method<D>,
+    sys: &S,
+    (t0, y0, t1): (f64, Vector<D>, f64),
+    events: &[Event<'_, D>],
+    settings: &Settings,
+) -> Result<HybridSolution<D, S::Mode>> {
     crate::integrate::validate_problem(t0, &y0, t1)?;
     let mut mode = sys.mode_at(t0, &y0)?;
     let (mut t, mut y) = (t0, y0);
-    let mut out = Solution {
-        t: vec![t0],
-        y: vec![y0],
-        segments: Vec::new(),
-        events: Vec::new(),
-        stats: Stats::default(),
-        stopped_by: None,
-        t_end: t0,
-        y_end: y0,
-        passages: Vec::new(),
-    };
+    let mut out = Solution::start(t0, y0);
     let mut switches = Vec::new();
     // The last full step the method took in each mode met so far.
     let mut steps_in: Vec<(S::Mode, f64)> = Vec::new();
     loop {
         let current = mode;
-        let mut all: Vec<Event<'_, D>> = events
-            .iter()
-            .map(|e| Event {
-                name: e.name.clone(),
-                g: Box::new(move |t: f64, y: &Vector<D>| (e.g)(t, y)),
-                direction: e.direction,
-                terminal: e.terminal,
-            })
-            .collect();
-        all.extend((0..S::SWITCHES).map(|k| {
-            Event::new(
-                format!("switch {k}"),
-                move |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k),
-                Direction::Falling,
-            )
-            .terminal()
-        }));
-        let view = InMode { sys, mode };
+        let all = with_switches(sys, &current, events);
+        let frozen = InMode { sys, mode };
+        let view = View::new(&frozen);
         // A crossing inside a step that its ends did not show: (function, time).
         let mut inside: Option<(usize, f64)> = None;
-        let mut watch =
-            |step: &Step<'_, D>| match step.segment.and_then(|s| first_inside(sys, &current, s)) {
+        // The last step's segment (cut at a terminal event), also when `dense` keeps none:
+        // the switch is located and the record cut on it.
+        let mut last: Option<Segment<D>> = None;
+        // The lengths of the last two steps, whatever the record keeps.
+        let mut lengths = [f64::NAN; 2];
+        let mut watch = |step: &Step<'_, D>| {
+            last = step.segment.cloned();
+            lengths = [lengths[1], step.segment.map_or(f64::NAN, |s| s.h)];
+            match step.segment.and_then(|s| first_inside(sys, &current, s)) {
                 Some(hit) => {
                     inside = Some(hit);
                     Flow::Stop
                 }
                 None => Flow::Continue,
-            };
+            }
+        };
         // Restart with the step last taken in this mode (a fresh guess from a stuck
         // state starts at 1e-6 and takes a step per tenfold growth).
-        let restarted = steps_in
-            .iter()
-            .find(|(m, _)| *m == mode)
-            .and_then(|&(_, h)| integrator.with_first_step(h));
-        let method = restarted.as_ref().unwrap_or(integrator);
-        let part = method.solve_observed(&view, t, y, t1, &all, Some(&mut watch))?;
-        let steps = part.t.len() - 1;
-        if let Some(h) = last_step(&part) {
+        let restart = steps_in.iter().find(|(m, _)| *m == mode).map(|&(_, h)| h);
+        let part = method.run(&view, (t, y, t1), &all, restart, Some(&mut watch))?;
+        let steps = part.stats.n_accepted;
+        if let Some(h) = restart_step(lengths) {
             match steps_in.iter_mut().find(|(m, _)| *m == mode) {
                 Some(entry) => entry.1 = h,
                 None => steps_in.push((mode, h)),
@@ -208,27 +373,40 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
         // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
         // segment down to adjacent floating-point times.
         let g = |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k);
-        if let Some(seg) = out.segments.last_mut() {
-            let ts = ts.unwrap_or_else(|| refine(&g, seg));
+        if let Some(mut seg) = last {
+            let ts = ts.unwrap_or_else(|| refine(&g, &seg));
             if ts < seg.t1() {
-                *seg = seg.truncated(ts);
+                seg = seg.truncated(ts);
+                // Output times inside the cut step past the switch did not happen (the
+                // next mode records them).
+                let n = out.t.len();
+                let past = out.t[..n - 1].partition_point(|&t| t <= ts);
+                out.t.drain(past..n - 1);
+                out.y.drain(past..n - 1);
                 *out.t.last_mut().expect("a step") = ts;
                 *out.y.last_mut().expect("a step") = seg.eval(ts);
+                if let Some(kept) = out.segments.last_mut() {
+                    *kept = seg.clone();
+                }
             }
             if settings.polish {
-                polish(integrator, &view, &mut out, &g)?;
+                polish(method, &view, &mut out, &seg, &g)?;
             }
         }
         t = *out.t.last().expect("a step");
         y = *out.y.last().expect("a step");
         mode = sys.switch(t, &mut y, &current, k)?;
-        switches.push(Switch {
+        // The record holds the state the next mode starts from (a stop's velocity exactly 0).
+        *out.y.last_mut().expect("a step") = y;
+        let switch = Switch {
             t,
             by: k,
             from: current,
             to: mode,
             steps,
-        });
+        };
+        out.switches.push(switch.erased());
+        switches.push(switch);
         if switches.len() >= settings.max_switches {
             return Err(Error::TooManySteps {
                 t,
@@ -250,20 +428,48 @@ pub fn solve_with<I: Integrator, S: Hybrid<D>, const D: usize>(
     })
 }
 
+/// The user's `events` followed by the switching functions of `mode` as terminal events
+/// (falling crossings), so that index `events.len() + k` is switching function `k`.
+fn with_switches<'e, S: Hybrid<D>, const D: usize>(
+    sys: &'e S,
+    mode: &'e S::Mode,
+    events: &'e [Event<'_, D>],
+) -> Vec<Event<'e, D>> {
+    let mut all: Vec<Event<'e, D>> = events
+        .iter()
+        .map(|e| Event {
+            name: e.name.clone(),
+            g: Box::new(move |t: f64, y: &Vector<D>| (e.g)(t, y)),
+            direction: e.direction,
+            terminal: e.terminal,
+        })
+        .collect();
+    all.extend((0..S::SWITCHES).map(|k| {
+        Event::new(
+            format!("switch {k}"),
+            move |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k),
+            Direction::Falling,
+        )
+        .terminal()
+    }));
+    all
+}
+
 /// The switch from step ends instead of the dense output (whose degree, 3 for Radau IIA,
-/// limits the located time and the restart state): integrate the last step again from its
-/// start to the located time, take one Newton step on the switching function there (its slope
-/// from the dense output), and integrate to that time. The record's last point becomes
-/// that step-end state; the work is added to the statistics.
-fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
-    integrator: &I,
-    view: &S,
+/// limits the located time and the restart state): integrate the last step `seg` (cut at
+/// the located time) again from its start to that time, take one Newton step on the
+/// switching function there (its slope from the dense output), and integrate to that time.
+/// The record's last point becomes that step-end state; the work is added to the statistics.
+fn polish<const D: usize>(
+    method: &dyn Method<D>,
+    view: &View<'_, D>,
     out: &mut Solution<D>,
+    seg: &Segment<D>,
     g: &impl Fn(f64, &Vector<D>) -> f64,
 ) -> Result<()> {
     let n = out.t.len();
-    let (ta, ya, ts) = (out.t[n - 2], out.y[n - 2], out.t[n - 1]);
-    let seg = out.segments.last().expect("a segment").clone();
+    // The polynomial's value at its start (theta = 0) is the step's initial state.
+    let (ta, ya, ts) = (seg.t0, seg.coeffs[0], seg.t1());
     let dt = 1e-3 * (ts - ta);
     // A step of zero length (or NaN) has nothing to polish.
     if dt.is_nan() || dt <= 0.0 {
@@ -271,7 +477,7 @@ fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
     }
     let mut work = Stats::default();
     let mut end = |t: f64| -> Result<Vector<D>> {
-        let run = integrator.solve(view, ta, ya, t, &[])?;
+        let run = method.run(view, (ta, ya, t), &[], None, None)?;
         add(&mut work, run.stats);
         Ok(*run.last().1)
     };
@@ -284,7 +490,9 @@ fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
     } else {
         (ts, ys)
     };
-    *out.segments.last_mut().expect("a segment") = seg.truncated(t);
+    if let Some(kept) = out.segments.last_mut() {
+        *kept = seg.truncated(t);
+    }
     out.t[n - 1] = t;
     out.y[n - 1] = y;
     add(&mut out.stats, work);
@@ -292,18 +500,8 @@ fn polish<I: Integrator, S: OdeSystem<D>, const D: usize>(
 }
 
 /// The step size to restart a mode with: the longer of the run's last two steps (the last
-/// one may have been cut short by the switch), from the dense segments when kept.
-fn last_step<const D: usize>(part: &Solution<D>) -> Option<f64> {
-    let lengths: Vec<f64> = if part.segments.is_empty() {
-        part.t
-            .windows(2)
-            .rev()
-            .take(2)
-            .map(|w| w[1] - w[0])
-            .collect()
-    } else {
-        part.segments.iter().rev().take(2).map(|s| s.h).collect()
-    };
+/// one may have been cut short by the switch).
+fn restart_step(lengths: [f64; 2]) -> Option<f64> {
     lengths
         .into_iter()
         .filter(|h| *h > 0.0 && h.is_finite())
@@ -542,6 +740,32 @@ mod tests {
                     .is_some_and(|y| (y[0] - 0.5).abs() <= 1e-13)
             );
         }
+    }
+
+    /// A hand-written hybrid system opts in to the ordinary solve by returning itself from
+    /// `OdeSystem::hybrid`: the same exact switches, kept in `Solution::switches`.
+    impl OdeSystem<1> for Thermostat {
+        fn rhs(&self, t: f64, y: &Vector<1>) -> Result<Vector<1>> {
+            self.rhs_in(t, y, &self.mode_at(t, y)?)
+        }
+        fn hybrid(&self) -> Option<&dyn Modes<1>> {
+            Some(self)
+        }
+    }
+
+    #[test]
+    fn the_ordinary_solve_switches_a_hand_written_system() {
+        let sol = Rk4::new(0.3)
+            .solve(&Thermostat, 0.0, Vector::<1>::zeros(), 5.5, &[])
+            .unwrap();
+        assert_eq!(sol.switches.len(), 5);
+        for (i, sw) in sol.switches.iter().enumerate() {
+            assert!((sw.t - (i + 1) as f64).abs() <= 1e-14, "{}", sw.t);
+            assert_eq!(sw.to.get::<bool>(), Some(&(i % 2 == 1)));
+            assert_eq!(sw.to, AnyMode::new(i % 2 == 1));
+            assert_ne!(sw.to, AnyMode::new(i as u8));
+        }
+        assert!((sol.last().1[0] - 0.5).abs() <= 1e-13);
     }
 
     #[test]

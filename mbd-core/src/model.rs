@@ -32,9 +32,18 @@ pub trait OdeSystem<const D: usize> {
     const EXACT_JACOBIAN: bool = false;
 
     /// Whether the right-hand side switches between modes ([`Hybrid`]; generated models with
-    /// Coulomb friction): an ordinary `Integrator::solve` whose steps collapse at a switch
-    /// then fails with [`crate::Error::ModeSwitch`], which names [`crate::hybrid::solve`].
+    /// Coulomb friction). Such a system without [`Self::hybrid`] whose ordinary solve
+    /// collapses at a switch fails with [`crate::Error::ModeSwitch`], naming
+    /// [`crate::hybrid::solve`].
     const HYBRID: bool = false;
+
+    /// The system's modes, through which an integrator's ordinary `solve` runs it one mode
+    /// at a time ([`crate::hybrid::solve`] with its default settings); `None` (the default)
+    /// for a smooth system. Generated models with friction return themselves; a hand-written
+    /// [`Hybrid`] system returns `Some(self)` to be solved the same way.
+    fn hybrid(&self) -> Option<&dyn crate::hybrid::Modes<D>> {
+        None
+    }
 
     /// Bring `y` back onto the system's invariant manifolds after an accepted step.
     /// Closed loops project onto `Phi = 0` and `Phi_q qd + Phi_t = 0`; the default does nothing.
@@ -152,7 +161,9 @@ pub struct Generated {
 /// ([`crate::friction`]); the derive implements this trait for every model with friction.
 pub trait Hybrid<const D: usize> {
     /// The discrete state (for friction: slip forward, slip backward or stick, per contact).
-    type Mode: Copy + PartialEq + std::fmt::Debug;
+    /// (`Send + Sync + 'static` so that a [`crate::integrate::Solution`] can keep it,
+    /// erased, in its `switches`.)
+    type Mode: Copy + PartialEq + std::fmt::Debug + Send + Sync + 'static;
 
     /// The number of switching functions (the same in every mode).
     const SWITCHES: usize;

@@ -757,6 +757,7 @@ fn start<const D: usize>(t0: f64, y0: Vector<D>) -> Solution<D> {
         t_end: t0,
         y_end: y0,
         passages: Vec::new(),
+        switches: Vec::new(),
     }
 }
 

@@ -215,6 +215,7 @@ fn an_empty_solution_does_not_panic() {
         t_end: 1.0,
         y_end: Vector::<2>::new(3.0, 4.0),
         passages: vec![],
+        switches: vec![],
     };
     assert!(sol.at(1.0).is_none());
     assert_eq!(sol.last(), (1.0, &Vector::<2>::new(3.0, 4.0)));

@@ -74,7 +74,8 @@ pub fn emit(
             #normals
         }
         /// Coulomb friction as discrete modes (slip forward, slip backward, stick per
-        /// contact, in declaration order): integrate with `mbd::hybrid::solve`.
+        /// contact, in declaration order): any integrator's ordinary `solve` runs them, as
+        /// `mbd::hybrid::solve` does with its settings.
         #[automatically_derived]
         impl #p::Hybrid<#d> for #ident {
             type Mode = [#p::Slip; #nf];

@@ -111,3 +111,27 @@ fn constrained_crate_at_rest_holds_or_slides_by_the_load() {
     assert!((qdd[0] - s * steep.a.cos()).abs() <= 1e-13, "{qdd:?}");
     assert!((qdd[1] + s * steep.a.sin()).abs() <= 1e-13, "{qdd:?}");
 }
+
+/// A model with both a constraint (a closed loop's bridge, `OdeSystem::passage`) and
+/// friction (`OdeSystem::hybrid`): the ordinary solve runs it mode by mode, each mode a raw
+/// run (the bridge is not used: `passages` stays empty), exactly as `hybrid::solve` does,
+/// so the stop above holds for it too.
+#[test]
+fn the_ordinary_solve_of_the_constrained_crate_runs_its_modes() {
+    use mbd::integrate::Integrator;
+    let opts = Options {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Options::default()
+    };
+    let y0 = SLOPE.initial_state();
+    let plain = Dopri5::new(opts.clone())
+        .solve(&SLOPE, 0.0, y0, 10.0, &[])
+        .unwrap();
+    let hybrid = mbd::hybrid::solve(&Dopri5::new(opts), &SLOPE, 0.0, y0, 10.0, &[]).unwrap();
+    assert_eq!(plain.y, hybrid.solution.y);
+    assert!(plain.passages.is_empty());
+    assert_eq!(plain.switches.len(), 1);
+    assert_eq!(plain.switches[0].to.get(), Some(&[Slip::Stick]));
+    assert_eq!(plain.last().1[2], 0.0);
+}

@@ -49,11 +49,14 @@ pub trait Integrator {
     fn name(&self) -> &'static str;
 
     /// Integrate `y' = f(t, y)` from `t0` to `t1 >= t0`. The solution ends at `t1`, or at
-    /// the first terminal event. A closed loop ([`OdeSystem::passage`]) is integrated
-    /// through its bridge over singular positions as [`Self::passages`] asks
-    /// ([`crate::passage`]; the passages are in `Solution::passages`). A system that
-    /// switches modes ([`OdeSystem::HYBRID`]) whose steps collapse at a switch fails with
-    /// [`Error::ModeSwitch`], naming [`crate::hybrid::solve`].
+    /// the first terminal event. A system with modes ([`OdeSystem::hybrid`]: a model with
+    /// Coulomb friction) is integrated one mode at a time, exactly as
+    /// [`crate::hybrid::solve`] with its default settings does (stuck contacts held
+    /// exactly, every switch located; they are in `Solution::switches`). A closed loop
+    /// ([`OdeSystem::passage`]) is integrated through its bridge over singular positions
+    /// as [`Self::passages`] asks ([`crate::passage`]; the passages are in
+    /// `Solution::passages`). A closed loop with friction runs by modes, each mode raw: a
+    /// singular position inside a mode stops it with the typed error, not a bridge.
     fn solve<S: OdeSystem<D>, const D: usize>(
         &self,
         sys: &S,
@@ -61,7 +64,14 @@ pub trait Integrator {
         y0: Vector<D>,
         t1: f64,
         events: &[Event<'_, D>],
-    ) -> Result<Solution<D>> {
+    ) -> Result<Solution<D>>
+    where
+        Self: Sized,
+    {
+        if let Some(modes) = sys.hybrid() {
+            let settings = crate::hybrid::Settings::default();
+            return modes.drive(self, (t0, y0, t1), events, &settings);
+        }
         let run = match (sys.passage(), self.passages()) {
             (Some(bridge), Some(settings)) => {
                 bridge.pass((t0, y0, t1), events, &settings, &mut |t, y, observer| {

@@ -90,9 +90,29 @@ pub struct Solution<const D: usize> {
     pub y_end: Vector<D>,
     /// The singular positions of a closed loop bridged on the way ([`crate::passage`]).
     pub passages: Vec<crate::passage::Passage>,
+    /// The mode switches of a hybrid system (Coulomb friction: stops and breakaways), in
+    /// time order, with the modes erased ([`crate::hybrid::AnyMode::get`] gives them back);
+    /// empty for a smooth system.
+    pub switches: Vec<crate::hybrid::Switch<crate::hybrid::AnyMode>>,
 }
 
 impl<const D: usize> Solution<D> {
+    /// The record of a run that has not stepped yet: `(t0, y0)` only.
+    pub fn start(t0: f64, y0: Vector<D>) -> Self {
+        Solution {
+            t: vec![t0],
+            y: vec![y0],
+            segments: Vec::new(),
+            events: Vec::new(),
+            stats: Stats::default(),
+            stopped_by: None,
+            t_end: t0,
+            y_end: y0,
+            passages: Vec::new(),
+            switches: Vec::new(),
+        }
+    }
+
     /// The final time and state. Never fails: every solution has them
     /// ([`Solution::t_end`], [`Solution::y_end`]), whatever [`Record`] kept.
     pub fn last(&self) -> (f64, &Vector<D>) {
@@ -196,17 +216,7 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
             next_time,
             steps: 0,
             observer: None,
-            sol: Solution {
-                t: vec![t0],
-                y: vec![y0],
-                segments: Vec::new(),
-                events: Vec::new(),
-                stats: Stats::default(),
-                stopped_by: None,
-                t_end: t0,
-                y_end: y0,
-                passages: Vec::new(),
-            },
+            sol: Solution::start(t0, y0),
         }
     }
 

@@ -530,10 +530,14 @@ fn ode_impl(
             }
         }
     });
-    // Coulomb friction: the plain rhs switches modes; a failed ordinary solve says so.
+    // Coulomb friction: the plain rhs switches modes, so the ordinary solve runs the model
+    // mode by mode (mbd::hybrid).
     let hybrid = (accel.friction_acceleration.is_some()).then(|| {
         quote!(
             const HYBRID: bool = true;
+            fn hybrid(&self) -> ::core::option::Option<&dyn ::mbd::__private::hybrid::Modes<#d>> {
+                ::core::option::Option::Some(self)
+            }
         )
     });
     let rhs_body = match &recursion {
