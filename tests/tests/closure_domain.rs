@@ -223,3 +223,80 @@ fn statics_and_linearisation_inside_the_domain() {
         max_relative = 1e-10
     );
 }
+
+/// A Newton step out of the domain is halved back into it. From `th = 0.12` (near the
+/// maximum of `f`, where `f'` nearly vanishes) the full step of the hand `f` lands at
+/// `th = 1.53`, where the loop cannot close; statics still ends at one of the hand
+/// equilibria `th = 0, +-0.2` (`x = x0` or `x_th = 0`) or `pi`.
+#[test]
+fn statics_halves_a_step_that_leaves_the_domain() {
+    let p = Crank {
+        g: 0.0,
+        x0: piston(&CRANK, 0.2).0,
+        ..CRANK
+    };
+    let f = |th: f64| hand(&p, th, 0.0).1;
+    let (guess, h) = (0.12, 1e-6);
+    let newton = guess - f(guess) * 2.0 * h / (f(guess + h) - f(guess - h));
+    assert!(
+        newton.sin().abs() > 0.5,
+        "the full step stays inside: {newton}"
+    );
+    let q = statics::static_equilibrium(&p, 0.0, &Vector::<1>::new(guess), &Default::default())
+        .unwrap();
+    let equilibria = [-0.2, 0.0, 0.2, std::f64::consts::PI];
+    assert!(
+        equilibria.iter().any(|e| (q[0] - e).abs() < 1e-10),
+        "{q} is none of {equilibria:?}"
+    );
+}
+
+/// The same loop driven through its limit position in the augmented form (`th = w t`, the
+/// rod and the piston solved from the constraints): the kinematic sweep follows the hand
+/// closure up to the limit `th = pi/6` and stops there with a typed error at the first time
+/// past it (`t = 0.55`, `sin 0.55 > 1/2`: the loop cannot close), never an `Ok` with NaN;
+/// assembly at `th = 1` refuses too.
+#[derive(Debug, Clone, Mechanism)]
+#[mechanism(augmented)]
+#[coords(be, x)]
+#[drive(th = w * t)]
+#[constraint(x == r * cos(th) + l * cos(be))]
+#[constraint(l * sin(be) == r * sin(th))]
+#[particle(tip, mass = 1.0, at = [r * cos(th), r * sin(th)])]
+#[particle(piston, mass = 1.0, at = [x, 0.0])]
+pub struct DrivenCrank {
+    pub r: f64,
+    pub l: f64,
+    pub w: f64,
+}
+
+#[test]
+fn a_sweep_through_the_limit_position_stops_with_a_typed_error() {
+    use mbd::analysis::{assembly, kinematics};
+    let p = DrivenCrank {
+        r: 1.0,
+        l: 0.5,
+        w: 1.0,
+    };
+    let guess = Vector::<2>::new(0.0, 1.5);
+    let inside: Vec<f64> = (0..=10).map(|i| 0.05 * i as f64).collect();
+    let states = kinematics::kinematic_sweep(&p, &inside, &guess, &Default::default()).unwrap();
+    for s in &states {
+        let th = s.t;
+        assert_relative_eq!(s.q[0], (th.sin() / 0.5).asin(), max_relative = 1e-10);
+        assert_relative_eq!(s.q[1], piston(&CRANK, th).0, max_relative = 1e-10);
+    }
+    let past: Vec<f64> = (0..=20).map(|i| 0.05 * i as f64).collect();
+    match kinematics::kinematic_sweep(&p, &past, &guess, &Default::default()) {
+        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
+            assert_eq!(t, past[11]);
+        }
+        other => panic!("{other:?}"),
+    }
+    match assembly::assemble(&p, 1.0, &guess, &[false; 2], &Default::default()) {
+        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
+            assert_eq!(t, 1.0)
+        }
+        other => panic!("{other:?}"),
+    }
+}

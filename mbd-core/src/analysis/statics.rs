@@ -15,9 +15,12 @@ use crate::model::{Constrained, Mechanism, Vector};
 
 /// The equilibrium `q` of an unconstrained mechanism, `f(q, 0, t) = 0`, from `q_guess`.
 ///
-/// Converged when the Newton step satisfies `max |dq_i| <= tol (1 + max |q_i|)`.
+/// Converged when the Newton step satisfies `max |dq_i| <= tol (1 + max |q_i|)`. A step
+/// that leaves a minimal closed loop's domain is halved back into it.
 /// Errors: [`Error::StaticsFailed`] when the iterations run out or the stiffness
-/// `-df/dq` is singular (neutral equilibrium, or a coordinate nothing holds).
+/// `-df/dq` is singular (neutral equilibrium, or a coordinate nothing holds);
+/// [`Error::SingularPosition`] when `f` cannot be evaluated at an iterate (a closed loop
+/// outside its domain, naming the coordinate and the configuration); the model's errors.
 pub fn static_equilibrium<S: Mechanism<N>, const N: usize>(
     sys: &S,
     t: f64,
@@ -66,6 +69,29 @@ pub fn static_equilibrium_constrained<
     ))
 }
 
+/// Halvings of a Newton step that left a closed loop's domain before the step is taken
+/// as it is (and the next residual reports the singular position).
+const HALVINGS: usize = 30;
+
+/// `dz`, halved while `z + dz` lies outside a minimal closed loop's domain (the residual
+/// there is [`Error::SingularPosition`]): the guess is inside, so is the equilibrium
+/// sought, and a full step out of the domain (where the stiffness nearly vanishes) would
+/// end the search at a configuration that cannot assemble.
+fn into_domain<const K: usize>(
+    r: &impl Fn(&Vector<K>) -> Result<Vector<K>>,
+    z: &Vector<K>,
+    dz: Vector<K>,
+) -> Vector<K> {
+    let mut step = dz;
+    for _ in 0..HALVINGS {
+        if !matches!(r(&(z + step)), Err(Error::SingularPosition { .. })) {
+            return step;
+        }
+        step *= 0.5;
+    }
+    dz
+}
+
 /// Newton on `r(z) = 0` with a forward-difference Jacobian refreshed every iteration.
 fn newton<const K: usize>(
     t: f64,
@@ -94,11 +120,13 @@ fn newton<const K: usize>(
         if !dz.iter().all(|v| v.is_finite()) {
             return Err(Error::NonFinite { t });
         }
-        z += dz;
-        if dz
-            .iter()
-            .zip(z.iter())
-            .all(|(d, v)| d.abs() <= opts.tol * (1.0 + v.abs()))
+        let step = into_domain(&r, &z, dz);
+        z += step;
+        if step == dz
+            && dz
+                .iter()
+                .zip(z.iter())
+                .all(|(d, v)| d.abs() <= opts.tol * (1.0 + v.abs()))
         {
             return Ok(z);
         }
