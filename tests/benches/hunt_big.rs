@@ -29,9 +29,14 @@ fn least_ns(run: &dyn Fn()) -> f64 {
 fn main() {
     let p = Humanoid { g: 9.81 };
     let y = Vector::<60>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
-    let (q, qd) = (y.fixed_rows::<30>(0).into_owned(), y.fixed_rows::<30>(30).into_owned());
+    let (q, qd) = (
+        y.fixed_rows::<30>(0).into_owned(),
+        y.fixed_rows::<30>(30).into_owned(),
+    );
     let rhs = least_ns(&|| drop(black_box(p.rhs(0.0, black_box(&y)))));
     let mass = least_ns(&|| drop(black_box(p.mass_matrix(0.0, black_box(&q)))));
     let forces = least_ns(&|| drop(black_box(p.forces(0.0, black_box(&q), black_box(&qd)))));
-    println!("humanoid (30 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)");
+    println!(
+        "humanoid (30 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
+    );
 }

@@ -179,7 +179,14 @@ fn reference(h: &[Hinge], g: f64, q: &[f64], qd: &[f64]) -> (DMatrix<f64>, DVect
     for i in 0..n {
         let (rp, op, wp, vp, alp, ap) = match h[i].parent {
             Some(p) => (rot_w[p], o[p], w[p], v[p], al[p], a[p]),
-            None => (Matrix3::identity(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros(), Vector3::zeros()),
+            None => (
+                Matrix3::identity(),
+                Vector3::zeros(),
+                Vector3::zeros(),
+                Vector3::zeros(),
+                Vector3::zeros(),
+                Vector3::zeros(),
+            ),
         };
         let r = rp * Vector3::from(h[i].at);
         o[i] = op + r;
@@ -228,7 +235,11 @@ fn reference(h: &[Hinge], g: f64, q: &[f64], qd: &[f64]) -> (DMatrix<f64>, DVect
 fn order(h: &[Hinge]) -> Vec<usize> {
     Humanoid::COORDINATES
         .iter()
-        .map(|c| h.iter().position(|x| x.coord == *c).expect("a coordinate of the model"))
+        .map(|c| {
+            h.iter()
+                .position(|x| x.coord == *c)
+                .expect("a coordinate of the model")
+        })
         .collect()
 }
 
@@ -256,9 +267,16 @@ fn a_thirty_dof_humanoid_tree_equals_its_hand_written_jacobian_form() {
     for seed in [0.0, 0.7, 1.9, 3.1] {
         let (q, qd) = state(seed);
         let acc = p.acceleration(0.0, &q, &qd).unwrap();
-        let (qh, qdh) = (to_hinges(&perm, q.as_slice()), to_hinges(&perm, qd.as_slice()));
+        let (qh, qdh) = (
+            to_hinges(&perm, q.as_slice()),
+            to_hinges(&perm, qd.as_slice()),
+        );
         let (m, f, _) = reference(&h, p.g, &qh, &qdh);
-        let want = m.clone().cholesky().expect("a positive definite mass matrix").solve(&f);
+        let want = m
+            .clone()
+            .cholesky()
+            .expect("a positive definite mass matrix")
+            .solve(&f);
         let scale = want.amax();
         for (k, &i) in perm.iter().enumerate() {
             assert!(
@@ -273,7 +291,10 @@ fn a_thirty_dof_humanoid_tree_equals_its_hand_written_jacobian_form() {
         let mm = p.mass_matrix(0.0, &q);
         for (k, &i) in perm.iter().enumerate() {
             for (l, &j) in perm.iter().enumerate() {
-                assert!((mm[(k, l)] - m[(i, j)]).abs() < 1e-12 * m.amax(), "M[{k},{l}]");
+                assert!(
+                    (mm[(k, l)] - m[(i, j)]).abs() < 1e-12 * m.amax(),
+                    "M[{k},{l}]"
+                );
             }
         }
     }

@@ -108,7 +108,9 @@ fn inertia_checks(g: &mut Graph, name: &str, i: &[[Expr; 3]; 3]) -> Vec<ParamChe
             false,
         ));
     }
-    let products = [(0, 1), (0, 2), (1, 2)].iter().any(|&(r, c)| !g.is_zero(i[r][c]));
+    let products = [(0, 1), (0, 2), (1, 2)]
+        .iter()
+        .any(|&(r, c)| !g.is_zero(i[r][c]));
     if products {
         for (r, c) in [(0, 1), (0, 2), (1, 2)] {
             let d = g.mul(s[r][r], s[c][c]);
