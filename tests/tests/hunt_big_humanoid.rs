@@ -7,54 +7,15 @@
 //! tumbling run from that reference's own `T + V`.
 
 use mbd::integrate::{Dop853, Integrator};
-use mbd::nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use mbd::nalgebra::{Matrix3, Vector3};
 use mbd::prelude::*;
 
+#[path = "support/hinges.rs"]
+mod hinges;
 #[path = "support/humanoid.rs"]
 mod humanoid;
+use hinges::{Hinge, joint, order, reference, to_hinges};
 use humanoid::Humanoid;
-
-/// One elementary hinge of the reference: a rotation about axis `axis` (0, 1, 2 = x, y, z)
-/// of its parent hinge's frame at `at` (parent frame), carrying `mass` (zero for the
-/// intermediate hinges of a multi-axis joint) with its centre at `com` (own frame).
-struct Hinge {
-    parent: Option<usize>,
-    at: [f64; 3],
-    axis: usize,
-    mass: f64,
-    com: [f64; 3],
-    inertia: Matrix3<f64>,
-    coord: &'static str,
-}
-
-/// A joint of the model as elementary hinges: spherical `rot_z(a) rot_y(b) rot_x(c)`,
-/// universal `rot_x(a) rot_y(b)`, revolute about one axis; the body is on the last one.
-#[allow(clippy::too_many_arguments)]
-fn joint(
-    hinges: &mut Vec<Hinge>,
-    parent: Option<usize>,
-    at: [f64; 3],
-    axes: &[(usize, &'static str)],
-    mass: f64,
-    com: [f64; 3],
-    inertia: Matrix3<f64>,
-) -> usize {
-    let mut p = parent;
-    for (k, &(axis, coord)) in axes.iter().enumerate() {
-        let last = k + 1 == axes.len();
-        hinges.push(Hinge {
-            parent: p,
-            at: if k == 0 { at } else { [0.0; 3] },
-            axis,
-            mass: if last { mass } else { 0.0 },
-            com: if last { com } else { [0.0; 3] },
-            inertia: if last { inertia } else { Matrix3::zeros() },
-            coord,
-        });
-        p = Some(hinges.len() - 1);
-    }
-    hinges.len() - 1
-}
 
 /// The humanoid above, hinge by hinge (the same numbers, typed again).
 fn hinges() -> Vec<Hinge> {
@@ -62,16 +23,18 @@ fn hinges() -> Vec<Hinge> {
     let (x, y, z) = (0, 1, 2);
     let mut h = Vec::new();
     let torso_i = Matrix3::new(0.6, 0.01, 0.02, 0.01, 0.5, 0.03, 0.02, 0.03, 0.2);
+    let sph = |a: &str, b: &str, c: &str| [(z, a.into()), (y, b.into()), (x, c.into())];
+    let one = |axis: usize, a: &str| [(axis, a.to_string())];
+    let two = |a: &str, b: &str| [(x, a.into()), (y, b.into())];
     let torso = joint(
         &mut h,
         None,
         [0.0, 0.0, 1.0],
-        &[(z, "t1"), (y, "t2"), (x, "t3")],
+        &sph("t1", "t2", "t3"),
         20.0,
         [0.0, 0.01, 0.25],
         torso_i,
     );
-    let sph = |a: &'static str, b: &'static str, c: &'static str| [(z, a), (y, b), (x, c)];
     joint(
         &mut h,
         Some(torso),
@@ -100,7 +63,7 @@ fn hinges() -> Vec<Hinge> {
             &mut h,
             Some(arm),
             [0.0, 0.0, -0.3],
-            &[(y, n[3])],
+            &one(y, n[3]),
             1.2,
             [0.0, 0.0, -0.12],
             d(0.01, 0.01, 0.002),
@@ -109,7 +72,7 @@ fn hinges() -> Vec<Hinge> {
             &mut h,
             Some(fore),
             [0.0, 0.0, -0.25],
-            &[(x, n[4]), (y, n[5])],
+            &two(n[4], n[5]),
             0.4,
             [0.01, 0.0, -0.05],
             d(0.001, 0.0012, 0.0005),
@@ -133,7 +96,7 @@ fn hinges() -> Vec<Hinge> {
             &mut h,
             Some(thigh),
             [0.0, 0.0, -0.45],
-            &[(y, n[3])],
+            &one(y, n[3]),
             3.5,
             [0.0, 0.0, -0.2],
             d(0.05, 0.05, 0.006),
@@ -142,113 +105,13 @@ fn hinges() -> Vec<Hinge> {
             &mut h,
             Some(shank),
             [0.0, 0.0, -0.42],
-            &[(x, n[4]), (y, n[5])],
+            &two(n[4], n[5]),
             1.0,
             [0.05, 0.0, -0.04],
             d(0.002, 0.005, 0.005),
         );
     }
     h
-}
-
-fn rot(axis: usize, q: f64) -> Matrix3<f64> {
-    let (s, c) = q.sin_cos();
-    match axis {
-        0 => Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c),
-        1 => Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c),
-        _ => Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
-    }
-}
-
-/// The reference: `M` and `f` of `M qdd = f` (gravity `-g z`) at hinge coordinates `q`,
-/// `qd`, and `T + V`. Each hinge's world axis `u_j` at its origin `o_j`; a body's mass
-/// centre Jacobian column for an ancestor hinge `j` is `u_j x (c - o_j)`, its angular one
-/// `u_j`; with `qdd = 0` the forward pass gives the velocity-product accelerations `a0`,
-/// `alpha0`, and `f_j = sum_b J_j . (m g - m a0) - Jw_j . (I alpha0 + w x I w)`.
-fn reference(h: &[Hinge], g: f64, q: &[f64], qd: &[f64]) -> (DMatrix<f64>, DVector<f64>, f64) {
-    let n = h.len();
-    let mut rot_w = vec![Matrix3::identity(); n];
-    let (mut o, mut w, mut v, mut al, mut a) = (
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-    );
-    let mut u = vec![Vector3::zeros(); n];
-    for i in 0..n {
-        let (rp, op, wp, vp, alp, ap) = match h[i].parent {
-            Some(p) => (rot_w[p], o[p], w[p], v[p], al[p], a[p]),
-            None => (
-                Matrix3::identity(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-            ),
-        };
-        let r = rp * Vector3::from(h[i].at);
-        o[i] = op + r;
-        u[i] = rp.column(h[i].axis).into_owned();
-        rot_w[i] = rp * rot(h[i].axis, q[i]);
-        w[i] = wp + u[i] * qd[i];
-        v[i] = vp + wp.cross(&r);
-        al[i] = alp + wp.cross(&u[i]) * qd[i];
-        a[i] = ap + alp.cross(&r) + wp.cross(&wp.cross(&r));
-    }
-    let ancestors = |mut i: usize| {
-        let mut out = vec![i];
-        while let Some(p) = h[i].parent {
-            out.push(p);
-            i = p;
-        }
-        out
-    };
-    let mut mass = DMatrix::zeros(n, n);
-    let mut f = DVector::zeros(n);
-    let mut energy = 0.0;
-    let grav = Vector3::new(0.0, 0.0, -g);
-    for b in (0..n).filter(|&b| h[b].mass > 0.0) {
-        let d = rot_w[b] * Vector3::from(h[b].com);
-        let c = o[b] + d;
-        let iw = rot_w[b] * h[b].inertia * rot_w[b].transpose();
-        let vc = v[b] + w[b].cross(&d);
-        let a0 = a[b] + al[b].cross(&d) + w[b].cross(&w[b].cross(&d));
-        let lin = h[b].mass * (grav - a0);
-        let ang = -(iw * al[b] + w[b].cross(&(iw * w[b])));
-        energy += 0.5 * h[b].mass * vc.norm_squared() + 0.5 * w[b].dot(&(iw * w[b]))
-            - h[b].mass * grav.dot(&c);
-        let anc = ancestors(b);
-        let jv: Vec<Vector3<f64>> = anc.iter().map(|&j| u[j].cross(&(c - o[j]))).collect();
-        for (k, &j) in anc.iter().enumerate() {
-            f[j] += jv[k].dot(&lin) + u[j].dot(&ang);
-            for (l, &i) in anc.iter().enumerate() {
-                mass[(j, i)] += h[b].mass * jv[k].dot(&jv[l]) + u[j].dot(&(iw * u[i]));
-            }
-        }
-    }
-    (mass, f, energy)
-}
-
-/// The model's coordinate order mapped onto the reference's hinges.
-fn order(h: &[Hinge]) -> Vec<usize> {
-    Humanoid::COORDINATES
-        .iter()
-        .map(|c| {
-            h.iter()
-                .position(|x| x.coord == *c)
-                .expect("a coordinate of the model")
-        })
-        .collect()
-}
-
-fn to_hinges(perm: &[usize], x: &[f64]) -> Vec<f64> {
-    let mut out = vec![0.0; x.len()];
-    for (k, &i) in perm.iter().enumerate() {
-        out[i] = x[k];
-    }
-    out
 }
 
 /// A spread of states: every Euler pitch inside `(-1, 1)` rad, away from gimbal lock.
@@ -263,7 +126,7 @@ fn a_thirty_dof_humanoid_tree_equals_its_hand_written_jacobian_form() {
     assert_eq!(Humanoid::COORDINATES.len(), 30);
     assert!(Humanoid::GENERATED.parts.contains(&"articulated_body"));
     let (p, h) = (Humanoid { g: 9.81 }, hinges());
-    let perm = order(&h);
+    let perm = order(&h, &Humanoid::COORDINATES);
     for seed in [0.0, 0.7, 1.9, 3.1] {
         let (q, qd) = state(seed);
         let acc = p.acceleration(0.0, &q, &qd).unwrap();
@@ -303,7 +166,7 @@ fn a_thirty_dof_humanoid_tree_equals_its_hand_written_jacobian_form() {
 #[test]
 fn the_tumbling_humanoid_keeps_the_energy_of_the_hand_written_reference() {
     let (p, h) = (Humanoid { g: 9.81 }, hinges());
-    let perm = order(&h);
+    let perm = order(&h, &Humanoid::COORDINATES);
     // Moderate angles and rates: the limbs swing through large motions without reaching
     // an Euler pitch of pi/2 in the second run.
     let q0 = Vector::<30>::from_fn(|i, _| 0.3 * (1.7 * i as f64).sin());
