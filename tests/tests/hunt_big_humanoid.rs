@@ -14,7 +14,7 @@ use mbd::prelude::*;
 mod hinges;
 #[path = "support/humanoid.rs"]
 mod humanoid;
-use hinges::{Hinge, joint, order, reference, to_hinges};
+use hinges::{Hinge, frames, joint, order, reference, to_hinges};
 use humanoid::Humanoid;
 
 /// The humanoid above, hinge by hinge (the same numbers, typed again).
@@ -190,4 +190,86 @@ fn the_tumbling_humanoid_keeps_the_energy_of_the_hand_written_reference() {
     let (e0, e1) = (energy(&y0), energy(y1));
     assert!((e1 - e0).abs() < 1e-8 * e0.abs(), "energy {e0} -> {e1}");
     assert!((y1 - y0).fixed_rows::<30>(0).amax() > 0.3, "it moved");
+}
+
+/// A point `d` (body frame) of the body on hinge `b`: position, velocity and acceleration
+/// (with the hinges' accelerations `qdd`), `p = o + R d`, `v = v_o + w x (R d)`,
+/// `a = a0 + al x (R d) + w x (w x R d) + sum_j (u_j x (p - o_j)) qdd_j` over the ancestors.
+fn point(h: &[Hinge], f: &hinges::Frames, b: usize, d: [f64; 3], qdd: &[f64]) -> [Vector3<f64>; 3] {
+    let rd = f.r[b] * Vector3::from(d);
+    let p = f.o[b] + rd;
+    let mut a = f.a[b] + f.al[b].cross(&rd) + f.w[b].cross(&f.w[b].cross(&rd));
+    let mut j = Some(b);
+    while let Some(i) = j {
+        a += f.u[i].cross(&(p - f.o[i])) * qdd[i];
+        j = h[i].parent;
+    }
+    [p, f.v[b] + f.w[b].cross(&rd), a]
+}
+
+/// The outputs (body points, angular velocity and acceleration) and the generated inverse
+/// dynamics against the reference's kinematics and `M qdd - f`.
+#[test]
+fn the_humanoids_outputs_and_inverse_dynamics_equal_the_reference() {
+    let (p, h) = (Humanoid { g: 9.81 }, hinges());
+    let perm = order(&h, &Humanoid::COORDINATES);
+    let body = |c: &str| h.iter().position(|x| x.coord == c).unwrap();
+    let (hand, foot, head) = (body("wl2"), body("ar2"), body("h3"));
+    let close = |a: f64, b: f64, what: &str| {
+        assert!(
+            (a - b).abs() < 1e-10 * b.abs().max(1.0),
+            "{what}: {a} against {b}"
+        )
+    };
+    for seed in [0.3, 2.2] {
+        let (q, qd) = state(seed);
+        let (qh, qdh) = (
+            to_hinges(&perm, q.as_slice()),
+            to_hinges(&perm, qd.as_slice()),
+        );
+        let (m, f, _) = reference(&h, p.g, &qh, &qdh);
+        let qdd = m.clone().cholesky().unwrap().solve(&f);
+        let fr = frames(&h, &qh, &qdh);
+        let mut y = Vector::<60>::zeros();
+        y.fixed_rows_mut::<30>(0).copy_from(&q);
+        y.fixed_rows_mut::<30>(30).copy_from(&qd);
+        let o = p.outputs(0.0, &y).unwrap();
+        let [tip, tip_v, tip_a] = point(&h, &fr, hand, [0.0, 0.0, -0.1], qdd.as_slice());
+        let [_, toe_v, _] = point(&h, &fr, foot, [0.1, 0.0, -0.05], qdd.as_slice());
+        let mut head_alpha = fr.al[head];
+        let mut j = Some(head);
+        while let Some(i) = j {
+            head_alpha += fr.u[i] * qdd[i];
+            j = h[i].parent;
+        }
+        for (got, want, what) in [
+            ([o.tip_x, o.tip_y, o.tip_z], tip, "tip"),
+            ([o.tip_v_x, o.tip_v_y, o.tip_v_z], tip_v, "tip_v"),
+            ([o.tip_a_x, o.tip_a_y, o.tip_a_z], tip_a, "tip_a"),
+            ([o.toe_v_x, o.toe_v_y, o.toe_v_z], toe_v, "toe_v"),
+            ([o.foot_w_x, o.foot_w_y, o.foot_w_z], fr.w[foot], "foot_w"),
+            (
+                [o.head_alpha_x, o.head_alpha_y, o.head_alpha_z],
+                head_alpha,
+                "head_alpha",
+            ),
+        ] {
+            for k in 0..3 {
+                close(got[k], want[k], what);
+            }
+        }
+        // Inverse dynamics at accelerations other than the free ones: M qdd - f.
+        let qdd_any = Vector::<30>::from_fn(|i, _| 3.0 * (2.1 * i as f64 + seed).sin());
+        let tau = p.inverse_dynamics(0.0, &q, &qd, &qdd_any);
+        let want = &m
+            * mbd::nalgebra::DVector::from_column_slice(&to_hinges(&perm, qdd_any.as_slice()))
+            - &f;
+        for (k, &i) in perm.iter().enumerate() {
+            close(
+                tau[k] / want.amax(),
+                want[i] / want.amax(),
+                Humanoid::COORDINATES[k],
+            );
+        }
+    }
 }

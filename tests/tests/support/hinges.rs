@@ -56,6 +56,50 @@ pub fn rot(axis: usize, q: f64) -> Matrix3<f64> {
     }
 }
 
+/// Every hinge frame's world rotation `r`, origin `o`, angular velocity `w`, origin
+/// velocity `v`, and with `qdd = 0` the accelerations `al` (angular), `a` (origin); `u` the
+/// hinge's world axis.
+pub struct Frames {
+    pub r: Vec<Matrix3<f64>>,
+    pub o: Vec<Vector3<f64>>,
+    pub w: Vec<Vector3<f64>>,
+    pub v: Vec<Vector3<f64>>,
+    pub al: Vec<Vector3<f64>>,
+    pub a: Vec<Vector3<f64>>,
+    pub u: Vec<Vector3<f64>>,
+}
+
+/// The forward pass from the ground, hinge by hinge.
+pub fn frames(h: &[Hinge], q: &[f64], qd: &[f64]) -> Frames {
+    let n = h.len();
+    let z = vec![Vector3::zeros(); n];
+    let mut f = Frames {
+        r: vec![Matrix3::identity(); n],
+        o: z.clone(),
+        w: z.clone(),
+        v: z.clone(),
+        al: z.clone(),
+        a: z.clone(),
+        u: z,
+    };
+    for i in 0..n {
+        let zero = Vector3::zeros();
+        let (rp, op, wp, vp, alp, ap) = match h[i].parent {
+            Some(p) => (f.r[p], f.o[p], f.w[p], f.v[p], f.al[p], f.a[p]),
+            None => (Matrix3::identity(), zero, zero, zero, zero, zero),
+        };
+        let r = rp * Vector3::from(h[i].at);
+        f.o[i] = op + r;
+        f.u[i] = rp.column(h[i].axis).into_owned();
+        f.r[i] = rp * rot(h[i].axis, q[i]);
+        f.w[i] = wp + f.u[i] * qd[i];
+        f.v[i] = vp + wp.cross(&r);
+        f.al[i] = alp + wp.cross(&f.u[i]) * qd[i];
+        f.a[i] = ap + alp.cross(&r) + wp.cross(&wp.cross(&r));
+    }
+    f
+}
+
 /// The reference: `M` and `f` of `M qdd = f` (gravity `-g z`) at hinge coordinates `q`,
 /// `qd`, and `T + V`. Each hinge's world axis `u_j` at its origin `o_j`; a body's mass
 /// centre Jacobian column for an ancestor hinge `j` is `u_j x (c - o_j)`, its angular one
@@ -63,36 +107,15 @@ pub fn rot(axis: usize, q: f64) -> Matrix3<f64> {
 /// `alpha0`, and `f_j = sum_b J_j . (m g - m a0) - Jw_j . (I alpha0 + w x I w)`.
 pub fn reference(h: &[Hinge], g: f64, q: &[f64], qd: &[f64]) -> (DMatrix<f64>, DVector<f64>, f64) {
     let n = h.len();
-    let mut rot_w = vec![Matrix3::identity(); n];
-    let (mut o, mut w, mut v, mut al, mut a) = (
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-        vec![Vector3::zeros(); n],
-    );
-    let mut u = vec![Vector3::zeros(); n];
-    for i in 0..n {
-        let (rp, op, wp, vp, alp, ap) = match h[i].parent {
-            Some(p) => (rot_w[p], o[p], w[p], v[p], al[p], a[p]),
-            None => (
-                Matrix3::identity(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-                Vector3::zeros(),
-            ),
-        };
-        let r = rp * Vector3::from(h[i].at);
-        o[i] = op + r;
-        u[i] = rp.column(h[i].axis).into_owned();
-        rot_w[i] = rp * rot(h[i].axis, q[i]);
-        w[i] = wp + u[i] * qd[i];
-        v[i] = vp + wp.cross(&r);
-        al[i] = alp + wp.cross(&u[i]) * qd[i];
-        a[i] = ap + alp.cross(&r) + wp.cross(&wp.cross(&r));
-    }
+    let Frames {
+        r: rot_w,
+        o,
+        w,
+        v,
+        al,
+        a,
+        u,
+    } = frames(h, q, qd);
     let ancestors = |mut i: usize| {
         let mut out = vec![i];
         while let Some(p) = h[i].parent {

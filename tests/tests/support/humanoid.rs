@@ -1,11 +1,12 @@
 //! The 30-dof humanoid-like spatial tree of `hunt_big_humanoid` (test and bench): a torso
 //! on a spherical joint on a stand, a head, two arms and two legs of spherical, revolute and
-//! universal joints, full inertia tensors and offset mass centres.
+//! universal joints, full inertia tensors and offset mass centres; body-point outputs and
+//! the generated inverse dynamics.
 
 use mbd::prelude::*;
 
 #[derive(Debug, Mechanism)]
-#[mechanism(spatial)]
+#[mechanism(spatial, inverse_dynamics)]
 #[gravity(0.0, 0.0, -g)]
 #[body(torso, joint = spherical(t1, t2, t3), at = [0.0, 0.0, 1.0], com = [0.0, 0.01, 0.25],
        mass = 20.0, inertia = [[0.6, 0.01, 0.02], [0.01, 0.5, 0.03], [0.02, 0.03, 0.2]])]
@@ -35,6 +36,9 @@ use mbd::prelude::*;
        com = [0.0, 0.0, -0.2], mass = 3.5, inertia = diag(0.05, 0.05, 0.006))]
 #[body(foot_r, parent = shank_r, joint = universal(ar1, ar2), at = [0.0, 0.0, -0.42],
        com = [0.05, 0.0, -0.04], mass = 1.0, inertia = diag(0.002, 0.005, 0.005))]
+#[output(tip = position(hand_l, [0.0, 0.0, -0.1]), tip_v = velocity(hand_l, [0.0, 0.0, -0.1]),
+         tip_a = acceleration(hand_l, [0.0, 0.0, -0.1]), toe_v = velocity(foot_r, [0.1, 0.0, -0.05]),
+         foot_w = angular_velocity(foot_r), head_alpha = angular_acceleration(head))]
 pub struct Humanoid {
     pub g: f64,
 }
