@@ -308,6 +308,14 @@ where
         }) {
             land = Some((ts, h));
             h = ts - t;
+        } else {
+            // Far from t = 0 (t0 = 1e12) `t + h` rounds: the state would drift from its times
+            // by the sum. Where that rounding is not below the tolerance, the step is the one
+            // the time takes (below it, Hairer's arithmetic is kept: `t + h` as it rounds).
+            let stepped = (t + h) - t;
+            if (stepped - h).abs() > 0.01 * rtol * h {
+                h = stepped;
+            }
         }
         stats.n_steps += 1;
         let stages: &mut [Vector<D>; S] = (&mut k[..S]).try_into().expect("S <= K");
