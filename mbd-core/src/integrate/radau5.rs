@@ -402,10 +402,11 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
         let (mut h_acc, mut err_acc) = (h, 1.0);
 
         loop {
-            if !last {
-                // The step the state takes is the one the time takes (`t + h` rounds far
-                // from t = 0).
-                h = (t + h) - t;
+            let stepped = (t + h) - t;
+            if !last && (stepped - h).abs() > 0.01 * self.rtol * h {
+                // Far from t = 0 `t + h` rounds above the tolerance: the step the state
+                // takes is the one the time takes (as in the explicit methods).
+                h = stepped;
             }
             if refresh == Refresh::Jacobian {
                 jac = self.jacobian(t, &y)?;
