@@ -273,3 +273,50 @@ fn the_humanoids_outputs_and_inverse_dynamics_equal_the_reference() {
         }
     }
 }
+
+/// A non-finite parameter or state is a typed error from every evaluation and method of the
+/// big tree, never a NaN handed back.
+#[test]
+fn non_finite_inputs_to_the_humanoid_are_typed_errors() {
+    let (q, qd) = state(0.4);
+    let mut y = Vector::<60>::zeros();
+    y.fixed_rows_mut::<30>(0).copy_from(&q);
+    y.fixed_rows_mut::<30>(30).copy_from(&qd);
+    for g in [f64::NAN, f64::INFINITY] {
+        let p = Humanoid { g };
+        for r in [
+            p.check_parameters().err(),
+            p.acceleration(0.0, &q, &qd).err(),
+            p.rhs(0.0, &y).err(),
+        ] {
+            assert!(
+                matches!(r, Some(Error::InvalidParameter { .. })),
+                "g = {g}: {r:?}"
+            );
+        }
+        let run = mbd::integrate::Dopri5::default().solve(&p, 0.0, y, 1.0, &[]);
+        assert!(
+            matches!(run, Err(Error::InvalidParameter { .. })),
+            "{run:?}"
+        );
+    }
+    let p = Humanoid { g: 9.81 };
+    let mut bad = y;
+    bad[40] = f64::NAN;
+    let r = p.rhs(0.0, &bad);
+    assert!(r.is_err(), "{r:?}");
+    let (qb, qdb) = (
+        bad.fixed_rows::<30>(0).into_owned(),
+        bad.fixed_rows::<30>(30).into_owned(),
+    );
+    assert!(p.acceleration(0.0, &qb, &qdb).is_err());
+    for run in [
+        mbd::integrate::Dopri5::default().solve(&p, 0.0, bad, 1.0, &[]),
+        mbd::integrate::Radau5::default().solve(&p, 0.0, bad, 1.0, &[]),
+    ] {
+        assert!(
+            matches!(run, Err(Error::InvalidInput { what: "y0", .. })),
+            "{run:?}"
+        );
+    }
+}
