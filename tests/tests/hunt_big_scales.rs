@@ -45,7 +45,9 @@ fn closed_form(m1: f64, m2: f64, l1: f64, l2: f64, g: f64, q: [f64; 2], qd: [f64
         - m2 * g * (t1 - 2.0 * t2).sin()
         - 2.0 * d.sin() * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * d.cos()))
         / (l1 * den);
-    let a2 = 2.0 * d.sin() * (w1 * w1 * l1 * (m1 + m2) + g * (m1 + m2) * t1.cos() + w2 * w2 * l2 * m2 * d.cos())
+    let a2 = 2.0
+        * d.sin()
+        * (w1 * w1 * l1 * (m1 + m2) + g * (m1 + m2) * t1.cos() + w2 * w2 * l2 * m2 * d.cos())
         / (l2 * den);
     [a1, a2 - a1]
 }
@@ -56,7 +58,11 @@ fn mass_ratios_of_a_trillion_either_way_give_the_closed_form() {
     for (m1, m2) in [(1e6, 1e-6), (1e-6, 1e6), (1.0, 1e-12), (1e-12, 1.0)] {
         let rec = Recursive { m1, m2, l1, l2, g };
         let mm = ByMatrix { m1, m2, l1, l2, g };
-        for (q, qd) in [([0.7, -1.1], [1.3, 0.4]), ([2.5, 0.3], [-0.6, 2.2]), ([0.0, 0.0], [0.0, 0.0])] {
+        for (q, qd) in [
+            ([0.7, -1.1], [1.3, 0.4]),
+            ([2.5, 0.3], [-0.6, 2.2]),
+            ([0.0, 0.0], [0.0, 0.0]),
+        ] {
             let want = closed_form(m1, m2, l1, l2, g, q, qd);
             let scale = want[0].abs().max(want[1].abs()).max(1.0);
             let (qv, qdv) = (Vector::<2>::from(q), Vector::<2>::from(qd));
