@@ -33,9 +33,15 @@ fn main() {
         y.fixed_rows::<30>(0).into_owned(),
         y.fixed_rows::<30>(30).into_owned(),
     );
-    let rhs = least_ns(&|| drop(black_box(p.rhs(0.0, black_box(&y)))));
-    let mass = least_ns(&|| drop(black_box(p.mass_matrix(0.0, black_box(&q)))));
-    let forces = least_ns(&|| drop(black_box(p.forces(0.0, black_box(&q), black_box(&qd)))));
+    let rhs = least_ns(&|| {
+        let _ = black_box(p.rhs(0.0, black_box(&y)));
+    });
+    let mass = least_ns(&|| {
+        let _ = black_box(p.mass_matrix(0.0, black_box(&q)));
+    });
+    let forces = least_ns(&|| {
+        let _ = black_box(p.forces(0.0, black_box(&q), black_box(&qd)));
+    });
     println!(
         "humanoid (30 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
     );

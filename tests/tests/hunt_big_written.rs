@@ -151,7 +151,11 @@ const N: usize = 130;
 
 /// Link `k`'s mass (0-based): every tenth (1-based) is three times heavier.
 fn mass(m: f64, k: usize) -> f64 {
-    if (k + 1) % 10 == 0 { 3.0 * m } else { m }
+    if (k + 1).is_multiple_of(10) {
+        3.0 * m
+    } else {
+        m
+    }
 }
 
 /// The chain by hand in absolute angles `th_i` (relative `q` summed). Mass centre `k` is at
@@ -180,7 +184,7 @@ fn by_hand(m: f64, l: f64, g: f64, q: &[f64], qd: &[f64]) -> Vec<f64> {
             .map(|k| mass(m, k) * a(k, i) * a(k, j))
             .sum::<f64>()
     };
-    let cm = DMatrix::from_fn(N, N, |i, j| c(i, j));
+    let cm = DMatrix::from_fn(N, N, c);
     let lhs = DMatrix::from_fn(N, N, |i, j| {
         let own = if i == j {
             mass(m, i) * l * l / 12.0
