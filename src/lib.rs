@@ -210,7 +210,11 @@
 //! runs on its own stack, grown as the lowering recurses, so it never overflows rustc's. Its
 //! limits, each refused with an error at the tokens that exceed it: at most 2 000 000 tokens
 //! in one derive input, and at most 2000 levels of nesting, counting brackets, runs of prefix
-//! operators (`- - x`) and closures or generic arguments.
+//! operators (`- - x`) and closures or generic arguments. rustc itself expands the struct's
+//! attributes one nesting level each: a model written out in more than about 120 attributes
+//! (a body, output, spring, .. each) stops with rustc's "recursion limit reached while
+//! expanding `#[body]`" unless the crate root raises the limit above the attribute count,
+//! `#![recursion_limit = "512"]`; `chain` and `repeat` stamp many bodies from one attribute.
 //!
 //! # Closing joints in space
 //!

@@ -322,7 +322,7 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
     let Lowered { ast, shapes } = lowered;
     let ast = &ast;
     let (mut scope, mut kin) = kinematics(ast, errors)?;
-    let mut checks = checks::body_checks(&scope.names, &kin.bodies);
+    let mut checks = checks::body_checks(&mut scope.g, &scope.names, &kin.bodies);
     let mut reactions: Vec<(usize, Expr)> = Vec::new();
 
     // Constraints, closed in minimal coordinates where the loop has a closed form.

@@ -532,13 +532,15 @@ pub struct HeavyBodyRecursive {
 
 #[test]
 fn spherical_joint_recursion_equals_the_mass_matrix_form() {
+    // A body's inertia: with the products 0.01 and 0.02 the moments (0.04, 0.05, 0.02) had no
+    // mass distribution (`tr(I)/2 - I` indefinite), refused at run time since.
     let p = HeavyBodyRecursive {
         m: 2.0,
         e: 0.05,
         h: 0.3,
-        ia: 0.04,
+        ia: 0.06,
         ib: 0.05,
-        ic: 0.02,
+        ic: 0.04,
         g: 9.81,
     };
     // Away from the Euler-angle singularity `theta = +-pi/2` (shared by both forms).

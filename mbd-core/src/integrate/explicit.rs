@@ -286,6 +286,8 @@ where
     let mut stiff = StiffnessDetector::new(opts.stiffness_check, M::STIFF_LIMIT);
     // A change point of a loop's closed forms stepped over or stalled at (`closure::stalled`).
     let mut chart = ChartWatch::<D>::default();
+    // The end of the last trial step that met a non-finite value, while its cuts last.
+    let mut blown: Option<f64> = None;
     loop {
         if stats.n_steps >= opts.max_steps {
             let e = Error::TooManySteps {
@@ -294,8 +296,12 @@ where
             };
             return Err(stalled(sys, &chart, e));
         }
-        if M::underflow(h, t) || h.is_nan() {
-            return Err(stalled(sys, &chart, Error::StepSizeUnderflow { t, h }));
+        let cut_out = blown.is_some() && h <= f64::EPSILON * (t1 - t0);
+        if M::underflow(h, t) || h.is_nan() || cut_out {
+            return Err(match blown {
+                Some(t_bad) => Error::NonFinite { t: t_bad },
+                None => stalled(sys, &chart, Error::StepSizeUnderflow { t, h }),
+            });
         }
         let mut land = None;
         if t + 1.01 * h - t1 > 0.0 {
@@ -306,25 +312,47 @@ where
         }) {
             land = Some((ts, h));
             h = ts - t;
+        } else {
+            // Far from t = 0 (t0 = 1e12) `t + h` rounds: the state would drift from its times
+            // by the sum. Where that rounding is not below the tolerance, the step is the one
+            // the time takes (below it, Hairer's arithmetic is kept: `t + h` as it rounds).
+            let stepped = (t + h) - t;
+            if (stepped - h).abs() > 0.01 * rtol * h {
+                h = stepped;
+            }
         }
         stats.n_steps += 1;
         let stages: &mut [Vector<D>; S] = (&mut k[..S]).try_into().expect("S <= K");
-        tab.stages(sys, t, &y, h, stages, &mut z)?;
+        let trial = tab.stages(sys, t, &y, h, stages, &mut z);
         stats.n_rhs += S - 1;
-        let y1 = if tab.fsal {
-            z[S - 1]
-        } else {
-            tab.advance(&y, stages, h)
-        };
         let t_new = match land {
             _ if last => t1,
             Some((ts, _)) => ts,
             None => t + h,
         };
-        let err = M::error(stages, &y, &y1, h, rtol, atol);
+        let (y1, err) = match trial {
+            Ok(()) => {
+                let y1 = if tab.fsal {
+                    z[S - 1]
+                } else {
+                    tab.advance(&y, stages, h)
+                };
+                (y1, M::error(stages, &y, &y1, h, rtol, atol))
+            }
+            Err(Error::NonFinite { .. }) => (y, f64::INFINITY),
+            Err(e) => return Err(e),
+        };
+        // A trial step too long for a fast or stiff mode can overflow before its error is
+        // estimated: it is rejected with the largest cut, as Radau5 does; a non-finite value
+        // that persists until the step underflows is the model's (`NonFinite` there).
         if !err.is_finite() || non_finite(&y1) {
-            return Err(Error::NonFinite { t: t_new });
+            blown = Some(t_new);
+            h *= control.reject_ln(1.0, f64::INFINITY);
+            last = false;
+            stats.n_rejected += 1;
+            continue;
         }
+        blown = None;
         // ln err, taken where it is needed: after f(t + h, y1) on acceptance, so the
         // call does not wait for it.
         let ln_err = || {

@@ -271,7 +271,7 @@ impl Options {
 }
 
 /// Reject an integration interval or initial state outside the domain: `t0`, `t1` finite
-/// with `t1 >= t0`, and every component of `y0` finite.
+/// with `t1 >= t0` and a finite span `t1 - t0`, and every component of `y0` finite.
 pub fn validate_problem<const D: usize>(t0: f64, y0: &Vector<D>, t1: f64) -> Result<()> {
     if !(t0.is_finite() && t1.is_finite()) {
         return Err(Error::InvalidInput {
@@ -283,6 +283,16 @@ pub fn validate_problem<const D: usize>(t0: f64, y0: &Vector<D>, t1: f64) -> Res
         return Err(Error::InvalidInput {
             what: "t1",
             detail: format!("must not precede t0 = {}, got {}", Num(t0), Num(t1)),
+        });
+    }
+    if !(t1 - t0).is_finite() {
+        return Err(Error::InvalidInput {
+            what: "t0/t1",
+            detail: format!(
+                "the span t1 - t0 overflows: t0 = {}, t1 = {}",
+                Num(t0),
+                Num(t1)
+            ),
         });
     }
     if !y0.iter().all(|v| v.is_finite()) {

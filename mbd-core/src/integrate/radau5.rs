@@ -379,7 +379,10 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
     ) -> Result<()> {
         let h_max = self.opts.h_max.unwrap_or(t1 - t0).min(t1 - t0);
         let (mut t, mut y) = (t0, y0);
-        let mut h = self.opts.h0.unwrap_or(H0_DEFAULT).min(h_max);
+        // radau5.f's default first step, but above the step-size floor far from t = 0.
+        let floor = 64.0 * f64::EPSILON * t0.abs();
+        let h0 = self.opts.h0.unwrap_or(H0_DEFAULT.max(floor));
+        let mut h = h0.min(h_max);
         let mut last = false;
         if t + h * 1.0001 >= t1 {
             h = t1 - t;
@@ -401,6 +404,12 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
         let mut chart = ChartWatch::<D>::default();
 
         loop {
+            let stepped = (t + h) - t;
+            if !last && (stepped - h).abs() > 0.01 * self.rtol * h {
+                // Far from t = 0 `t + h` rounds above the tolerance: the step the state
+                // takes is the one the time takes (as in the explicit methods).
+                h = stepped;
+            }
             if refresh == Refresh::Jacobian {
                 jac = self.jacobian(t, &y)?;
                 jac_current = true;

@@ -6,7 +6,7 @@ use super::kinematics::BodyKin;
 use super::{Equations, Names, ParamCheck, Role};
 use crate::lower::{Binding, Context, Lowerer};
 use crate::parse::Errors;
-use crate::sym::{Expr, Sym};
+use crate::sym::{Expr, Graph, Sym};
 use std::collections::HashMap;
 use syn::Ident;
 
@@ -22,8 +22,9 @@ pub(super) fn check(what: String, expr: Expr, positive: bool) -> ParamCheck {
 
 /// Every body's mass (> 0) and diagonal inertias (>= 0: a zero one of a free body makes the
 /// mass matrix singular, which the solve reports; a tree body's zero inertia is a point
-/// mass), named by the body.
-pub(super) fn body_checks(names: &Names, bodies: &[BodyKin]) -> Vec<ParamCheck> {
+/// mass), named by the body; a spatial inertia of parameters is also checked to be one a
+/// body can have (`inertia_checks`).
+pub(super) fn body_checks(g: &mut Graph, names: &Names, bodies: &[BodyKin]) -> Vec<ParamCheck> {
     let mut by_index: Vec<(usize, &String)> = names
         .iter()
         .filter_map(|(n, b)| match b {
@@ -52,9 +53,99 @@ pub(super) fn body_checks(names: &Names, bodies: &[BodyKin]) -> Vec<ParamCheck> 
                     ..check(what, row[k], false)
                 });
             }
+            if b.rot.is_some() {
+                out.extend(inertia_checks(g, name, inertia));
+            }
         }
     }
     out
+}
+
+/// A spatial inertia `I` of parameters is a body's when `S = tr(I)/2 E - I` (the second
+/// moment of its mass) is positive semi-definite: every principal moment at most the sum of
+/// the other two, hence none negative. A positive definite `M` does not follow from that nor
+/// show its absence (other bodies add to it), so these checks are eager. Each principal minor
+/// of `S` (twice the diagonal; the 2x2 ones and the determinant where `I` has products of inertia)
+/// may fall below zero by `1e-12` of `tr(I)` to its power, as at compile time: a disk's
+/// `diag(a, a, 2a)` is on the boundary.
+fn inertia_checks(g: &mut Graph, name: &str, i: &[[Expr; 3]; 3]) -> Vec<ParamCheck> {
+    if i.iter().flatten().all(|&e| g.as_const(e).is_some()) {
+        return Vec::new(); // checked at compile time
+    }
+    let trace = g.sum([i[0][0], i[1][1], i[2][2]]);
+    let half = g.constant(0.5);
+    let half = g.mul(half, trace);
+    let s: [[Expr; 3]; 3] = std::array::from_fn(|r| {
+        std::array::from_fn(|c| {
+            if r == c {
+                g.sub(half, i[r][c])
+            } else {
+                g.neg(i[r][c])
+            }
+        })
+    });
+    let slack = |g: &mut Graph, power: i32, e: Expr| {
+        let tol = g.constant(1e-12);
+        let scale = (1..power).fold(trace, |acc, _| g.mul(acc, trace));
+        let tol = g.mul(tol, scale);
+        g.add(e, tol)
+    };
+    let axes = ["x", "y", "z"];
+    let mut out = Vec::new();
+    for k in 0..3 {
+        let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+        let sum = g.add(i[a][a], i[b][b]);
+        let margin = g.sub(sum, i[k][k]);
+        out.push(check(
+            format!(
+                "`I_{a}{a} + I_{b}{b} - I_{c}{c}` of `{name}` (a principal moment of inertia is at \
+                 most the sum of the other two)",
+                a = axes[a],
+                b = axes[b],
+                c = axes[k]
+            ),
+            slack(g, 1, margin),
+            false,
+        ));
+    }
+    let products = [(0, 1), (0, 2), (1, 2)]
+        .iter()
+        .any(|&(r, c)| !g.is_zero(i[r][c]));
+    if products {
+        for (r, c) in [(0, 1), (0, 2), (1, 2)] {
+            let d = g.mul(s[r][r], s[c][c]);
+            let o = g.mul(s[r][c], s[c][r]);
+            let minor = g.sub(d, o);
+            out.push(check(
+                format!("a 2x2 principal minor of `tr(I)/2 - I` for the inertia of `{name}` (its principal moments: each between zero and the sum of the other two)"),
+                slack(g, 2, minor),
+                false,
+            ));
+        }
+        let det = det3(g, &s);
+        out.push(check(
+            format!("the determinant of `tr(I)/2 - I` for the inertia of `{name}` (its principal moments: each between zero and the sum of the other two)"),
+            slack(g, 3, det),
+            false,
+        ));
+    }
+    out
+}
+
+fn det3(g: &mut Graph, m: &[[Expr; 3]; 3]) -> Expr {
+    let minor = |g: &mut Graph, r: usize, c: usize| {
+        let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
+        let d = g.mul(m[r1][c1], m[r2][c2]);
+        let o = g.mul(m[r1][c2], m[r2][c1]);
+        g.sub(d, o)
+    };
+    let terms: Vec<Expr> = (0..3)
+        .map(|c| {
+            let cof = minor(g, 0, c);
+            g.mul(m[0][c], cof)
+        })
+        .collect();
+    g.sum(terms)
 }
 
 /// When every parameter has a default and the initial positions are given, the default

@@ -487,8 +487,12 @@ fn write_crate(
         ),
     };
     let y: Vec<String> = state(coords).iter().map(|v| format!("{v:?}")).collect();
+    // rustc expands a struct's attributes one level deeper each: a model written body by
+    // body needs a recursion limit above its attribute count (default 128).
+    let limit = (2 * n + 64).max(128);
     let main = format!(
         "//! Throw-away crate written by the mbd `scaling` report: a {n}-body chain.\n\
+         #![recursion_limit = \"{limit}\"]\n\
          #![allow(dead_code)]\n\
          use mbd::prelude::*;\n\n\
          {model}\n\

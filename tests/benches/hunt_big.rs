@@ -1,0 +1,48 @@
+//! The right-hand side of the 30-dof humanoid-like spatial tree of `hunt_big_humanoid`
+//! (generated articulated-body recursion, 14 bodies): the least time per call over batches,
+//! which background load does not skew. For scale: RigidBodyDynamics.jl reports 17.7 us for
+//! the forward dynamics of a 30-dof humanoid (Atlas, floating base); that is another model
+//! on another machine, a yardstick, not a same-run ratio.
+//!
+//! `cargo bench -p tests --bench hunt_big`
+
+#[path = "../tests/support/humanoid.rs"]
+mod humanoid;
+
+use humanoid::Humanoid;
+use mbd::prelude::*;
+use std::hint::black_box;
+use std::time::Instant;
+
+fn least_ns(run: &dyn Fn()) -> f64 {
+    let mut best = f64::INFINITY;
+    for _ in 0..300 {
+        let start = Instant::now();
+        for _ in 0..1000 {
+            run();
+        }
+        best = best.min(start.elapsed().as_secs_f64() * 1e9 / 1000.0);
+    }
+    best
+}
+
+fn main() {
+    let p = Humanoid { g: 9.81 };
+    let y = Vector::<60>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
+    let (q, qd) = (
+        y.fixed_rows::<30>(0).into_owned(),
+        y.fixed_rows::<30>(30).into_owned(),
+    );
+    let rhs = least_ns(&|| {
+        let _ = black_box(p.rhs(0.0, black_box(&y)));
+    });
+    let mass = least_ns(&|| {
+        let _ = black_box(p.mass_matrix(0.0, black_box(&q)));
+    });
+    let forces = least_ns(&|| {
+        let _ = black_box(p.forces(0.0, black_box(&q), black_box(&qd)));
+    });
+    println!(
+        "humanoid (30 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
+    );
+}
