@@ -85,7 +85,7 @@ pub fn cart_reference() -> f64 {
 /// constraint, augmented form). A horizontal spring `k` of free length `w` holds pin A from
 /// the anchor `(-w, -r)`: unstretched at the equilibrium `phi = psi = 0`.
 #[derive(Debug, Clone, Mechanism)]
-#[mechanism(jacobian)]
+#[mechanism(jacobian, augmented)]
 #[gravity(0.0, -g)]
 #[coords(phi, psi)]
 #[constraint((d + r * sin(psi) - r * sin(phi)) * (d + r * sin(psi) - r * sin(phi))
