@@ -130,17 +130,65 @@ pub fn path_constant(path: &syn::Path) -> Option<f64> {
     if ok { named_constant(last) } else { None }
 }
 
-/// The message for a name that is none of the model's.
-pub fn unknown_name(name: &str, struct_name: &str) -> String {
+/// The message for a name that is none of the model's, with a hint where a newcomer's
+/// habit has a spelling here (`pi`, `x_dot`, `time`) or a declared name is one typo away.
+pub fn unknown_name<'a>(
+    name: &str,
+    struct_name: &str,
+    declared: impl IntoIterator<Item = &'a str>,
+) -> String {
     let upper = name.to_uppercase();
     let hint = if named_constant(&upper).is_some() {
         format!(": did you mean the constant `{upper}`?")
+    } else if let Some(base) = name.strip_suffix("_dot").filter(|b| !b.is_empty()) {
+        format!(": a coordinate's rate is written `der({base})`")
+    } else if name == "time" {
+        ": time is `t`".to_string()
+    } else if let Some(near) = closest(name, declared) {
+        format!(": did you mean `{near}`?")
     } else {
         String::new()
     };
     format!(
         "unknown name `{name}`: not a parameter (field) of `{struct_name}`, a coordinate, a point or a body{hint}"
     )
+}
+
+/// The candidate one or two edits from `name` (one for names of up to four letters), if
+/// exactly one is nearest: a typo's likely intent.
+pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let limit = if name.chars().count() <= 4 { 1 } else { 2 };
+    let near: Vec<(usize, &str)> = candidates
+        .into_iter()
+        .map(|c| (edits(name, c), c))
+        .filter(|&(d, _)| d > 0 && d <= limit)
+        .collect();
+    let least = near.iter().map(|&(d, _)| d).min()?;
+    let mut best = near.iter().filter(|&&(d, _)| d == least).map(|&(_, c)| c);
+    let first = best.next()?;
+    best.all(|c| c == first).then_some(first)
+}
+
+/// Levenshtein distance (insert, delete, substitute, and a swap of two neighbours).
+fn edits(a: &str, b: &str) -> usize {
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for j in 0..=b.len() {
+        d[0][j] = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let sub = d[i - 1][j - 1] + usize::from(a[i - 1] != b[j - 1]);
+            d[i][j] = sub.min(d[i - 1][j] + 1).min(d[i][j - 1] + 1);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d[i][j] = d[i][j].min(d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    d[a.len()][b.len()]
 }
 
 /// Whether body query or `reaction` `fname` may stand in `ctx`: positions and angles are
@@ -342,7 +390,10 @@ impl Lowerer<'_> {
             ),
             None => match named_constant(&name) {
                 Some(v) => Ok(Value::Scalar(self.g.constant(v))),
-                None => self.fail(id.span(), unknown_name(&name, self.struct_name)),
+                None => {
+                    let declared = self.names.keys().map(String::as_str);
+                    self.fail(id.span(), unknown_name(&name, self.struct_name, declared))
+                }
             },
         }
     }

@@ -556,6 +556,10 @@ impl Mechanism {
                         rhs: *b.right,
                     })
                 }
+                Ok(Expr::Assign(a)) => errors.over(
+                    a.eq_token,
+                    "a constraint is an equation: `lhs == rhs`, with `==` (`=` assigns)",
+                ),
                 Ok(e) => errors.over(&e, "a constraint is an equation: `lhs == rhs`"),
                 Err(e) => errors.push(e),
             },
