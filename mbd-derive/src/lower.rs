@@ -605,7 +605,12 @@ impl Lowerer<'_> {
             ("max", (Some(x), Some(y))) => Value::Scalar(g.max(x, y)),
             ("powi", (Some(x), Some(n))) => match g.as_const(n) {
                 Some(k) if k.fract() == 0.0 && k.abs() < 64.0 => Value::Scalar(g.powi(x, k as i32)),
-                _ => return self.fail(args[1].span(), "`powi` takes a constant integer exponent: for any other use `powf(x, y)`"),
+                _ => {
+                    return self.fail(
+                        args[1].span(),
+                        "`powi` takes a constant integer exponent: for any other use `powf(x, y)`",
+                    );
+                }
             },
             ("rot_x" | "rot_y" | "rot_z", (Some(a), _)) => Value::Matrix(rotation(g, fname, a)),
             ("diag", _) => match (scalar(&vals[0]), scalar(&vals[1]), scalar(&vals[2])) {

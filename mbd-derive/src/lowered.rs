@@ -550,7 +550,10 @@ fn path(p: &syn::ExprPath, errors: &mut Errors, known: Option<&Known>) -> Term {
                 let name = id.to_string();
                 if k.reported.borrow_mut().insert(name.clone()) {
                     let declared = k.names.iter().map(String::as_str);
-                    errors.at(span, crate::lower::unknown_name(&name, &k.struct_name, declared));
+                    errors.at(
+                        span,
+                        crate::lower::unknown_name(&name, &k.struct_name, declared),
+                    );
                 }
                 Kind::Invalid
             }
@@ -639,9 +642,7 @@ fn unknown_function(fname: &str) -> String {
         "acc" | "accel" => Some("`acceleration(body)`"),
         "theta" | "orientation" => Some("`angle(body)`"),
         "d" | "dt" | "diff" | "derivative" | "ddt" => Some("`der(x)` (the time derivative)"),
-        "force" | "constraint_force" => {
-            Some("`reaction(u)` of a relaxed or driven coordinate `u`")
-        }
+        "force" | "constraint_force" => Some("`reaction(u)` of a relaxed or driven coordinate `u`"),
         "energy" | "kinetic_energy" | "potential_energy" => Some(
             "it out, e.g. `0.5 * m * dot(velocity(b), velocity(b))`; the model's total is `energy(t, q, qd)` at run time",
         ),
@@ -650,9 +651,11 @@ fn unknown_function(fname: &str) -> String {
     let known = || FUNCTIONS.iter().map(|(n, _)| *n);
     if let Some(hint) = instead {
         format!("unknown function `{fname}`: write {hint}")
-    } else if let Some(near) = crate::lower::closest(fname, known())
-        .or_else(|| known().filter(|k| k.len() >= 3).find(|k| fname.starts_with(k)))
-    {
+    } else if let Some(near) = crate::lower::closest(fname, known()).or_else(|| {
+        known()
+            .filter(|k| k.len() >= 3)
+            .find(|k| fname.starts_with(k))
+    }) {
         format!("unknown function `{fname}`: did you mean `{near}`?")
     } else {
         let all: Vec<&str> = known().collect();

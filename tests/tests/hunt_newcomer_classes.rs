@@ -57,7 +57,12 @@ fn pendulum_turns_at_the_exact_half_period() {
         .unwrap();
     let period = 2.0 * PI * (p.l / p.g).sqrt() / agm(1.0, (p.θ0 / 2.0).cos());
     let turn = &sol.events[0];
-    assert!((turn.t - period / 2.0).abs() < 1e-9, "{} vs {}", turn.t, period / 2.0);
+    assert!(
+        (turn.t - period / 2.0).abs() < 1e-9,
+        "{} vs {}",
+        turn.t,
+        period / 2.0
+    );
     assert!((turn.y[0] + p.θ0).abs() < 1e-9);
 }
 
@@ -91,7 +96,8 @@ fn spring_mass_damper_follows_the_damped_closed_form_and_has_its_modes() {
     let w = (p.k / p.m).sqrt();
     let zeta = p.c / (2.0 * (p.k * p.m).sqrt());
     let wd = w * (1.0 - zeta * zeta).sqrt();
-    let exact = |t: f64| (-zeta * w * t).exp() * 0.1 * ((wd * t).cos() + zeta * w / wd * (wd * t).sin());
+    let exact =
+        |t: f64| (-zeta * w * t).exp() * 0.1 * ((wd * t).cos() + zeta * w / wd * (wd * t).sin());
     let sol = Dopri5::new(tight())
         .solve(&p, 0.0, p.initial_state(), 3.0, &[])
         .unwrap();
@@ -151,7 +157,11 @@ fn readme_slider_crank_gives_the_piston_speed_of_the_closed_form() {
         assert!((k.q[1] - (p.r * th.cos() + root)).abs() < 1e-12);
         let y = Vector::<4>::new(k.q[0], k.q[1], k.qd[0], k.qd[1]);
         let out = p.outputs(t, &y).unwrap();
-        assert!((out.v_piston - v).abs() < 1e-12, "t = {t}: {} vs {v}", out.v_piston);
+        assert!(
+            (out.v_piston - v).abs() < 1e-12,
+            "t = {t}: {} vs {v}",
+            out.v_piston
+        );
     }
 }
 
@@ -189,9 +199,15 @@ fn four_bar_keeps_its_pin_and_the_rocker_angle_of_the_circle_intersection() {
     // with a reason): assemble it at a crank angle of 60 degrees turning at 2 rad/s.
     let newton = NewtonOptions::default();
     let held = [true, false, false];
-    let q = assemble(&p, 0.0, &Vector::<3>::new(PI / 3.0, -1.0, 1.0), &held, &newton).unwrap();
-    let qd = consistent_velocities(&p, 0.0, &q, &Vector::<3>::new(2.0, 0.0, 0.0), &held)
-        .unwrap();
+    let q = assemble(
+        &p,
+        0.0,
+        &Vector::<3>::new(PI / 3.0, -1.0, 1.0),
+        &held,
+        &newton,
+    )
+    .unwrap();
+    let qd = consistent_velocities(&p, 0.0, &q, &Vector::<3>::new(2.0, 0.0, 0.0), &held).unwrap();
     let y0 = Vector::<6>::from_iterator(q.iter().chain(qd.iter()).copied());
     let sol = Dopri5::new(tight()).solve(&p, 0.0, y0, 1.0, &[]).unwrap();
     for (t, y) in sol.t.iter().zip(&sol.y) {
@@ -239,8 +255,8 @@ fn friction_block_stops_where_constant_deceleration_says_and_is_not_linearised_a
         mu: 0.3,
         v0: 4.0,
     };
-    let run = mbd::hybrid::solve(&Dopri5::new(tight()), &p, 0.0, p.initial_state(), 3.0, &[])
-        .unwrap();
+    let run =
+        mbd::hybrid::solve(&Dopri5::new(tight()), &p, 0.0, p.initial_state(), 3.0, &[]).unwrap();
     let stop = p.v0 / (p.mu * p.g);
     assert_eq!(run.switches.len(), 1);
     assert!((run.switches[0].t - stop).abs() < 1e-12);
@@ -310,7 +326,12 @@ fn heavy_top_keeps_its_energy_vertical_momentum_and_spin() {
         let spin = (r.transpose() * w)[2];
         let q = y.fixed_rows::<3>(0).into_owned();
         let qd = y.fixed_rows::<3>(3).into_owned();
-        (p.energy(0.0, &q, &qd), lz, spin, w.dot(&(r * jp * r.transpose() * w)) / 2.0)
+        (
+            p.energy(0.0, &q, &qd),
+            lz,
+            spin,
+            w.dot(&(r * jp * r.transpose() * w)) / 2.0,
+        )
     };
     let y0 = p.initial_state();
     let (e0, lz0, s0, kin0) = invariants(&y0);

@@ -26,14 +26,17 @@ pub(super) fn initial_conditions(
         }
         let Some(a) = free_idx.iter().position(|&j| coords[j].name == i.coord) else {
             let name = i.coord.to_string();
-            let rate = name.strip_suffix("_dot").filter(|b| free_idx.iter().any(|&j| coords[j].name == b));
+            let rate = name
+                .strip_suffix("_dot")
+                .filter(|b| free_idx.iter().any(|&j| coords[j].name == b));
             let hint = match rate {
                 Some(base) if !i.velocity => format!(": give its rate as `der({base}) = ..`"),
                 _ => String::new(),
             };
-            scope
-                .errors
-                .at(i.coord.span(), format!("`{name}` is not a free coordinate{hint}"));
+            scope.errors.at(
+                i.coord.span(),
+                format!("`{name}` is not a free coordinate{hint}"),
+            );
             continue;
         };
         if let Some(v) = scope.lowerer(None).scalar(&i.value, Context::Constant) {
