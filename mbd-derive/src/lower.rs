@@ -289,9 +289,18 @@ impl Lowerer<'_> {
                 } else {
                     "spatial (3 components)"
                 };
+                // Spatial by a third gravity component is the surprise worth naming.
+                let why = if len == 3 {
+                    ": the mechanism is spatial (`gravity` of 3 components, or `#[mechanism(spatial)]`)"
+                } else {
+                    ""
+                };
                 self.errors.at(
                     e.span(),
-                    format!("expected a {dims} vector, found {} components", v.len()),
+                    format!(
+                        "expected a {dims} vector, found {} components{why}",
+                        v.len()
+                    ),
                 );
                 None
             }
