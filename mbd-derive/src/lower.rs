@@ -176,8 +176,8 @@ fn edits(a: &str, b: &str) -> usize {
     for (i, row) in d.iter_mut().enumerate() {
         row[0] = i;
     }
-    for j in 0..=b.len() {
-        d[0][j] = j;
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
     }
     for i in 1..=a.len() {
         for j in 1..=b.len() {
@@ -687,4 +687,22 @@ pub fn cross(g: &mut Graph, a: &[Expr], b: &[Expr]) -> [Expr; 3] {
         *ci = g.sub(p, q);
     }
     c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::closest;
+
+    #[test]
+    fn a_typo_names_the_one_nearest_declared_name() {
+        let names = ["length", "mass", "m", "theta", "th"];
+        assert_eq!(closest("lenght", names), Some("length")); // a swap
+        assert_eq!(closest("mas", names), Some("mass")); // a letter short
+        assert_eq!(closest("thetta", names), Some("theta"));
+        // Two at the same distance: no guess. Too far: no guess.
+        assert_eq!(closest("ab", ["aa", "bb"]), None);
+        assert_eq!(closest("velocity", names), None);
+        // Short names allow one edit only.
+        assert_eq!(closest("mxxs", names), None); // two edits from `mass`
+    }
 }
