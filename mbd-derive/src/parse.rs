@@ -1194,8 +1194,18 @@ fn friction(attr: &Attribute, list: Vec<Arg>, errors: &mut Errors) -> Option<Fri
             normal,
             span: attr.span(),
         }),
-        _ => {
-            errors.over(attr, "`friction` needs `along`, `mu` and `normal`");
+        (along, mu, normal) => {
+            let keys = [
+                ("`along`", along.is_none()),
+                ("`mu`", mu.is_none()),
+                ("`normal`", normal.is_none()),
+            ];
+            let missing: Vec<&str> = keys.iter().filter(|k| k.1).map(|k| k.0).collect();
+            let msg = format!(
+                "`friction` needs `along`, `mu` (or `mu_k`) and `normal`; missing: {}",
+                missing.join(", ")
+            );
+            errors.over(attr, msg);
             None
         }
     }
