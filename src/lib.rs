@@ -48,11 +48,11 @@
 //! | `#[body(name, parent = p, joint = revolute(q), at = [x, y], angle = a0, com = [cx, cy], mass = m, inertia = i)]` | a body of a planar joint tree: its frame is its parent's (`ground` by default) moved by the joint at `at` (parent frame); `joint` is `revolute(q)`, `prismatic(s, [ax, ay])` (axis in the parent frame) or `fixed`; the joint brings its coordinate (free, or driven if a `drive` names it); `com` is in the body frame |
 //! | `#[body(name, parent = p, joint = spherical(a, b, c), at = [x, y, z], com = [cx, cy, cz], mass = m, inertia = diag(ia, ib, ic))]` | a body of a spatial joint tree (`#[mechanism(spatial)]`): rotation `R = R_parent R_joint`, origin `o_parent + R_parent at`; `joint` is `revolute(q, x \| y \| z)` (about the parent's axis at the joint), `prismatic(s, [ax, ay, az])`, `universal(a, b)` (`rot_x(a) rot_y(b)`), `spherical(a, b, c)` (`rot_z(a) rot_y(b) rot_x(c)`, singular at `b = ±π/2`), `ball(s1, s2, s3)` (modified Rodrigues parameters, no singular orientation: see [Ball joints](crate::language#ball-joints)) or `fixed`; without `inertia` the body is a point mass; no `angle` |
 //! | `#[body(.., reaction)]` | frees the joint origin by two relaxed coordinates `name_rx`, `name_ry` (three in space, with `name_rz`), so that `reaction(name_rx)`, ... are the joint's force on the body (ground frame) |
-//! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) by default, or `joint = revolute \| universal \| prismatic` with body-fixed `axis_a`, `axis_b` (and `normal_a`, `normal_b`): five, four, five equations (see [Closing joints in space](#closing-joints-in-space)) |
+//! | `#[close(pin, a = coupler, at_a = [x, y], b = rocker \| ground, at_b = [x, y])]` | a joint closing a loop of the tree: the two points (in the bodies' frames) coincide; planar, a revolute joint (two constraint equations); spatial, a spherical joint (`[x, y, z]`, three) by default, or `joint = revolute \| universal \| prismatic` with body-fixed `axis_a`, `axis_b` (and `normal_a`, `normal_b`): five, four, five equations (see [Closing joints in space](#closing-joints-in-space)); where the closure has no closed form (a four-bar's three angles) every joint coordinate stays in the state, augmented: start a run from a consistent state with `analysis::assemble` and `analysis::consistent_velocities` (`X::COORDINATES` names the state) |
 //! | `#[chain(link, n = 16, joint = revolute, length = l, mass = m, inertia = i)]` | `n` identical links `link_1 ..= link_n` hanging from `at` on `parent` (the ground's origin by default), relative angles `link_q1 ..` (zero: straight down), mass centres at mid-length |
 //! | `#[point(name, at = [x, y])]` | a named point, fixed or moving, in ground coordinates |
 //! | `#[point(name, on = body, at = [dx, dy])]` | a body-fixed point of any body (free or joint-tree, planar or spatial): `at` is in the body's frame, from its origin (see the offsets rule below); usable wherever a point is after the bodies (spring, damper and force ends, potentials, constraints, outputs), not in a body's or a plain point's `at` |
-//! | `#[spring(name, from = a, to = b, k = k, length = l0)]` | a linear spring between points, bodies or positions |
+//! | `#[spring(name, from = a, to = b, k = k, length = l0)]` | a linear spring between points, bodies (their mass centres) or positions; `ground` is not a point: a fixed end is a position `[x, y]` or a `#[point]` |
 //! | `#[damper(name, from = a, to = b, c = c)]` | a viscous damper on the rate of change of the distance |
 //! | `#[force(name, at = [x, y], value = [fx, fy])]` | a force applied at a point |
 //! | `#[torque(name, on = body, value = tau)]` | a torque on a body |
@@ -108,6 +108,11 @@
 //!   cosh tanh exp ln sqrt abs signum atan2 hypot powi powf min max norm dot cross rot_x rot_y
 //!   rot_z diag`, and in outputs and events `der reaction` and the body queries; kinematics
 //!   must be smooth (no `abs`, `signum`, `min`, `max`).
+//! - **Names** are Rust identifiers: Unicode letters are fine (`θ`, `μ`; rustc's
+//!   `mixed_script_confusables` lint warns on a lone Greek letter, `#![allow(..)]` it),
+//!   keywords are not (`type`, `fn`). Time is `t`; a coordinate's rate is `der(x)` in every
+//!   expression and in `init(der(x) = ..)` (`x_dot` only names the state's component); the
+//!   fixed frame is `ground` (a `parent`, a `close` end), which no body may be called.
 //! - **Generated names are reserved**: `chain(link, n = 3, ..)` makes bodies `link_1 ..
 //!   link_3` and coordinates `link_q1 .. link_q3`; `body(b, .., reaction)` makes `b_rx`,
 //!   `b_ry` (`b_rz`); the state names velocities `x_dot`. Declaring one of these yourself is

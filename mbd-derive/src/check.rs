@@ -229,6 +229,10 @@ fn reserved_names(input: &DeriveInput, ast: &Mechanism, errors: &mut Errors) {
         {
             // A chain's own name is not one of its generated names.
             user.push(n.clone());
+            if n == "ground" && !path.is_ident("point") {
+                let why = "`ground` is the fixed frame (`parent = ground`, `b = ground`): rename this one";
+                errors.at(n.span(), why);
+            }
         }
     }
     user.extend(ast.params.iter().map(|p| p.name.clone()));

@@ -130,17 +130,65 @@ pub fn path_constant(path: &syn::Path) -> Option<f64> {
     if ok { named_constant(last) } else { None }
 }
 
-/// The message for a name that is none of the model's.
-pub fn unknown_name(name: &str, struct_name: &str) -> String {
+/// The message for a name that is none of the model's, with a hint where a newcomer's
+/// habit has a spelling here (`pi`, `x_dot`, `time`) or a declared name is one typo away.
+pub fn unknown_name<'a>(
+    name: &str,
+    struct_name: &str,
+    declared: impl IntoIterator<Item = &'a str>,
+) -> String {
     let upper = name.to_uppercase();
     let hint = if named_constant(&upper).is_some() {
         format!(": did you mean the constant `{upper}`?")
+    } else if let Some(base) = name.strip_suffix("_dot").filter(|b| !b.is_empty()) {
+        format!(": a coordinate's rate is written `der({base})`")
+    } else if name == "time" {
+        ": time is `t`".to_string()
+    } else if let Some(near) = closest(name, declared) {
+        format!(": did you mean `{near}`?")
     } else {
         String::new()
     };
     format!(
         "unknown name `{name}`: not a parameter (field) of `{struct_name}`, a coordinate, a point or a body{hint}"
     )
+}
+
+/// The candidate one or two edits from `name` (one for names of up to four letters), if
+/// exactly one is nearest: a typo's likely intent.
+pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let limit = if name.chars().count() <= 4 { 1 } else { 2 };
+    let near: Vec<(usize, &str)> = candidates
+        .into_iter()
+        .map(|c| (edits(name, c), c))
+        .filter(|&(d, _)| d > 0 && d <= limit)
+        .collect();
+    let least = near.iter().map(|&(d, _)| d).min()?;
+    let mut best = near.iter().filter(|&&(d, _)| d == least).map(|&(_, c)| c);
+    let first = best.next()?;
+    best.all(|c| c == first).then_some(first)
+}
+
+/// Levenshtein distance (insert, delete, substitute, and a swap of two neighbours).
+fn edits(a: &str, b: &str) -> usize {
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let sub = d[i - 1][j - 1] + usize::from(a[i - 1] != b[j - 1]);
+            d[i][j] = sub.min(d[i - 1][j] + 1).min(d[i][j - 1] + 1);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d[i][j] = d[i][j].min(d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    d[a.len()][b.len()]
 }
 
 /// Whether body query or `reaction` `fname` may stand in `ctx`: positions and angles are
@@ -241,9 +289,18 @@ impl Lowerer<'_> {
                 } else {
                     "spatial (3 components)"
                 };
+                // Spatial by a third gravity component is the surprise worth naming.
+                let why = if len == 3 {
+                    ": the mechanism is spatial (`gravity` of 3 components, or `#[mechanism(spatial)]`)"
+                } else {
+                    ""
+                };
                 self.errors.at(
                     e.span(),
-                    format!("expected a {dims} vector, found {} components", v.len()),
+                    format!(
+                        "expected a {dims} vector, found {} components{why}",
+                        v.len()
+                    ),
                 );
                 None
             }
@@ -342,7 +399,10 @@ impl Lowerer<'_> {
             ),
             None => match named_constant(&name) {
                 Some(v) => Ok(Value::Scalar(self.g.constant(v))),
-                None => self.fail(id.span(), unknown_name(&name, self.struct_name)),
+                None => {
+                    let declared = self.names.keys().map(String::as_str);
+                    self.fail(id.span(), unknown_name(&name, self.struct_name, declared))
+                }
             },
         }
     }
@@ -562,7 +622,12 @@ impl Lowerer<'_> {
             ("max", (Some(x), Some(y))) => Value::Scalar(g.max(x, y)),
             ("powi", (Some(x), Some(n))) => match g.as_const(n) {
                 Some(k) if k.fract() == 0.0 && k.abs() < 64.0 => Value::Scalar(g.powi(x, k as i32)),
-                _ => return self.fail(args[1].span(), "`powi` takes a constant integer exponent"),
+                _ => {
+                    return self.fail(
+                        args[1].span(),
+                        "`powi` takes a constant integer exponent: for any other use `powf(x, y)`",
+                    );
+                }
             },
             ("rot_x" | "rot_y" | "rot_z", (Some(a), _)) => Value::Matrix(rotation(g, fname, a)),
             ("diag", _) => match (scalar(&vals[0]), scalar(&vals[1]), scalar(&vals[2])) {
@@ -630,4 +695,22 @@ pub fn cross(g: &mut Graph, a: &[Expr], b: &[Expr]) -> [Expr; 3] {
         *ci = g.sub(p, q);
     }
     c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::closest;
+
+    #[test]
+    fn a_typo_names_the_one_nearest_declared_name() {
+        let names = ["length", "mass", "m", "theta", "th"];
+        assert_eq!(closest("lenght", names), Some("length")); // a swap
+        assert_eq!(closest("mas", names), Some("mass")); // a letter short
+        assert_eq!(closest("thetta", names), Some("theta"));
+        // Two at the same distance: no guess. Too far: no guess.
+        assert_eq!(closest("ab", ["aa", "bb"]), None);
+        assert_eq!(closest("velocity", names), None);
+        // Short names allow one edit only.
+        assert_eq!(closest("mxxs", names), None); // two edits from `mass`
+    }
 }

@@ -476,7 +476,14 @@ fn term_here(e: &syn::Expr, errors: &mut Errors, known: Option<&Known>) -> Term 
                 return one(Kind::Invalid, c.span());
             };
             let Some(name) = p.path.get_ident() else {
-                errors.at(p.span(), "expected a function name");
+                let last = p.path.segments.last().map(|s| s.ident.to_string());
+                let msg = match last {
+                    Some(f) if FUNCTIONS.iter().any(|(n, _)| *n == f) => {
+                        format!("write the function without a path: `{f}(..)`")
+                    }
+                    _ => "expected a function name".to_string(),
+                };
+                errors.at(p.span(), msg);
                 return one(Kind::Invalid, c.span());
             };
             let args = arguments(name, c.args.iter(), errors, known);
@@ -542,7 +549,11 @@ fn path(p: &syn::ExprPath, errors: &mut Errors, known: Option<&Known>) -> Term {
             Some(k) if !k.knows(id) => {
                 let name = id.to_string();
                 if k.reported.borrow_mut().insert(name.clone()) {
-                    errors.at(span, crate::lower::unknown_name(&name, &k.struct_name));
+                    let declared = k.names.iter().map(String::as_str);
+                    errors.at(
+                        span,
+                        crate::lower::unknown_name(&name, &k.struct_name, declared),
+                    );
                 }
                 Kind::Invalid
             }
@@ -611,7 +622,8 @@ fn arguments<'e>(
 }
 
 /// The message for a function the language does not have, with what to write instead
-/// where a common name from other languages has a spelling here.
+/// where a common name from other languages or tools has a spelling here, else the known
+/// function one typo away, else the list of functions.
 fn unknown_function(fname: &str) -> String {
     let instead = match fname {
         "log" => Some("`ln(x)` (natural logarithm)"),
@@ -622,11 +634,35 @@ fn unknown_function(fname: &str) -> String {
         "cbrt" => Some("`powf(x, 1.0 / 3.0)`"),
         "arctan" | "atan2f" => Some("`atan(x)` or `atan2(y, x)`"),
         "fabs" => Some("`abs(x)`"),
+        "omega" | "angular_vel" | "angvel" | "ang_vel" => Some("`angular_velocity(body)`"),
+        "alpha" | "angular_acc" | "angacc" => Some("`angular_acceleration(body)`"),
+        "speed" => Some("`norm(velocity(body))`"),
+        "vel" => Some("`velocity(body)`"),
+        "pos" | "location" => Some("`position(body)`"),
+        "acc" | "accel" => Some("`acceleration(body)`"),
+        "theta" | "orientation" => Some("`angle(body)`"),
+        "d" | "dt" | "diff" | "derivative" | "ddt" => Some("`der(x)` (the time derivative)"),
+        "force" | "constraint_force" => Some("`reaction(u)` of a relaxed or driven coordinate `u`"),
+        "energy" | "kinetic_energy" | "potential_energy" => Some(
+            "it out, e.g. `0.5 * m * dot(velocity(b), velocity(b))`; the model's total is `energy(t, q, qd)` at run time",
+        ),
         _ => None,
     };
-    match instead {
-        Some(hint) => format!("unknown function `{fname}`: write {hint}"),
-        None => format!("unknown function `{fname}`"),
+    let known = || FUNCTIONS.iter().map(|(n, _)| *n);
+    if let Some(hint) = instead {
+        format!("unknown function `{fname}`: write {hint}")
+    } else if let Some(near) = crate::lower::closest(fname, known()).or_else(|| {
+        known()
+            .filter(|k| k.len() >= 3)
+            .find(|k| fname.starts_with(k))
+    }) {
+        format!("unknown function `{fname}`: did you mean `{near}`?")
+    } else {
+        let all: Vec<&str> = known().collect();
+        format!(
+            "unknown function `{fname}`: the functions are {}",
+            all.join(", ")
+        )
     }
 }
 

@@ -556,6 +556,10 @@ impl Mechanism {
                         rhs: *b.right,
                     })
                 }
+                Ok(Expr::Assign(a)) => errors.over(
+                    a.eq_token,
+                    "a constraint is an equation: `lhs == rhs`, with `==` (`=` assigns)",
+                ),
                 Ok(e) => errors.over(&e, "a constraint is an equation: `lhs == rhs`"),
                 Err(e) => errors.push(e),
             },
@@ -1190,8 +1194,18 @@ fn friction(attr: &Attribute, list: Vec<Arg>, errors: &mut Errors) -> Option<Fri
             normal,
             span: attr.span(),
         }),
-        _ => {
-            errors.over(attr, "`friction` needs `along`, `mu` and `normal`");
+        (along, mu, normal) => {
+            let keys = [
+                ("`along`", along.is_none()),
+                ("`mu`", mu.is_none()),
+                ("`normal`", normal.is_none()),
+            ];
+            let missing: Vec<&str> = keys.iter().filter(|k| k.1).map(|k| k.0).collect();
+            let msg = format!(
+                "`friction` needs `along`, `mu` (or `mu_k`) and `normal`; missing: {}",
+                missing.join(", ")
+            );
+            errors.over(attr, msg);
             None
         }
     }

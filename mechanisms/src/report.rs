@@ -144,9 +144,25 @@ pub fn off_curve(run: &CaseRun, i: usize) -> Option<String> {
     }
 }
 
+/// What the columns of the validation tables mean, one item each, for readers new to the
+/// report (the text table and `report.md`; the HTML page says the same in its introduction).
+pub const LEGEND: &[&str] = &[
+    "theory, RecurDyn: the validation manual's values as printed there. The manual solves 30 \
+     textbook problems (Meriam & Kraige, Engineering Mechanics: Dynamics, 7th ed.; each case \
+     names its problem) by hand and with the commercial code RecurDyn; its tables are \
+     transcribed in mechanisms/data/comparison-tables.csv.",
+    "reference: the exact value every error is measured against: the manual's theory to full \
+     precision or, where the theory is marked *, a corrected value the theory does not round \
+     to (report.html and the case's source, mechanisms/src/caseNN_*.rs, say why).",
+    "RD err %, err % (RecurDyn's and mbd's): |value - reference| / |reference| x 100; where \
+     the reference is 0, |value| x 100 in the row's unit.",
+    "method: how mbd obtained the value. time [us]: wall-clock time of the whole case run, \
+     shared by its rows.",
+];
+
 /// Whether the row's reference is a corrected value (the manual's theory does not round to
 /// it).
-fn corrected(r: &ReportRow) -> bool {
+pub fn corrected(r: &ReportRow) -> bool {
     r.theory.is_some_and(|t| !rounds_to(r.reference, t))
 }
 
@@ -162,7 +178,7 @@ fn rounds_to(exact: f64, printed: f64) -> bool {
 fn table(rows: &[ReportRow]) -> String {
     let mut s = String::from(
         "<table><tr><th>quantity</th><th>unit</th><th>theory</th><th>RecurDyn</th>\
-         <th>error %</th><th>mbd</th><th>error %</th><th>method</th><th>run time [µs]</th></tr>\n",
+         <th>RecurDyn err %</th><th>mbd</th><th>mbd err %</th><th>method</th><th>case run time [µs]</th></tr>\n",
     );
     let opt = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |v| format!("{v}"));
     for r in rows {
@@ -298,10 +314,11 @@ fn section(run: &CaseRun) -> String {
 /// The whole page.
 pub fn html(runs: &[CaseRun]) -> String {
     let mut s = String::from(HEAD);
-    s.push_str("<h1>mbd validation report</h1>\n<p>Each case of the validation manual run with mbd: \
-        the theory and RecurDyn columns are the manual's; errors are relative to the exact value \
+    s.push_str("<h1>mbd validation report</h1>\n<p>Each case of the validation manual (30 textbook problems from Meriam &amp; Kraige, \
+        <i>Engineering Mechanics: Dynamics</i>, 7th ed., each solved by hand and with the commercial code RecurDyn) \
+        run with mbd: the theory and RecurDyn columns are the manual's; errors are relative to the exact value \
         (the manual's theory where it is right, else the corrected value its case documents, shown \
-        under it). Every compared quantity is plotted from the case's own run (over time, or over the \
+        under it), in percent (where the exact value is 0, the absolute value times 100). Every compared quantity is plotted from the case's own run (over time, or over the \
         parameter its axis names) with the theory, RecurDyn and mbd values marked where it is compared. The drawings come from each model's generated geometry (<code>#[mechanism(geometry)]</code>): \
         rigid bodies as the slender bar of their mass and inertia (or through their joints where they are not uniform bars), \
         massless links (light blue) between the points they join, springs as zigzags, named points as small circles, \

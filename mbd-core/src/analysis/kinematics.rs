@@ -35,7 +35,9 @@ pub fn kinematics<S: Constrained<N, M>, const N: usize, const M: usize>(
     const {
         assert!(
             N == M,
-            "kinematic analysis needs as many constraints as coordinates"
+            "kinematic analysis needs as many constraints (closures and drives) as coordinates: \
+             a mechanism with free coordinates is integrated, its state assembled with \
+             analysis::assemble"
         )
     };
     let q = assemble(sys, t, q_guess, &[false; N], opts)?;

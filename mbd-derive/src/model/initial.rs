@@ -25,9 +25,17 @@ pub(super) fn initial_conditions(
             continue;
         }
         let Some(a) = free_idx.iter().position(|&j| coords[j].name == i.coord) else {
+            let name = i.coord.to_string();
+            let rate = name
+                .strip_suffix("_dot")
+                .filter(|b| free_idx.iter().any(|&j| coords[j].name == b));
+            let hint = match rate {
+                Some(base) if !i.velocity => format!(": give its rate as `der({base}) = ..`"),
+                _ => String::new(),
+            };
             scope.errors.at(
                 i.coord.span(),
-                format!("`{}` is not a free coordinate", i.coord),
+                format!("`{name}` is not a free coordinate{hint}"),
             );
             continue;
         };

@@ -159,9 +159,14 @@ fn end_position(scope: &mut Scope, kinematics: &Kinematics, end: &End<Term>) -> 
             Some(Binding::Value(Value::Vector(v))) => Some(v.clone()),
             Some(Binding::Body(b)) => Some(kinematics.bodies[*b].r.clone()),
             _ => {
+                let hint = if id == "ground" {
+                    ": the ground is no point; give a fixed end as a position `[x, y]` or a `#[point(name, at = [..])]`"
+                } else {
+                    ""
+                };
                 scope
                     .errors
-                    .at(id.span(), format!("unknown point or body `{id}`"));
+                    .at(id.span(), format!("unknown point or body `{id}`{hint}"));
                 None
             }
         },

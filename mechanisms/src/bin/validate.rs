@@ -4,7 +4,7 @@
 
 use clap::Parser;
 use mechanisms::cases;
-use mechanisms::report::{CaseRun, ReportRow, sig};
+use mechanisms::report::{CaseRun, LEGEND, ReportRow, corrected, sig};
 use mechanisms::validation::{Case, ManualRow, Outcome, error_pct, manual_rows};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -172,54 +172,101 @@ fn fmt_opt(v: Option<f64>) -> String {
     v.map_or_else(|| "-".to_string(), |v| format!("{v}"))
 }
 
+/// The manual's theory, marked `*` where the reference is a corrected value.
+fn theory(r: &ReportRow) -> String {
+    let mark = if corrected(r) { "*" } else { "" };
+    format!("{}{mark}", fmt_opt(r.theory))
+}
+
 fn table(rows: &[ReportRow]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<4} {:<20} {:<8} {:>10} {:>10} {:>9} {:>14} {:>9} {:>10}  method",
-        "case", "quantity", "unit", "theory", "RecurDyn", "RD err %", "mbd", "err %", "time [us]"
+        "{:<4} {:<20} {:<8} {:>10} {:>10} {:>9} {:>14} {:>9} {:>14} {:>10}  method",
+        "case",
+        "quantity",
+        "unit",
+        "theory",
+        "RecurDyn",
+        "RD err %",
+        "mbd",
+        "err %",
+        "reference",
+        "time [us]"
     );
     for r in rows {
         let _ = writeln!(
             s,
-            "{:<4} {:<20} {:<8} {:>10} {:>10} {:>9} {:>14} {:>9.1e} {:>10}  {}",
+            "{:<4} {:<20} {:<8} {:>10} {:>10} {:>9} {:>14} {:>9.1e} {:>14} {:>10}  {}",
             r.case,
             r.quantity,
             r.unit,
-            fmt_opt(r.theory),
-            fmt_opt(r.recurdyn),
-            r.recurdyn_error_pct
-                .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
-            sig(r.value, 10),
-            r.error_pct,
-            sig(r.runtime_s * 1e6, 3),
-            r.method
-        );
-    }
-    s
-}
-
-fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
-    let mut md = String::from("# mbd validation report\n\n");
-    md.push_str("Errors are relative to the reference (the exact value; see each case's docs for corrections to the manual). `report.html` beside this file has the drawings, animations and plots.\n\n");
-    md.push_str("| case | quantity | unit | theory | RecurDyn | RecurDyn err % | mbd | mbd err % | reference | method | run time [us] |\n");
-    md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for r in rows {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {} | {} | {:.1e} | {} | {} | {} |",
-            r.case,
-            r.quantity,
-            r.unit,
-            fmt_opt(r.theory),
+            theory(r),
             fmt_opt(r.recurdyn),
             r.recurdyn_error_pct
                 .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
             sig(r.value, 10),
             r.error_pct,
             sig(r.reference, 10),
-            r.method,
+            sig(r.runtime_s * 1e6, 3),
+            r.method
+        );
+    }
+    s.push('\n');
+    for item in LEGEND {
+        s.push_str(&wrap(item, 100));
+    }
+    s
+}
+
+/// `text` broken into lines of at most `width` characters at spaces (a longer word alone).
+fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.len() + 1 + word.len() > width {
+            let _ = writeln!(out, "{line}");
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    let _ = writeln!(out, "{line}");
+    out
+}
+
+/// A Markdown table cell: a `|` in the text would end the cell.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|")
+}
+
+fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut md = String::from("# mbd validation report\n\n");
+    md.push_str("`report.html` beside this file has the drawings, animations and plots, and per case where the manual is wrong.\n\n");
+    for item in LEGEND {
+        let _ = writeln!(md, "- {}", item.replace('*', "\\*"));
+    }
+    md.push('\n');
+    md.push_str("| case | quantity | unit | theory | RecurDyn | RecurDyn err % | mbd | mbd err % | reference | method | time [us] |\n");
+    md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for r in rows {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {:.1e} | {} | {} | {} |",
+            r.case,
+            cell(&r.quantity),
+            cell(&r.unit),
+            theory(r).replace('*', "\\*"),
+            fmt_opt(r.recurdyn),
+            r.recurdyn_error_pct
+                .map_or_else(|| "-".to_string(), |e| sig(e, 2)),
+            sig(r.value, 10),
+            r.error_pct,
+            sig(r.reference, 10),
+            cell(&r.method),
             sig(r.runtime_s * 1e6, 3)
         );
     }
