@@ -253,8 +253,8 @@ fn statics_halves_a_step_that_leaves_the_domain() {
 
 /// The same loop driven through its limit position in the augmented form (`th = w t`, the
 /// rod and the piston solved from the constraints): the kinematic sweep follows the hand
-/// closure up to the limit `th = pi/6` and stops there with a typed error at the first time
-/// past it (`t = 0.55`, `sin 0.55 > 1/2`: the loop cannot close), never an `Ok` with NaN;
+/// closure up to the limit `th = pi/6` and stops with a typed error past it, no later than the
+/// first sample past it (`t = 0.55`, `sin 0.55 > 1/2`: the loop cannot close), never an `Ok` with NaN;
 /// assembly at `th = 1` refuses too.
 #[derive(Debug, Clone, Mechanism)]
 #[mechanism(augmented)]
@@ -289,7 +289,9 @@ fn a_sweep_through_the_limit_position_stops_with_a_typed_error() {
     let past: Vec<f64> = (0..=20).map(|i| 0.05 * i as f64).collect();
     match kinematics::kinematic_sweep(&p, &past, &guess, &Default::default()) {
         Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
-            assert_eq!(t, past[11]);
+            // Past the limit, and no later than the first sample past it (the sweep halves
+            // its step where Newton's correction grows, so it may stop between samples).
+            assert!(t > std::f64::consts::FRAC_PI_6 && t <= past[11], "t = {t}");
         }
         other => panic!("{other:?}"),
     }
