@@ -40,9 +40,12 @@ pub fn kinematics<S: Constrained<N, N>, const N: usize>(
     let q = assemble(sys, t, q_guess, &[false; N], opts)?;
     let all = [true; N];
     let jac = sys.phi_q(t, &q);
-    let singular = Error::SingularConstraintJacobian { t };
-    let qd = min_norm_solve(&jac, &all, &(-sys.phi_t(t, &q))).ok_or(singular.clone())?;
-    let qdd = min_norm_solve(&jac, &all, &sys.gamma(t, &q, &qd)).ok_or(singular)?;
+    let singular = || Error::SingularConstraintJacobian {
+        t,
+        detail: super::assembly::where_(sys, t, &q, &all),
+    };
+    let qd = min_norm_solve(&jac, &all, &(-sys.phi_t(t, &q))).ok_or_else(singular)?;
+    let qdd = min_norm_solve(&jac, &all, &sys.gamma(t, &q, &qd)).ok_or_else(singular)?;
     Ok(KinematicState { t, q, qd, qdd })
 }
 
