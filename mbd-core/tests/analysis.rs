@@ -93,7 +93,7 @@ fn a_four_bar_that_cannot_close_fails_to_assemble() {
 /// `SingularConstraintJacobian` at `t = 0`; its detail, which names the configuration.
 fn singular_at_zero<T: std::fmt::Debug>(r: mbd_core::Result<T>) -> String {
     match r {
-        Err(Error::SingularConstraintJacobian { t, detail }) if t == 0.0 => {
+        Err(Error::SingularConstraintJacobian { t: 0.0, detail }) => {
             assert!(detail.starts_with("at q = ["), "{detail}");
             detail
         }

@@ -288,13 +288,13 @@ fn a_sweep_through_the_limit_position_stops_with_a_typed_error() {
     }
     let past: Vec<f64> = (0..=20).map(|i| 0.05 * i as f64).collect();
     match kinematics::kinematic_sweep(&p, &past, &guess, &Default::default()) {
-        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
+        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t, .. }) => {
             assert_eq!(t, past[11]);
         }
         other => panic!("{other:?}"),
     }
     match assembly::assemble(&p, 1.0, &guess, &[false; 2], &Default::default()) {
-        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
+        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t, .. }) => {
             assert_eq!(t, 1.0)
         }
         other => panic!("{other:?}"),

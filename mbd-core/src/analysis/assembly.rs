@@ -189,7 +189,7 @@ fn dependent_rows<const N: usize, const M: usize>(
             }
         }
         let norm = v.norm();
-        if !(norm > 1e-6 * scale) {
+        if norm.is_nan() || norm <= 1e-6 * scale {
             out.push(k);
         } else {
             basis.push(v / norm);
