@@ -33,7 +33,7 @@
 //! | `rigid3` `rotation` | `R` maps body to ground coordinates | right-handed | |
 //! | `body` `at` | parent's frame, from the parent's joint | | `[0, 0]` (`[0, 0, 0]`) |
 //! | `body` `com`, body-fixed offsets | the body's own frame, from its joint | | `com = [0, 0]` |
-//! | `body` `prismatic(s, axis)` | `axis` in the parent's frame: the joint moves `at` by `s axis` | `s` positive along `axis` | |
+//! | `body` `prismatic(s, axis)` | `axis` in the parent's frame: the joint moves `at` by `s axis` (not normalised: `s` counts lengths of `axis`) | `s` positive along `axis`; `axis` not zero (a constant one at compile time, one of parameters by `check_parameters` and every evaluation) | |
 //! | `body` `revolute(q)` (planar) | the frame's angle is the parent's `+ q + angle` | counter-clockwise | |
 //! | `body` `revolute(q, x \| y \| z)` (spatial) | about the parent's axis at the joint, `R = R_parent rot_x(q)` .. | right-handed | |
 //! | `body` `angle` (planar) | a constant angle added to the frame's | counter-clockwise | `0` |

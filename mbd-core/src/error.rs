@@ -8,16 +8,20 @@ use std::fmt;
 #[non_exhaustive]
 pub enum Error {
     /// Newton's method on the position constraints `Phi(q, t) = 0` did not converge.
+    /// `detail`: where (the last configuration `q`, and the constraint rows that lost rank
+    /// there when they did), or empty.
     AssemblyFailed {
         t: f64,
         iterations: usize,
         residual: f64,
+        detail: String,
     },
     /// The mass matrix (or the augmented matrix `[M Phi_q^T; Phi_q 0]`) is singular at `t`.
     SingularMassMatrix { t: f64 },
     /// The constraint Jacobian `Phi_q` lost rank at `t` (a toggle / dead-centre position,
-    /// or redundant constraints).
-    SingularConstraintJacobian { t: f64 },
+    /// or redundant constraints). `detail`: where (the configuration `q` and the rows that
+    /// lost rank, as the assembly and the kinematic analysis give them), or empty.
+    SingularConstraintJacobian { t: f64, detail: String },
     /// The step size fell below what floating point can resolve at `t`.
     StepSizeUnderflow { t: f64, h: f64 },
     /// `max_steps` were taken before reaching the end (often a sign of stiffness for an explicit method).
@@ -94,6 +98,18 @@ impl fmt::Display for Num {
     }
 }
 
+/// An error's optional `detail`, written after `": "` when there is one.
+struct Detail<'a>(&'a str);
+
+impl fmt::Display for Detail<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            "" => Ok(()),
+            d => write!(f, ": {d}"),
+        }
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -101,20 +117,23 @@ impl fmt::Display for Error {
                 t,
                 iterations,
                 residual,
+                detail,
             } => write!(
                 f,
-                "assembly did not converge at t = {}: residual {residual:.3e} after {iterations} Newton iterations",
-                Num(*t)
+                "assembly did not converge at t = {}: residual {residual:.3e} after {iterations} Newton iterations{}",
+                Num(*t),
+                Detail(detail)
             ),
             Error::SingularMassMatrix { t } => write!(
                 f,
                 "singular mass matrix at t = {} (a coordinate that moves no mass, or a zero mass or inertia)",
                 Num(*t)
             ),
-            Error::SingularConstraintJacobian { t } => write!(
+            Error::SingularConstraintJacobian { t, detail } => write!(
                 f,
-                "constraint Jacobian lost rank at t = {} (toggle or dead-centre position, or redundant constraints)",
-                Num(*t)
+                "constraint Jacobian lost rank at t = {} (toggle or dead-centre position, or redundant constraints){}",
+                Num(*t),
+                Detail(detail)
             ),
             Error::StepSizeUnderflow { t, h } => {
                 write!(f, "step size underflow at t = {} (h = {h:.3e})", Num(*t))

@@ -156,7 +156,10 @@ fn redundant<const N: usize, const M: usize, const F: usize, const A: usize>(
     rhs: &Vector<A>,
 ) -> Result<Vector<A>> {
     use nalgebra::{DMatrix, DVector};
-    let singular = Error::SingularConstraintJacobian { t };
+    let singular = Error::SingularConstraintJacobian {
+        t,
+        detail: String::new(),
+    };
     let stuck: Vec<usize> = (0..F).filter(|&j| modes[j] == Slip::Stick).collect();
     // Only the stuck rows may be at fault: a singular loop (constraints dependent by
     // themselves) keeps its typed error.

@@ -122,6 +122,14 @@ pub trait Mechanism<const N: usize> {
 ///
 /// Sign convention: `M qdd + Phi_q^T lambda = f`, so `-Phi_q^T lambda` is the generalised
 /// constraint force and a driving constraint's multiplier is minus the driving effort.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not `Constrained` with the constraint rows this call needs",
+    label = "needs `Constrained<N, M>`: `M` constraint rows (closures and drives) on `N` coordinates",
+    note = "`analysis::kinematics` and `kinematic_sweep` need `M = N` (no free coordinate): a \
+            mechanism with free coordinates is integrated, its state assembled with \
+            `analysis::assemble`, or driven on each free coordinate (`drive`); a loop closed \
+            in minimal coordinates has no constraint rows (`#[mechanism(augmented)]` keeps them)"
+)]
 pub trait Constrained<const N: usize, const M: usize>: Mechanism<N> {
     /// `Phi(q, t)`.
     fn phi(&self, t: f64, q: &Vector<N>) -> Vector<M>;

@@ -54,7 +54,10 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
             let svd = nalgebra::SVD::new(p.transpose() * &p, true, true);
             let v = svd
                 .v_t
-                .ok_or(Error::SingularConstraintJacobian { t })?
+                .ok_or(Error::SingularConstraintJacobian {
+                    t,
+                    detail: String::new(),
+                })?
                 .transpose();
             // Columns of `v` for the k smallest singular values.
             let mut order: Vec<usize> = (0..N).collect();
@@ -215,7 +218,10 @@ impl<'a, S: Constrained<N, M>, const N: usize, const M: usize> Partitioned<'a, S
         f: &Factored,
     ) -> Result<Vector<N>> {
         let (k, n) = (self.free.len(), self.dependent.len());
-        let singular = || Error::SingularConstraintJacobian { t };
+        let singular = || Error::SingularConstraintJacobian {
+            t,
+            detail: String::new(),
+        };
         let gamma = DVector::from_iterator(M, self.sys.gamma(t, q, qd).iter().copied());
         let cd = Self::solve(f, &gamma).ok_or_else(singular)?;
         let mut r = DMatrix::<f64>::zeros(N, k);

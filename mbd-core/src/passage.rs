@@ -425,7 +425,7 @@ fn singular_at<S: Constrained<N, M>, const N: usize, const M: usize, const D: us
         Error::SingularPosition { t, .. } => return Some(t.max(tk)),
         Error::NewtonFailed { t, .. }
         | Error::StepSizeUnderflow { t, .. }
-        | Error::SingularConstraintJacobian { t }
+        | Error::SingularConstraintJacobian { t, .. }
         | Error::SingularMassMatrix { t } => t.max(tk),
         _ => return None,
     };

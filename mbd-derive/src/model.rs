@@ -323,6 +323,9 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
     let ast = &ast;
     let (mut scope, mut kin) = kinematics(ast, errors)?;
     let mut checks = checks::body_checks(&mut scope.g, &scope.names, &kin.bodies);
+    for axes in [&kin.planar.axes, &kin.spatial.axes] {
+        checks.extend(checks::axis_checks(&mut scope.g, axes));
+    }
     let mut reactions: Vec<(usize, Expr)> = Vec::new();
 
     // Constraints, closed in minimal coordinates where the loop has a closed form.

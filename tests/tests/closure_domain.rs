@@ -253,9 +253,9 @@ fn statics_halves_a_step_that_leaves_the_domain() {
 
 /// The same loop driven through its limit position in the augmented form (`th = w t`, the
 /// rod and the piston solved from the constraints): the kinematic sweep follows the hand
-/// closure up to the limit `th = pi/6` and stops with a typed error past it, no later than the
-/// first sample past it (`t = 0.55`, `sin 0.55 > 1/2`: the loop cannot close), never an `Ok` with NaN;
-/// assembly at `th = 1` refuses too.
+/// closure up to the limit `th = pi/6` and stops there with a typed error naming the
+/// configuration (the first sample past it, `t = 0.55`, has `sin 0.55 > 1/2`: the loop cannot
+/// close), never an `Ok` with NaN; assembly at `th = 1` refuses too.
 #[derive(Debug, Clone, Mechanism)]
 #[mechanism(augmented)]
 #[coords(be, x)]
@@ -287,16 +287,21 @@ fn a_sweep_through_the_limit_position_stops_with_a_typed_error() {
         assert_relative_eq!(s.q[1], piston(&CRANK, th).0, max_relative = 1e-10);
     }
     let past: Vec<f64> = (0..=20).map(|i| 0.05 * i as f64).collect();
+    // The sweep marches halved sub-steps from the last sample inside (0.5) towards the first
+    // past it (0.55), so it stops at the limit `sin(w t) = l / r`, `t = pi / 6`, to within its
+    // halvings, and names the configuration there.
     match kinematics::kinematic_sweep(&p, &past, &guess, &Default::default()) {
-        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
-            // Past the limit, and no later than the first sample past it (the sweep halves
-            // its step where Newton's correction grows, so it may stop between samples).
-            assert!(t > std::f64::consts::FRAC_PI_6 && t <= past[11], "t = {t}");
+        Err(
+            Error::AssemblyFailed { t, detail, .. }
+            | Error::SingularConstraintJacobian { t, detail },
+        ) => {
+            assert!((t - std::f64::consts::FRAC_PI_6).abs() < 1e-6, "{t}");
+            assert!(detail.starts_with("at q = ["), "{detail}");
         }
         other => panic!("{other:?}"),
     }
     match assembly::assemble(&p, 1.0, &guess, &[false; 2], &Default::default()) {
-        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t }) => {
+        Err(Error::AssemblyFailed { t, .. } | Error::SingularConstraintJacobian { t, .. }) => {
             assert_eq!(t, 1.0)
         }
         other => panic!("{other:?}"),

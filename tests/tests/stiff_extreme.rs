@@ -730,7 +730,7 @@ fn stops_at_the_singular_position<const D: usize>(
         eprintln!("{what}, {name}: {:?}", r.as_ref().map(|s| s.last().0));
         let e = r.expect_err("must not pass the singular position");
         let t = match e {
-            Error::SingularConstraintJacobian { t }
+            Error::SingularConstraintJacobian { t, .. }
             | Error::SingularPosition { t, .. }
             | Error::StepSizeUnderflow { t, .. }
             | Error::NewtonFailed { t, .. }

@@ -7,8 +7,8 @@
 //! closest (to first order) to the one given.
 
 use super::{NewtonOptions, max_norm, min_norm_solve, negligible};
-use crate::error::{Error, Result};
-use crate::model::{Constrained, Vector};
+use crate::error::{Error, Num, Result};
+use crate::model::{Constrained, Matrix, Vector};
 
 /// Solve `Phi(q, t) = 0` for the coordinates with `held[i] == false`, starting from `q0`
 /// and keeping `q_i = q0_i` where `held[i]`.
@@ -49,9 +49,13 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
         let step = min_norm_solve(&sys.phi_q(t, &q), &free, &(-phi));
         let converged = residual <= opts.tol || step.as_ref().is_some_and(|dq| negligible(dq, &q));
         if converged {
-            let dq = step.ok_or(Error::SingularConstraintJacobian { t })?;
+            let singular = || Error::SingularConstraintJacobian {
+                t,
+                detail: where_(sys, t, &q, &free),
+            };
+            let dq = step.ok_or_else(singular)?;
             if singular_root(&dq, &q, previous) {
-                return Err(Error::SingularConstraintJacobian { t });
+                return Err(singular());
             }
             return Ok(q + dq);
         }
@@ -65,6 +69,7 @@ pub fn assemble<S: Constrained<N, M>, const N: usize, const M: usize>(
                     t,
                     iterations,
                     residual,
+                    detail: where_(sys, t, &q, &free),
                 });
             }
         }
@@ -129,9 +134,68 @@ pub fn consistent_velocities<S: Constrained<N, M>, const N: usize, const M: usiz
 ) -> Result<Vector<N>> {
     let jac = sys.phi_q(t, q);
     let violation = jac * qd0 + sys.phi_t(t, q);
-    let dqd = min_norm_solve(&jac, &free_set(held), &(-violation))
-        .ok_or(Error::SingularConstraintJacobian { t })?;
+    let free = free_set(held);
+    let dqd = min_norm_solve(&jac, &free, &(-violation)).ok_or_else(|| {
+        Error::SingularConstraintJacobian {
+            t,
+            detail: where_(sys, t, q, &free),
+        }
+    })?;
     Ok(qd0 + dqd)
+}
+
+/// An assembly error's detail: the configuration `q`, each coordinate by name, and the
+/// constraint rows that depend on the rows before them in `Phi_q`'s columns of the free
+/// coordinates (by Gram-Schmidt, at a rank tolerance of `1e-6` of the largest row: a root
+/// reached within Newton's tolerance of a toggle is singular only to about that), if any.
+pub(crate) fn where_<S: Constrained<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    free: &[bool; N],
+) -> String {
+    let coords: Vec<String> = S::COORDINATES
+        .iter()
+        .zip(q.iter())
+        .map(|(name, v)| format!("{name} = {}", Num(*v)))
+        .collect();
+    let mut out = format!("at q = [{}]", coords.join(", "));
+    let rows = dependent_rows(&sys.phi_q(t, q), free);
+    if !rows.is_empty() {
+        let rows: Vec<String> = rows.iter().map(usize::to_string).collect();
+        let rows = rows.join(", ");
+        out += &format!(
+            ", where constraint rows {rows} (counting from 0) of Phi_q are dependent (zero, or \
+             combinations of the rows before them)"
+        );
+    }
+    out
+}
+
+/// The rows of `J` (its free columns) within `1e-6` of the span of the rows before them.
+fn dependent_rows<const N: usize, const M: usize>(
+    j: &Matrix<M, N>,
+    free: &[bool; N],
+) -> Vec<usize> {
+    let row = |k: usize| Vector::<N>::from_fn(|c, _| if free[c] { j[(k, c)] } else { 0.0 });
+    let scale = (0..M).map(|k| row(k).norm()).fold(0.0, f64::max);
+    let mut basis: Vec<Vector<N>> = Vec::new();
+    let mut out = Vec::new();
+    for k in 0..M {
+        let mut v = row(k);
+        for _pass in 0..2 {
+            for b in &basis {
+                v -= b * b.dot(&v);
+            }
+        }
+        let norm = v.norm();
+        if norm.is_nan() || norm <= 1e-6 * scale {
+            out.push(k);
+        } else {
+            basis.push(v / norm);
+        }
+    }
+    out
 }
 
 fn free_set<const N: usize>(held: &[bool; N]) -> [bool; N] {

@@ -23,29 +23,29 @@ pub struct KinematicState<const N: usize> {
 
 /// The kinematic state at `t`, assembling from the position guess `q_guess`.
 ///
+/// The model must be `Constrained<N, N>`: as many constraint rows (closures and drives) as
+/// coordinates. One with free coordinates (`Constrained<N, M>`, `M < N`) is refused by
+/// `cargo check` (the trait bound is not met, and the note says what to use instead: such a
+/// mechanism is integrated, its state assembled with [`assemble`](super::assemble)).
+///
 /// Errors: [`Error::AssemblyFailed`] when Newton does not converge,
 /// [`Error::SingularConstraintJacobian`] at a toggle (dead-centre) position, where the
 /// drivers no longer determine the motion.
-pub fn kinematics<S: Constrained<N, M>, const N: usize, const M: usize>(
+pub fn kinematics<S: Constrained<N, N>, const N: usize>(
     sys: &S,
     t: f64,
     q_guess: &Vector<N>,
     opts: &NewtonOptions,
 ) -> Result<KinematicState<N>> {
-    const {
-        assert!(
-            N == M,
-            "kinematic analysis needs as many constraints (closures and drives) as coordinates: \
-             a mechanism with free coordinates is integrated, its state assembled with \
-             analysis::assemble"
-        )
-    };
     let q = assemble(sys, t, q_guess, &[false; N], opts)?;
     let all = [true; N];
     let jac = sys.phi_q(t, &q);
-    let singular = Error::SingularConstraintJacobian { t };
-    let qd = min_norm_solve(&jac, &all, &(-sys.phi_t(t, &q))).ok_or(singular.clone())?;
-    let qdd = min_norm_solve(&jac, &all, &sys.gamma(t, &q, &qd)).ok_or(singular)?;
+    let singular = || Error::SingularConstraintJacobian {
+        t,
+        detail: super::assembly::where_(sys, t, &q, &all),
+    };
+    let qd = min_norm_solve(&jac, &all, &(-sys.phi_t(t, &q))).ok_or_else(singular)?;
+    let qdd = min_norm_solve(&jac, &all, &sys.gamma(t, &q, &qd)).ok_or_else(singular)?;
     Ok(KinematicState { t, q, qd, qdd })
 }
 
@@ -55,8 +55,8 @@ pub fn kinematics<S: Constrained<N, M>, const N: usize, const M: usize>(
 /// far apart for that prediction (Newton corrects it by more than a quarter of the predicted
 /// move), the interval is marched in halved sub-steps (not returned), so a coarse sampling
 /// cannot land Newton on another branch: a crank-rocker sampled 5 times a turn switched
-/// elbows.
-pub fn kinematic_sweep<S: Constrained<N, M>, const N: usize, const M: usize>(
+/// elbows. The model is `Constrained<N, N>`, as for [`kinematics`].
+pub fn kinematic_sweep<S: Constrained<N, N>, const N: usize>(
     sys: &S,
     times: &[f64],
     q_guess: &Vector<N>,
@@ -79,7 +79,7 @@ const MAX_HALVINGS: u32 = 24;
 
 /// The state at `t` continued from `from` by Taylor-predicted sub-steps, each halved until
 /// Newton moves its prediction by at most a quarter of the predicted move (plus rounding).
-fn continued<S: Constrained<N, M>, const N: usize, const M: usize>(
+fn continued<S: Constrained<N, N>, const N: usize>(
     sys: &S,
     from: &KinematicState<N>,
     t: f64,

@@ -442,7 +442,10 @@ where
             "time-dependent constraints: |Phi_t| = {phi_t:.3e}"
         )));
     }
-    let z = null_space(&sys.phi_q(t, q)).ok_or(Error::SingularConstraintJacobian { t })?;
+    let z = null_space(&sys.phi_q(t, q)).ok_or(Error::SingularConstraintJacobian {
+        t,
+        detail: String::new(),
+    })?;
     let r = z.ncols();
     let mut tm = DMatrix::<f64>::zeros(D, 2 * r);
     tm.view_mut((0, 0), (N, r)).copy_from(&z);

@@ -82,6 +82,7 @@ pub fn project_positions<S: Constrained<N, M>, const N: usize, const M: usize>(
                 t,
                 iterations,
                 residual,
+                detail: super::assembly::where_(sys, t, q, &[true; N]),
             });
         }
         let dq = metric_correction(sys, t, q, &sys.phi_q(t, q), &phi)?;

@@ -61,6 +61,24 @@ pub(super) fn body_checks(g: &mut Graph, names: &Names, bodies: &[BodyKin]) -> V
     out
 }
 
+/// Each prismatic joint's axis of parameters is not zero (its squared length `> 0`): the
+/// joint moves its body by `s axis`, so a zero axis leaves the coordinate without inertia,
+/// which the recursion would meet as a division by zero. Not eager: `check_masses` runs it
+/// before the recursion and `diagnose` in place of a mass-matrix solve's error.
+pub(super) fn axis_checks(g: &mut Graph, axes: &[(String, Vec<Expr>)]) -> Vec<ParamCheck> {
+    axes.iter()
+        .map(|(name, axis)| {
+            let squares: Vec<Expr> = axis.iter().map(|&a| g.mul(a, a)).collect();
+            let length2 = g.sum(squares);
+            let what = format!("the squared length of the prismatic joint axis of `{name}`");
+            ParamCheck {
+                eager: false,
+                ..check(what, length2, true)
+            }
+        })
+        .collect()
+}
+
 /// A spatial inertia `I` of parameters is a body's when `S = tr(I)/2 E - I` (the second
 /// moment of its mass) is positive semi-definite: every principal moment at most the sum of
 /// the other two, hence none negative. A positive definite `M` does not follow from that nor

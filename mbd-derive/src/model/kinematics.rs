@@ -23,6 +23,8 @@ pub(super) struct Kinematics {
 pub(super) struct PlanarTree {
     pub nodes: Vec<tree::Node>,
     pub node_of: HashMap<String, usize>,
+    /// Each prismatic joint's axis, by its body's name (checked non-zero at run time).
+    pub axes: Vec<(String, Vec<Expr>)>,
 }
 
 /// A spatial joint tree: each body's frame by name, and the one-degree-of-freedom steps of
@@ -32,6 +34,8 @@ pub(super) struct SpatialTree {
     pub frames: Vec<Frame>,
     pub frame_of: HashMap<String, usize>,
     pub steps: Vec<spatial::Node>,
+    /// Each prismatic joint's axis, by its body's name (checked non-zero at run time).
+    pub axes: Vec<(String, Vec<Expr>)>,
 }
 
 impl Kinematics {

@@ -63,6 +63,7 @@ pub(super) fn planar(
                 tree::JointKin::Revolute { coord: j }
             }
             (parse::Joint::Prismatic { .. }, Some(j), Some(axis)) => {
+                tree.axes.push((tb.name.to_string(), axis.to_vec()));
                 for (l, a) in local.iter_mut().zip(axis) {
                     let d = g.mul(a, coords[j].z);
                     *l = g.add(*l, d);
@@ -175,6 +176,9 @@ pub(super) fn spatial(
         let Some(turns) = joint_turns(scope, tb, &z, &mut input) else {
             continue;
         };
+        if matches!(tb.joint, parse::Joint::Prismatic { .. }) {
+            tree.axes.push((tb.name.to_string(), input.axis.clone()));
+        }
         let g = &mut scope.g;
         let parent_frame = parent.map(|p| tree.frames[p]);
         let frame = compose(g, identity, parent_frame, &turns, &input.at, (tb, coords));
