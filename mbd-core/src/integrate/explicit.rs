@@ -5,7 +5,7 @@
 //! it and monomorphised per pair, so the step loop has no runtime dispatch and each pair
 //! runs exactly the operations its own loop ran.
 
-use super::control::{PiController, StiffnessDetector, error_norm_sq};
+use super::control::{PiController, StiffnessDetector, as_time_takes, error_norm_sq};
 use super::non_finite;
 use super::tableau::Erk;
 use super::{Event, Flow, Observer, Options, Recorder, Segment, Solution, Stats, validate_problem};
@@ -245,7 +245,7 @@ pub(crate) fn extra_stages<
 
 /// The length of the step from `t` proposed as `h`, with whether it lands on an output
 /// time (`(that time, h)`, for the controller) and whether it is the last: cut to end on
-/// `t1`, on the next output time where [`lands_on`] says so, else `h` as `t + h` rounds.
+/// `t1`, on the next output time where [`lands_on`] says so, else [`as_time_takes`].
 #[inline]
 fn step_to<M: Pair<S, K>, const S: usize, const K: usize>(
     t: f64,
@@ -263,15 +263,7 @@ fn step_to<M: Pair<S, K>, const S: usize, const K: usize>(
     {
         return (ts - t, Some((ts, h)), false);
     }
-    // Far from t = 0 (t0 = 1e12) `t + h` rounds: the state would drift from its times by
-    // the sum. Where that rounding is not below the tolerance, the step is the one the time
-    // takes (below it, Hairer's arithmetic is kept: `t + h` as it rounds).
-    let stepped = (t + h) - t;
-    if (stepped - h).abs() > 0.01 * rtol * h {
-        (stepped, None, false)
-    } else {
-        (h, None, false)
-    }
+    (as_time_takes(t, h, rtol), None, false)
 }
 
 /// The accepted state `y1` projected at `t_new`, with its derivative: `f1` where the

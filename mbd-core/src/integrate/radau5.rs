@@ -18,7 +18,7 @@
 //!   ACM TOMS 20 (1994) 496–517);
 //! - the dense output is the collocation polynomial itself (degree 3).
 
-use super::control::error_norm;
+use super::control::{as_time_takes, error_norm};
 use super::{
     Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
     validate_problem,
@@ -404,11 +404,9 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
         let mut chart = ChartWatch::<D>::default();
 
         loop {
-            let stepped = (t + h) - t;
-            if !last && (stepped - h).abs() > 0.01 * self.rtol * h {
-                // Far from t = 0 `t + h` rounds above the tolerance: the step the state
-                // takes is the one the time takes (as in the explicit methods).
-                h = stepped;
+            if !last {
+                // Far from t = 0 the step the state takes is the one the time takes.
+                h = as_time_takes(t, h, self.rtol);
             }
             if refresh == Refresh::Jacobian {
                 jac = self.jacobian(t, &y)?;
