@@ -9,7 +9,7 @@ use super::control::{PiController, StiffnessDetector, as_time_takes, error_norm_
 use super::non_finite;
 use super::tableau::Erk;
 use super::{Event, Flow, Observer, Options, Recorder, Segment, Solution, Stats, validate_problem};
-use crate::closure::{ChartWatch, confirmed, stalled};
+use crate::closure::{ChartWatch, stalled, watch_step};
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
 
@@ -458,13 +458,7 @@ where
         } else {
             (y1, f1)
         };
-        if chart
-            .accept(t_new, &y_acc, |y| sys.chart_margin(t_new, y))
-            .is_some()
-            && let Some(e) = confirmed(sys, &chart, t_new)
-        {
-            return Err(e);
-        }
+        watch_step(sys, &mut chart, t_new, &y_acc)?;
         let taken = (t, h, &y, &y1);
         let flow =
             record::<M, F, D, S, K>(&mut rec, &mut stats, sys, taken, (t_new, &y_acc), &mut k)?;

@@ -23,7 +23,7 @@ use super::{
     Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
     validate_problem,
 };
-use crate::closure::{ChartWatch, confirmed, stalled};
+use crate::closure::{ChartWatch, stalled, watch_step};
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, OdeSystem, Vector};
@@ -525,13 +525,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                 return Err(Error::NonFinite { t: t_new });
             }
             // A change point of a loop's closed forms stepped over (`closure::ChartWatch`).
-            if chart
-                .accept(t_new, &y1, |y| self.sys.chart_margin(t_new, y))
-                .is_some()
-                && let Some(e) = confirmed(self.sys, &chart, t_new)
-            {
-                return Err(e);
-            }
+            watch_step(self.sys, &mut chart, t_new, &y1)?;
             let segment = collocation_segment(t, h, &y, a, &y1);
             let coeffs = [segment.coeffs[1], segment.coeffs[2], segment.coeffs[3]];
             previous = Some((coeffs, h));
