@@ -303,6 +303,24 @@ pub fn confirmed<F: OdeSystem<D>, const D: usize>(
     }
 }
 
+/// After an adaptive run's accepted step to `(t, y)`: the step joins the watch's window
+/// ([`ChartWatch::accept`]), and a limit position it shows passed is an error where it is
+/// [`confirmed`].
+#[inline]
+pub(crate) fn watch_step<F: OdeSystem<D>, const D: usize>(
+    sys: &F,
+    chart: &mut ChartWatch<D>,
+    t: f64,
+    y: &Vector<D>,
+) -> Result<()> {
+    if chart.accept(t, y, |y| sys.chart_margin(t, y)).is_some()
+        && let Some(e) = confirmed(sys, chart, t)
+    {
+        return Err(e);
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -338,7 +338,7 @@ where
             n_accepted: steps,
             ..Stats::default()
         };
-        let mut whole = out.take().unwrap_or_else(|| start(t0, y0));
+        let mut whole = out.take().unwrap_or_else(|| Solution::start(t0, y0));
         append(&mut whole, record.finish(work)?);
         let (ta, ya) = (whole.t_end, whole.y_end);
         if rank0 >= N {
@@ -392,7 +392,7 @@ where
             break;
         }
     }
-    let mut out = out.unwrap_or_else(|| start(t0, y0));
+    let mut out = out.unwrap_or_else(|| Solution::start(t0, y0));
     out.passages = passages;
     if rank0 >= N {
         check_passages::<S, N, M, D>(sys, &out)?;
@@ -744,21 +744,6 @@ fn jump<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
         .fold(0.0, f64::max);
     let speed = max_norm(&split::<N, D>(y0).1).max(1.0);
     Ok((moved <= BRANCH * h * speed).then_some((y1, seg, err)))
-}
-
-fn start<const D: usize>(t0: f64, y0: Vector<D>) -> Solution<D> {
-    Solution {
-        t: vec![t0],
-        y: vec![y0],
-        segments: Vec::new(),
-        events: Vec::new(),
-        stats: Stats::default(),
-        stopped_by: None,
-        t_end: t0,
-        y_end: y0,
-        passages: Vec::new(),
-        switches: Vec::new(),
-    }
 }
 
 /// Add a run to the whole: its states after the first, segments, events and work.

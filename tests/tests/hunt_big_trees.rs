@@ -152,7 +152,6 @@ fn a_binary_tree_of_31_bodies_equals_the_hand_written_reference() {
 
 #[test]
 fn a_chain_with_one_heavier_link_equals_the_hand_written_reference() {
-    eprintln!("{:?}", Chain40::GENERATED.parts);
     let p = Chain40 {
         m: M,
         l: L,

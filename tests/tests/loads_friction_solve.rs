@@ -11,25 +11,9 @@
 use mbd::integrate::{Dop853, Dopri5, Integrator, Radau5, Vern9};
 use mbd::prelude::*;
 
-#[derive(Debug, Mechanism)]
-#[gravity(0.0, -g)]
-#[coords(x)]
-#[particle(block, mass = m, at = [x, 0.0])]
-#[friction(along = x, mu = mu, normal = m * g)]
-#[init(x = 0.0, der(x) = v0)]
-pub struct Floor {
-    pub m: f64,
-    pub g: f64,
-    pub mu: f64,
-    pub v0: f64,
-}
-
-const FLOOR: Floor = Floor {
-    m: 2.0,
-    g: 9.81,
-    mu: 0.3,
-    v0: 4.0,
-};
+#[path = "support/floor.rs"]
+mod floor;
+use floor::FLOOR;
 
 fn opts() -> Options {
     Options {

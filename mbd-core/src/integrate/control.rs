@@ -46,6 +46,19 @@ pub fn error_norm_sq<const D: usize>(
     if D == 0 { 0.0 } else { sum * (1.0 / D as f64) }
 }
 
+/// The step `h` from `t` as the time takes it, where `t + h` rounds by more than a
+/// hundredth of `rtol h` (far from t = 0, t0 = 1e12): else the state would drift from its
+/// times by the sum. Below that, `h` is kept (Hairer's arithmetic: `t + h` as it rounds).
+#[inline]
+pub(crate) fn as_time_takes(t: f64, h: f64, rtol: f64) -> f64 {
+    let stepped = (t + h) - t;
+    if (stepped - h).abs() > 0.01 * rtol * h {
+        stepped
+    } else {
+        h
+    }
+}
+
 /// The PI step-size controller of `dopri5.f` (Gustafsson's "Lund stabilisation";
 /// Hairer–Nørsett–Wanner I, Sect. IV.2, eq. (2.43c)):
 ///

@@ -5,11 +5,11 @@
 //! it and monomorphised per pair, so the step loop has no runtime dispatch and each pair
 //! runs exactly the operations its own loop ran.
 
-use super::control::{PiController, StiffnessDetector, error_norm_sq};
+use super::control::{PiController, StiffnessDetector, as_time_takes, error_norm_sq};
 use super::non_finite;
 use super::tableau::Erk;
 use super::{Event, Flow, Observer, Options, Recorder, Segment, Solution, Stats, validate_problem};
-use crate::closure::{ChartWatch, confirmed, stalled};
+use crate::closure::{ChartWatch, stalled, watch_step};
 use crate::error::{Error, Result};
 use crate::model::{OdeSystem, Vector};
 
@@ -243,6 +243,80 @@ pub(crate) fn extra_stages<
     Ok(())
 }
 
+/// The length of the step from `t` proposed as `h`, with whether it lands on an output
+/// time (`(that time, h)`, for the controller) and whether it is the last: cut to end on
+/// `t1`, on the next output time where [`lands_on`] says so, else [`as_time_takes`].
+#[inline]
+fn step_to<M: Pair<S, K>, const S: usize, const K: usize>(
+    t: f64,
+    h: f64,
+    t1: f64,
+    next_time: impl FnOnce() -> Option<(f64, f64)>,
+    rtol: f64,
+) -> (f64, Option<(f64, f64)>, bool) {
+    if t + 1.01 * h - t1 > 0.0 {
+        return (t1 - t, None, true);
+    }
+    let calls = S - usize::from(M::TABLEAU.fsal);
+    if let Some((ts, _)) =
+        next_time().filter(|&next| M::LANDS_ON_TIMES && lands_on(t, h, next, calls, M::DENSE_CALLS))
+    {
+        return (ts - t, Some((ts, h)), false);
+    }
+    (as_time_takes(t, h, rtol), None, false)
+}
+
+/// The accepted state `y1` projected at `t_new`, with its derivative: `f1` where the
+/// projection left it unmoved, else `f` evaluated again.
+#[inline]
+fn projected<F: OdeSystem<D>, const D: usize>(
+    sys: &F,
+    t_new: f64,
+    y1: Vector<D>,
+    f1: Vector<D>,
+    stats: &mut Stats,
+) -> Result<(Vector<D>, Vector<D>)> {
+    let mut y = y1;
+    sys.project(t_new, &mut y)?;
+    if non_finite(&y) {
+        return Err(Error::NonFinite { t: t_new });
+    }
+    if y == y1 {
+        return Ok((y1, f1));
+    }
+    stats.n_rhs += 1;
+    Ok((y, rhs_finite(sys, t_new, &y, t_new)?))
+}
+
+/// Record the step of `h` from `(t, y)` to `y1`, accepted as `(t_new, y_acc)`. Its
+/// continuous extension (which interpolates the step as computed, before any projection)
+/// is built only where the record needs it, and only its values where output times alone do.
+#[inline]
+fn record<M, F, const D: usize, const S: usize, const K: usize>(
+    rec: &mut Recorder<'_, '_, D>,
+    stats: &mut Stats,
+    sys: &F,
+    (t, h, y, y1): (f64, f64, &Vector<D>, &Vector<D>),
+    (t_new, y_acc): (f64, &Vector<D>),
+    k: &mut [Vector<D>; K],
+) -> Result<Flow>
+where
+    M: Pair<S, K>,
+    F: OdeSystem<D>,
+{
+    if !rec.needs_segment_to(t_new) {
+        return Ok(rec.accept_point(t_new, y_acc));
+    }
+    stats.n_rhs += M::DENSE_CALLS;
+    if rec.next_times_only().is_some() {
+        return M::values((sys, t, h, y, y1), k, |value| {
+            rec.accept_values(t_new, y_acc, value)
+        });
+    }
+    let seg = M::segment(sys, t, h, y, y1, k)?;
+    Ok(rec.accept_with(t_new, y_acc, || seg))
+}
+
 /// One raw run of the pair `M` (as `dopri5.f` and `dop853.f` run theirs; Hairer–Nørsett–
 /// Wanner I, Sect. II.4-II.6): FSAL or `f(t + h, y1)` after acceptance as the next step's
 /// first stage, local extrapolation, `M`'s error measure and [`PiController`], Hairer's
@@ -282,7 +356,6 @@ where
 
     let mut control = M::controller();
     let (mut t, mut y) = (t0, y0);
-    let mut last = false;
     let mut stiff = StiffnessDetector::new(opts.stiffness_check, M::STIFF_LIMIT);
     // A change point of a loop's closed forms stepped over or stalled at (`closure::stalled`).
     let mut chart = ChartWatch::<D>::default();
@@ -303,24 +376,8 @@ where
                 None => stalled(sys, &chart, Error::StepSizeUnderflow { t, h }),
             });
         }
-        let mut land = None;
-        if t + 1.01 * h - t1 > 0.0 {
-            h = t1 - t;
-            last = true;
-        } else if let Some((ts, _)) = rec.next_times_only().filter(|&next| {
-            M::LANDS_ON_TIMES && lands_on(t, h, next, S - usize::from(tab.fsal), M::DENSE_CALLS)
-        }) {
-            land = Some((ts, h));
-            h = ts - t;
-        } else {
-            // Far from t = 0 (t0 = 1e12) `t + h` rounds: the state would drift from its times
-            // by the sum. Where that rounding is not below the tolerance, the step is the one
-            // the time takes (below it, Hairer's arithmetic is kept: `t + h` as it rounds).
-            let stepped = (t + h) - t;
-            if (stepped - h).abs() > 0.01 * rtol * h {
-                h = stepped;
-            }
-        }
+        let (step, land, last) = step_to::<M, S, K>(t, h, t1, || rec.next_times_only(), rtol);
+        h = step;
         stats.n_steps += 1;
         let stages: &mut [Vector<D>; S] = (&mut k[..S]).try_into().expect("S <= K");
         let trial = tab.stages(sys, t, &y, h, stages, &mut z);
@@ -348,7 +405,6 @@ where
         if !err.is_finite() || non_finite(&y1) {
             blown = Some(t_new);
             h *= control.reject_ln(1.0, f64::INFINITY);
-            last = false;
             stats.n_rejected += 1;
             continue;
         }
@@ -364,7 +420,6 @@ where
         };
         if err > 1.0 {
             h = control.reject_ln(h, ln_err());
-            last = false;
             stats.n_rejected += 1;
             continue;
         }
@@ -398,38 +453,15 @@ where
             return Err(Error::Stiff { t });
         }
 
-        let mut y_acc = y1;
-        let mut f_acc = f1;
-        if opts.project {
-            sys.project(t_new, &mut y_acc)?;
-            if non_finite(&y_acc) {
-                return Err(Error::NonFinite { t: t_new });
-            }
-            if y_acc != y1 {
-                stats.n_rhs += 1;
-                f_acc = rhs_finite(sys, t_new, &y_acc, t_new)?;
-            }
-        }
-        if chart
-            .accept(t_new, &y_acc, |y| sys.chart_margin(t_new, y))
-            .is_some()
-            && let Some(e) = confirmed(sys, &chart, t_new)
-        {
-            return Err(e);
-        }
-        // The segment interpolates the step as computed (before any projection).
-        let flow = if !rec.needs_segment_to(t_new) {
-            rec.accept_point(t_new, &y_acc)
-        } else if rec.next_times_only().is_some() {
-            stats.n_rhs += M::DENSE_CALLS;
-            M::values((sys, t, h, &y, &y1), &mut k, |value| {
-                rec.accept_values(t_new, &y_acc, value)
-            })?
+        let (y_acc, f_acc) = if opts.project {
+            projected(sys, t_new, y1, f1, &mut stats)?
         } else {
-            stats.n_rhs += M::DENSE_CALLS;
-            let seg = M::segment(sys, t, h, &y, &y1, &mut k)?;
-            rec.accept_with(t_new, &y_acc, || seg)
+            (y1, f1)
         };
+        watch_step(sys, &mut chart, t_new, &y_acc)?;
+        let taken = (t, h, &y, &y1);
+        let flow =
+            record::<M, F, D, S, K>(&mut rec, &mut stats, sys, taken, (t_new, &y_acc), &mut k)?;
         k[0] = f_acc;
         (t, y) = (t_new, y_acc);
         if flow == Flow::Stop || last {

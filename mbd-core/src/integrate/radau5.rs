@@ -18,12 +18,12 @@
 //!   ACM TOMS 20 (1994) 496–517);
 //! - the dense output is the collocation polynomial itself (degree 3).
 
-use super::control::error_norm;
+use super::control::{as_time_takes, error_norm};
 use super::{
     Event, Flow, Integrator, Observer, Options, Recorder, Segment, Solution, Stats,
     validate_problem,
 };
-use crate::closure::{ChartWatch, confirmed, stalled};
+use crate::closure::{ChartWatch, stalled, watch_step};
 use crate::error::{Error, Result};
 use crate::linalg::Lu;
 use crate::model::{Matrix, OdeSystem, Vector};
@@ -404,11 +404,9 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
         let mut chart = ChartWatch::<D>::default();
 
         loop {
-            let stepped = (t + h) - t;
-            if !last && (stepped - h).abs() > 0.01 * self.rtol * h {
-                // Far from t = 0 `t + h` rounds above the tolerance: the step the state
-                // takes is the one the time takes (as in the explicit methods).
-                h = stepped;
+            if !last {
+                // Far from t = 0 the step the state takes is the one the time takes.
+                h = as_time_takes(t, h, self.rtol);
             }
             if refresh == Refresh::Jacobian {
                 jac = self.jacobian(t, &y)?;
@@ -527,13 +525,7 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                 return Err(Error::NonFinite { t: t_new });
             }
             // A change point of a loop's closed forms stepped over (`closure::ChartWatch`).
-            if chart
-                .accept(t_new, &y1, |y| self.sys.chart_margin(t_new, y))
-                .is_some()
-                && let Some(e) = confirmed(self.sys, &chart, t_new)
-            {
-                return Err(e);
-            }
+            watch_step(self.sys, &mut chart, t_new, &y1)?;
             let segment = collocation_segment(t, h, &y, a, &y1);
             let coeffs = [segment.coeffs[1], segment.coeffs[2], segment.coeffs[3]];
             previous = Some((coeffs, h));
