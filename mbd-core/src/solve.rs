@@ -429,3 +429,19 @@ mod tests {
         assert_eq!(err, Error::NonFinite { t: 1.0 });
     }
 }
+
+/// `sum x_i y_i` in twice the working precision, rounded once (Ogita, Rump and Oishi's
+/// `Dot2`, SIAM J. Sci. Comput. 26, 2005: each product split exactly by a fused
+/// multiply-add, each sum by Knuth's two-sum): the residuals of iterative refinement.
+pub fn dot2(terms: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+    let (mut s, mut c) = (0.0f64, 0.0f64);
+    for (x, y) in terms {
+        let p = x * y;
+        let pe = x.mul_add(y, -p);
+        let t = s + p;
+        let z = t - s;
+        c += (s - (t - z)) + (p - z) + pe;
+        s = t;
+    }
+    s + c
+}
