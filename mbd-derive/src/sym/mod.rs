@@ -27,8 +27,8 @@ mod diff;
 mod eval;
 mod expr;
 mod hash;
-mod schedule;
 mod regroup;
+mod schedule;
 mod simplify;
 mod subs;
 

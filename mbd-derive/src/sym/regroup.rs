@@ -76,7 +76,10 @@ mod tests {
         let mut g = Graph::new();
         let (l, c, d) = (g.symbol("l"), g.symbol("c"), g.symbol("d"));
         let vary = [g.as_sym(c).unwrap(), g.as_sym(d).unwrap()];
-        let (cc, cd) = (g.call(crate::sym::Func::Cos, c), g.call(crate::sym::Func::Cos, d));
+        let (cc, cd) = (
+            g.call(crate::sym::Func::Cos, c),
+            g.call(crate::sym::Func::Cos, d),
+        );
         let (lc, ld) = (g.mul(l, cc), g.mul(l, cd));
         let (k3, k4) = (g.constant(3.0), g.constant(4.0));
         let (x3, x4) = (g.mul(k3, l), g.mul(k4, l));
