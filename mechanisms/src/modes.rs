@@ -433,12 +433,12 @@ pub fn rows_timed(timed: bool) -> mbd::Result<Vec<Row>> {
     let s = cart_reference();
     let cart = case10::MODEL;
     let a = linearize(&cart, 0.0, &Vector::<4>::zeros())?;
-    // Sorted by |lambda|: the double zero (one neutral row for each), then -s and +s in
-    // the order the Schur form gives them (the same modulus): matched by sign below.
+    // The double zero (one neutral row for each), then -s and +s by sign: their moduli
+    // agree only to rounding, so `modes`' order by modulus may put either first.
     let mut found = modes(&a)?;
     found.sort_by(|x, y| {
-        x.omega_n
-            .total_cmp(&y.omega_n)
+        (x.kind != ModeKind::Neutral)
+            .cmp(&(y.kind != ModeKind::Neutral))
             .then(x.eigenvalue.re.total_cmp(&y.eigenvalue.re))
     });
     out.extend(rows_of(

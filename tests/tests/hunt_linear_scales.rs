@@ -78,3 +78,71 @@ fn a_tenth_of_a_hertz_beside_a_hundred_kilohertz() {
 fn a_millihertz_beside_a_megahertz() {
     check(1e-3, 1e6, 1e-10);
 }
+
+/// The soft block hangs on the stiff one: wall, stiff spring `k1`, block `m1`, soft spring
+/// `k2`, block `m2` (a machine on a stiff mount carrying a softly suspended part). With
+/// `M = diag(m1, m2)`, `K = [[k1 + k2, -k2], [-k2, k2]]`,
+/// `det(K - w^2 M) = m1 m2 w^4 - b w^2 + k1 k2`, `b = m1 k2 + m2 (k1 + k2)`: the slow root
+/// in the cancellation-free form `w^2 = 2 k1 k2 / (b + sqrt(b^2 - 4 m1 m2 k1 k2))`, the
+/// fast one `k1 k2 / (m1 m2 w_slow^2)` (product of the roots).
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(x1, x2)]
+#[point(wall, at = [0.0, 0.0])]
+#[particle(p1, mass = m1, at = [x1, 0.0])]
+#[particle(p2, mass = m2, at = [x2, 0.0])]
+#[spring(s1, from = wall, to = p1, k = k1, length = l0)]
+#[spring(s2, from = p1, to = p2, k = k2, length = l0)]
+pub struct Hung {
+    pub m1: f64,
+    pub m2: f64,
+    pub k1: f64,
+    pub k2: f64,
+    pub l0: f64,
+}
+
+fn hung_reference(p: &Hung) -> [f64; 2] {
+    let b = p.m1 * p.k2 + p.m2 * (p.k1 + p.k2);
+    let slow = 2.0 * p.k1 * p.k2 / (b + (b * b - 4.0 * p.m1 * p.m2 * p.k1 * p.k2).sqrt());
+    let fast = p.k1 * p.k2 / (p.m1 * p.m2 * slow);
+    [slow.sqrt() / TAU, fast.sqrt() / TAU]
+}
+
+/// Coupled, 1 mHz under 1 MHz: both analyses give both frequencies (relative `1e-10`),
+/// and the slow shape moves the soft block (`x1 / x2 ~ k2 / k1`) with velocities
+/// `i w` times the positions.
+#[test]
+fn a_millihertz_part_on_a_megahertz_mount() {
+    let p = Hung {
+        m1: 3.0,
+        m2: 0.5,
+        k1: 3.0 * (TAU * 1e6).powi(2),
+        k2: 0.5 * (TAU * 1e-3).powi(2),
+        l0: 1.0,
+    };
+    let want = hung_reference(&p);
+    let y = Vector::<4>::new(p.l0, 2.0 * p.l0, 0.0, 0.0);
+    let found = modes(&linearize(&p, 0.0, &y).unwrap()).unwrap();
+    assert_eq!(found.len(), 2, "{found:?}");
+    for (m, f) in found.iter().zip(want) {
+        assert_eq!(m.kind, ModeKind::Oscillatory, "{m:?}");
+        assert!(
+            (m.frequency_hz() - f).abs() <= 1e-10 * f,
+            "{} Hz for {f} Hz",
+            m.frequency_hz()
+        );
+    }
+    let v = &found[0].shape;
+    let iw = mbd::nalgebra::Complex::new(0.0, found[0].omega_n);
+    assert!((v[1].norm() - 1.0).abs() < 1e-12, "{v}");
+    assert!(v[0].norm() < 1e-12, "{v}");
+    assert!((v[3] - iw * v[1]).norm() < 1e-12 * v[3].norm(), "{v}");
+    let normal = undamped_modes(&p, 0.0, &Vector::<2>::new(p.l0, 2.0 * p.l0)).unwrap();
+    for (m, f) in normal.iter().zip(want) {
+        let got = m.frequency_hz().unwrap();
+        assert!((got - f).abs() <= 1e-10 * f, "{got} Hz for {f} Hz");
+        // Mass-normalised.
+        let vmv = p.m1 * m.shape[0].powi(2) + p.m2 * m.shape[1].powi(2);
+        assert!((vmv - 1.0).abs() < 1e-12, "{vmv}");
+    }
+}

@@ -26,10 +26,12 @@ use crate::error::{Error, Result};
 use crate::model::{Constrained, Matrix, Mechanism, OdeSystem, Vector};
 use nalgebra::{Complex, DMatrix, DVector, Schur, SymmetricEigen};
 
-/// Eigenvalues with `|lambda| <= NEUTRAL_TOL |A|` (`|A|` the largest row sum) are neutral:
-/// rigid-body motion, a cyclic coordinate. A double zero (a free coordinate's Jordan block)
-/// is computed `O(sqrt(eps |A|))` away from zero, so this bound sits above `sqrt(eps)`.
-/// The same bound decides stability: unstable when `Re lambda > NEUTRAL_TOL |A|`.
+/// Eigenvalues with `|lambda| <= NEUTRAL_TOL |A_b|` (`|A_b|` the largest row sum of `A`
+/// balanced, see [`modes_of`]) may be neutral: rigid-body motion, a cyclic coordinate. A
+/// double zero (a free coordinate's Jordan block) is computed `O(sqrt(eps) |A_b|)` away
+/// from zero, so this bound sits above `sqrt(eps)`; below it an eigenvalue is neutral only
+/// when its condition number says rounding could have made it. The same bound decides
+/// stability of the fast modes: unstable when `Re lambda > NEUTRAL_TOL |A_b|`.
 pub const NEUTRAL_TOL: f64 = 1e-7;
 
 /// `A = d(y')/dy` at `(t, y)` from the model's exact Jacobian.
@@ -130,34 +132,59 @@ pub fn modes<const D: usize>(a: &Matrix<D, D>) -> Result<Vec<Mode>> {
 }
 
 /// [`modes`] of a matrix of any size.
+///
+/// The eigenvalues come from `A` balanced (`D^-1 A D`, `D` diagonal powers of 2: Parlett &
+/// Reinsch, as LAPACK's `dgeev` does), whose norm `|A_b|` is in the units of the
+/// eigenvalues (1/s) where `|A|` mixes `1/s` with `1/s^2` (a stiffness `w^2`). An
+/// eigenvalue is neutral when `|lambda| <= NEUTRAL_TOL |A_b|` *and* it cannot be told from
+/// zero: `|lambda| <= RESOLVED eps |A_b| kappa`, `kappa` its condition number
+/// (`|x| |y| / |y^H x|`, right and left eigenvectors of `A_b`). A double zero split by
+/// rounding is ill-conditioned (`kappa ~ |A_b| / |lambda|`) and stays neutral; a slow
+/// oscillator beside a fast one is well conditioned and is reported at its frequency.
 pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
     if !a.iter().all(|v| v.is_finite()) {
         return Err(Error::NonFinite { t: f64::NAN });
     }
-    let norm = a
-        .row_iter()
-        .map(|r| r.iter().map(|v| v.abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    let tol = NEUTRAL_TOL * norm.max(f64::MIN_POSITIVE);
-    let eigenvalues = eigenvalues(&a).ok_or_else(|| Error::InvalidInput {
+    let row_norm = |m: &DMatrix<f64>| {
+        m.row_iter()
+            .map(|r| r.iter().map(|v| v.abs()).sum::<f64>())
+            .fold(0.0, f64::max)
+    };
+    let norm = row_norm(&a);
+    let ab = balance(&a);
+    let norm_b = row_norm(&ab).max(f64::MIN_POSITIVE);
+    let tol = NEUTRAL_TOL * norm_b;
+    let eigenvalues = eigenvalues(&ab).ok_or_else(|| Error::InvalidInput {
         what: "modes",
         detail: "the Schur iteration did not converge".into(),
     })?;
     let mut out: Vec<Mode> = Vec::new();
     for lambda in eigenvalues.iter().copied() {
         let modulus = lambda.norm();
+        // The rounding `lambda` could carry (`tol` for the fast ones, never neutral).
+        let floor = if modulus <= tol {
+            RESOLVED * f64::EPSILON * norm_b * condition(&ab, lambda, norm_b)
+        } else {
+            tol
+        };
+        let neutral = modulus <= tol && modulus <= floor;
         // A pair once; neutral eigenvalues each (a double zero may come out as `+-i eps`).
-        if lambda.im < 0.0 && modulus > tol {
+        if lambda.im < 0.0 && !neutral {
             continue;
         }
-        let kind = if modulus <= tol {
+        let lambda = if !neutral && modulus <= tol {
+            refine(&a, lambda, norm)
+        } else {
+            lambda
+        };
+        let modulus = lambda.norm();
+        let kind = if neutral {
             ModeKind::Neutral
         } else if lambda.im > 0.0 {
             ModeKind::Oscillatory
         } else {
             ModeKind::Real
         };
-        let neutral = kind == ModeKind::Neutral;
         out.push(Mode {
             eigenvalue: lambda,
             kind,
@@ -168,12 +195,102 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
                 0.0
             },
             damping_ratio: (!neutral).then(|| -lambda.re / modulus),
-            unstable: lambda.re > tol,
+            unstable: !neutral && lambda.re > floor,
             shape: shape(&a, lambda, norm, &repeated(&out, lambda, tol)),
         });
     }
     out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
     Ok(out)
+}
+
+/// A small eigenvalue is resolved (not neutral) above `RESOLVED eps |A_b| kappa`: the
+/// first-order bound of its rounding error, `eps |A_b| kappa`, with a margin for the
+/// Schur iteration's backward error (a modest multiple of `eps |A_b|`).
+const RESOLVED: f64 = 1e3;
+
+/// A slow eigenvalue beside fast ones, refined: Schur's carries rounding of the fastest
+/// (`eps |A_b| kappa`); the two-sided Rayleigh quotient `w^T A x / w^T x` of its right and
+/// left eigenvectors (`A x = lambda x`, `A^T w = lambda w`) has an error quadratic in
+/// theirs, and `A x` rounds with the entries it meets, not with the largest. Kept only
+/// when it moves `lambda` by less than 1% (rounding is below 0.1% of a resolved one);
+/// a real eigenvalue stays real.
+fn refine(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> Complex<f64> {
+    let x = inverse_iteration(a, lambda, norm, &[]);
+    let w = inverse_iteration(&a.transpose(), lambda, norm, &[]);
+    let ax = a.map(|v| Complex::new(v, 0.0)) * &x;
+    let dot = |u: &DVector<Complex<f64>>| -> Complex<f64> {
+        w.iter().zip(u.iter()).map(|(p, q)| p * q).sum()
+    };
+    let quotient: Complex<f64> = dot(&ax) / dot(&x);
+    let refined = if lambda.im == 0.0 {
+        Complex::new(quotient.re, 0.0)
+    } else {
+        quotient
+    };
+    if refined.re.is_finite()
+        && refined.im.is_finite()
+        && (refined - lambda).norm() <= 1e-2 * lambda.norm()
+    {
+        refined
+    } else {
+        lambda
+    }
+}
+
+/// `D^-1 A D` with `D` diagonal powers of 2 that bring each row's and column's
+/// off-diagonal sums together (Parlett & Reinsch, Numer. Math. 13, 1969; exact in
+/// floating point, a similarity). A stiffness row `-w^2` and a velocity row `1` become
+/// `-w` and `w`: the norm then measures the eigenvalues.
+fn balance(a: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = a.nrows();
+    let mut b = a.clone();
+    for _sweep in 0..64 {
+        let mut done = true;
+        for i in 0..n {
+            let off = |v: f64, j: usize| if j == i { 0.0 } else { v.abs() };
+            let mut c: f64 = (0..n).map(|j| off(b[(j, i)], j)).sum();
+            let r: f64 = (0..n).map(|j| off(b[(i, j)], j)).sum();
+            if c == 0.0 || r == 0.0 {
+                continue;
+            }
+            let s = c + r;
+            let mut f = 1.0;
+            while c < r / 2.0 {
+                f *= 2.0;
+                c *= 4.0;
+            }
+            while c >= r * 2.0 {
+                f /= 2.0;
+                c /= 4.0;
+            }
+            if (c + r) / f < 0.95 * s {
+                done = false;
+                b.row_mut(i).scale_mut(1.0 / f);
+                b.column_mut(i).scale_mut(f);
+            }
+        }
+        if done {
+            break;
+        }
+    }
+    b
+}
+
+/// The condition number `|x| |y| / |y^H x|` of the eigenvalue `lambda` of `a` (infinite at
+/// a defective one), its right and left eigenvectors by inverse iteration.
+fn condition(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> f64 {
+    if lambda.norm() == 0.0 {
+        return f64::INFINITY;
+    }
+    let x = inverse_iteration(a, lambda, norm, &[]);
+    // `A^T w = lambda w` for a real `A` makes `y = conj(w)` the left one: `y^H x = w^T x`.
+    let w = inverse_iteration(&a.transpose(), lambda, norm, &[]);
+    let cos = w
+        .iter()
+        .zip(x.iter())
+        .map(|(p, q)| p * q)
+        .sum::<Complex<f64>>();
+    x.norm() * w.norm() / cos.norm()
 }
 
 /// The eigenvalues of `a` from its real Schur form. nalgebra's shifted QR iteration can
@@ -202,7 +319,8 @@ fn repeated(found: &[Mode], lambda: Complex<f64>, tol: f64) -> Vec<DVector<Compl
 }
 
 /// The eigenvector of `lambda` by inverse iteration with a shift a relative `1e-10` off it
-/// (three solves; an exactly singular shift is moved further). A repeated eigenvalue's
+/// (of `|lambda|`, at least of `eps |A|`; three solves; an exactly singular shift
+/// is moved further). A repeated eigenvalue's
 /// later shapes are kept orthogonal to its earlier ones (`others`), so a semisimple one
 /// (two identical uncoupled oscillators) gets independent shapes spanning its eigenspace;
 /// a defective one (a Jordan block: a free coordinate's double zero) has a single
@@ -238,8 +356,14 @@ fn inverse_iteration(
     let ac = a.map(|v| Complex::new(v, 0.0));
     let mut v = DVector::from_fn(n, |i, _| Complex::new(1.0, 0.1 * i as f64));
     orthogonalise(&mut v, others);
+    // Relative to `lambda` itself: a slow mode's shift must stay far nearer to it than to
+    // its conjugate (`2 |lambda|` away), however fast the other modes are.
+    let scale = lambda
+        .norm()
+        .max(f64::EPSILON * norm)
+        .max(f64::MIN_POSITIVE);
     for k in 0..4 {
-        let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * norm.max(1.0);
+        let shift = lambda + Complex::new(1.0, 1.0) * 1e-10 * 10f64.powi(k) * scale;
         let lu = (&ac - DMatrix::<Complex<f64>>::identity(n, n) * shift).lu();
         if !lu.is_invertible() {
             continue;
@@ -279,10 +403,10 @@ fn largest(v: &DVector<Complex<f64>>) -> Complex<f64> {
         .unwrap_or(Complex::new(1.0, 0.0))
 }
 
-/// Eigenvalues of `K v = w^2 M v` with `|w^2| <= NEUTRAL_W2 max |w^2|` are rigid-body
-/// (zero-frequency) modes and are returned as exactly `w^2 = 0`: their computed values are
-/// rounding of either sign (`O(eps cond(M) |K|)`), and a negative one would read as
-/// unstable.
+/// Eigenvalues of `K v = w^2 M v` with `|w^2| <= NEUTRAL_W2 max |w^2|` carry the rounding
+/// of the fastest mode (`O(eps cond(M) |K|)`, of either sign): they are recomputed as the
+/// Rayleigh quotient of `K` and `M`, and returned as exactly `w^2 = 0` (a rigid-body mode)
+/// when that is within its own rounding (a negative rounding would read as unstable).
 pub const NEUTRAL_W2: f64 = 1e-10;
 
 /// A mode of `K v = w^2 M v`.
@@ -366,23 +490,45 @@ where
     let eig = SymmetricEigen::try_new(c, f64::EPSILON, 10_000)
         .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
     let top = eig.eigenvalues.amax();
+    let ks = 0.5 * (k + k.transpose());
     let mut out: Vec<NormalMode<N>> = (0..N)
         .map(|i| {
             let v = linv.transpose() * eig.eigenvectors.column(i);
+            let shape = Vector::<N>::from_fn(|r, _| v[r]);
             let w2 = eig.eigenvalues[i];
             NormalMode {
-                // A rigid-body mode comes out as a rounding-size `w^2` of either sign.
                 omega_squared: if w2.abs() <= NEUTRAL_W2 * top {
-                    0.0
+                    small_omega_squared(&ks, &mass, &shape)
                 } else {
                     w2
                 },
-                shape: Vector::<N>::from_fn(|r, _| v[r]),
+                shape,
             }
         })
         .collect();
     out.sort_by(|x, y| x.omega_squared.total_cmp(&y.omega_squared));
     Ok(out)
+}
+
+/// `w^2` of a slow or rigid-body mode `v`, whose eigenvalue of the reduced problem carries
+/// rounding of the fastest (`eps max |w^2|`, more than a slow `w^2` beside a very stiff
+/// one): the Rayleigh quotient `v^T K v / v^T M v` of the original `K`, `M` (error
+/// quadratic in the shape's), exactly 0 (a rigid-body mode) when it lies within its own
+/// rounding, `64 N eps sum |v_i| |K_ij| |v_j| / v^T M v`.
+fn small_omega_squared<const N: usize>(
+    k: &Matrix<N, N>,
+    mass: &Matrix<N, N>,
+    v: &Vector<N>,
+) -> f64 {
+    let vmv = v.dot(&(mass * v));
+    let quotient = v.dot(&(k * v)) / vmv;
+    let va = v.abs();
+    let rounding = 64.0 * N as f64 * f64::EPSILON * va.dot(&(k.abs() * va)) / vmv;
+    if quotient.abs() <= rounding {
+        0.0
+    } else {
+        quotient
+    }
 }
 
 /// The modes of a closed loop at rest on its constraints, in independent coordinates: `A`
