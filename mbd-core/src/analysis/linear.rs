@@ -655,6 +655,71 @@ impl StateSpace {
             .ok_or_else(|| bad(format!("i w is an eigenvalue of A at w = {w}")))?;
         Ok(c(&self.c) * x + c(&self.d))
     }
+
+    /// The model as JSON, for a control design tool:
+    /// `{"inputs": [..], "outputs": [..], "a": [[..], ..], "b": .., "c": .., "d": ..}`,
+    /// each matrix as its rows, each number in Rust's shortest form that reads back as
+    /// the same `f64`. The state is `[q; qd]` in the model's coordinate order
+    /// ([`Mechanism::COORDINATES`]), or a closed loop's `x = T^T dy` from
+    /// [`constrained_state_space`]. MATLAB: `s = jsondecode(fileread(f));
+    /// sys = ss(s.a, s.b, s.c, s.d)`; Python: `numpy.array(json.load(f)["a"])`.
+    ///
+    /// Errors: [`Error::InvalidInput`] for a non-finite entry (JSON has no NaN or
+    /// infinity) or matrices whose sizes do not fit together.
+    pub fn to_json(&self) -> Result<String> {
+        let bad = |detail: String| Error::InvalidInput {
+            what: "to_json",
+            detail,
+        };
+        let (n, m, p) = (self.a.nrows(), self.b.ncols(), self.c.nrows());
+        let sizes = [
+            ("a", &self.a, n, n),
+            ("b", &self.b, n, m),
+            ("c", &self.c, p, n),
+            ("d", &self.d, p, m),
+        ];
+        for (name, x, r, c) in sizes {
+            if x.shape() != (r, c) {
+                return Err(bad(format!(
+                    "{name} is {:?}, expected {:?}",
+                    x.shape(),
+                    (r, c)
+                )));
+            }
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(bad(format!("{name} has a non-finite entry")));
+            }
+        }
+        if self.inputs.len() != m || self.outputs.len() != p {
+            return Err(bad(
+                "the names do not match the columns of B and rows of C".into()
+            ));
+        }
+        let names = |v: &[&str]| {
+            let quoted: Vec<String> = v.iter().map(|s| format!("{s:?}")).collect();
+            format!("[{}]", quoted.join(", "))
+        };
+        let matrix = |x: &DMatrix<f64>| {
+            let rows: Vec<String> = x
+                .row_iter()
+                .map(|r| {
+                    let v: Vec<String> = r.iter().map(|v| format!("{v:?}")).collect();
+                    format!("[{}]", v.join(", "))
+                })
+                .collect();
+            format!("[{}]", rows.join(", "))
+        };
+        let body: Vec<String> = sizes
+            .iter()
+            .map(|(name, x, ..)| format!("  \"{name}\": {}", matrix(x)))
+            .collect();
+        Ok(format!(
+            "{{\n  \"inputs\": {},\n  \"outputs\": {},\n{}\n}}\n",
+            names(&self.inputs),
+            names(&self.outputs),
+            body.join(",\n")
+        ))
+    }
 }
 
 /// `A, B, C, D` at `(t, y)`, exact from one generated evaluation
