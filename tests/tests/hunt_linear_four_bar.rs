@@ -29,7 +29,8 @@ macro_rules! sprung_four_bar {
         #[rigid(rocker, mass = m, inertia = m * c * c / 12.0,
                 at = [d + c / 2.0 * cos(chi), c / 2.0 * sin(chi)], angle = chi)]
         #[generalized_force(spring, along = phi, value = tau - kt * (phi - phi0))]
-        #[input(tau)]
+        #[generalized_force(rocker_torque, along = chi, value = tau_r)]
+        #[input(tau, tau_r)]
         #[output(rocker_angle = chi)]
         #[init(phi = 0.5, psi = 0.7260165921021776, chi = 1.7229599395818342)]
         pub struct $name {
@@ -46,6 +47,7 @@ macro_rules! sprung_four_bar {
             pub kt: f64,
             pub phi0: f64,
             pub tau: f64,
+            pub tau_r: f64,
         }
     };
 }
@@ -62,6 +64,7 @@ const MIN: Minimal = Minimal {
     kt: 60.0,
     phi0: 0.5,
     tau: 0.0,
+    tau_r: 0.0,
 };
 
 const AUG: Augmented = Augmented {
@@ -74,6 +77,7 @@ const AUG: Augmented = Augmented {
     kt: 60.0,
     phi0: 0.5,
     tau: 0.0,
+    tau_r: 0.0,
 };
 
 /// `(psi, chi)` at crank angle `phi` on the init's branch by Newton's method, and the
@@ -205,13 +209,24 @@ fn minimal_and_augmented_forms_have_the_hand_frequency_and_static_gain() {
         ga[(0, 0)],
         g[(0, 0)]
     );
+    // A torque on the rocker does the virtual work `tau_r chi' dphi`: it turns the crank
+    // by `chi' tau_r / V''` and the rocker by `chi'^2 tau_r / V''`.
+    let gain_rr = dchi * dchi / vpp;
+    for (name, gain) in [("minimal", g[(0, 1)]), ("augmented", ga[(0, 1)])] {
+        assert!(
+            (gain.re - gain_rr).abs() < 1e-9 * gain_rr.abs() && gain.im == 0.0,
+            "{name}: {gain} vs {gain_rr}"
+        );
+    }
     // Off resonance the two forms give one response.
     for wf in [0.3 * w, 2.0 * w] {
         let (gm, ga) = (
             ss.frequency_response(wf).unwrap(),
             ssa.frequency_response(wf).unwrap(),
         );
-        assert!((gm[(0, 0)] - ga[(0, 0)]).norm() < 1e-9 * gm[(0, 0)].norm());
+        for j in 0..2 {
+            assert!((gm[(0, j)] - ga[(0, j)]).norm() < 1e-9 * gm[(0, j)].norm());
+        }
     }
     let _ = gain_phi;
 }
