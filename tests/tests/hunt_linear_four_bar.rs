@@ -4,7 +4,8 @@
 //! reduction by the energy method. The reference is derived beside the test.
 
 use mbd::analysis::linear::{
-    constrained_modes, constrained_state_space, linearize, modes, state_space, undamped_modes,
+    constrained_modes, constrained_state_space, constrained_undamped_modes, linearize, modes,
+    state_space, undamped_modes,
 };
 use mbd::analysis::{NewtonOptions, static_equilibrium};
 use mbd::prelude::*;
@@ -229,4 +230,71 @@ fn minimal_and_augmented_forms_have_the_hand_frequency_and_static_gain() {
         }
     }
     let _ = gain_phi;
+}
+
+/// A point mass held on a circle of radius `l` by a constraint (augmented form),
+/// hanging at rest at `(0, -l)`: one motion, along the circle, at `w^2 = g / l`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian, augmented)]
+#[gravity(0.0, -g)]
+#[coords(x, y)]
+#[constraint(x * x + y * y == l * l)]
+#[particle(bob, mass = m, at = [x, y])]
+pub struct CartesianPendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+/// `undamped_modes` of a closed loop in the augmented form reported the constraint's
+/// direction as a rigid-body mode (`w^2 = 0` along the rod of a hanging pendulum, which
+/// cannot move that way), or failed on the four-bar with "K is not symmetric": it must
+/// refuse and name the restriction; `constrained_undamped_modes` gives the loop's one
+/// mode: `g / l` for the pendulum (shape along `x`, `m v_x^2 = 1`), and the four-bar's
+/// `V'' / m_eff` by hand as above.
+#[test]
+fn undamped_modes_of_an_augmented_loop_are_restricted_to_the_loop() {
+    let p = CartesianPendulum {
+        m: 2.0,
+        l: 0.5,
+        g: 9.81,
+    };
+    let q = Vector::<2>::new(0.0, -p.l);
+    match undamped_modes(&p, 0.0, &q) {
+        Err(Error::InvalidInput { detail, .. }) => {
+            assert!(detail.contains("constrained_undamped_modes"), "{detail}")
+        }
+        other => panic!("{other:?}"),
+    }
+    let found = constrained_undamped_modes(&p, 0.0, &q).unwrap();
+    assert_eq!(found.len(), 1, "{found:?}");
+    let w2 = p.g / p.l;
+    assert!(
+        (found[0].omega_squared - w2).abs() < 1e-14 * w2,
+        "{found:?}"
+    );
+    let v = found[0].shape;
+    assert!(
+        v[1].abs() < 1e-15 && (p.m * v[0] * v[0] - 1.0).abs() < 1e-14,
+        "{v}"
+    );
+
+    let qe =
+        static_equilibrium(&MIN, 0.0, &Vector::<1>::new(0.5), &NewtonOptions::default()).unwrap();
+    let phi = qe[0];
+    let [psi, chi, dpsi, dchi] = close(phi);
+    let q3 = Vector::<3>::new(phi, psi, chi);
+    assert!(undamped_modes(&AUG, 0.0, &q3).is_err());
+    let found = constrained_undamped_modes(&AUG, 0.0, &q3).unwrap();
+    assert_eq!(found.len(), 1, "{found:?}");
+    let w2 = derivative(2, phi) / reduced_inertia(phi);
+    assert!(
+        (found[0].omega_squared - w2).abs() < 1e-9 * w2,
+        "{} vs {w2}",
+        found[0].omega_squared
+    );
+    // The shape moves along the loop: `(1, psi', chi')` times the crank's part.
+    let v = found[0].shape;
+    assert!((v[1] - dpsi * v[0]).abs() < 1e-12 * v.amax(), "{v}");
+    assert!((v[2] - dchi * v[0]).abs() < 1e-12 * v.amax(), "{v}");
 }

@@ -434,7 +434,9 @@ impl<const N: usize> NormalMode<N> {
 /// Errors ([`Error::InvalidInput`]) when `q` is not an equilibrium (`|qdd| > 1e-9 |A|`),
 /// when the model is damped or gyroscopic (`dqdd/dqd != 0` at rest; the message says
 /// which), when `K` is not symmetric (to
-/// `1e-9 |K|`: non-conservative forces), or when `M` is not positive definite; plus the
+/// `1e-9 |K|`: non-conservative forces), when `M` is not positive definite, or for a
+/// generated closed loop in the augmented form (its constraint directions would read as
+/// rigid-body modes: [`constrained_undamped_modes`] restricts to the loop); plus the
 /// errors of [`linearize`].
 pub fn undamped_modes<S, const N: usize, const D: usize>(
     sys: &S,
@@ -445,10 +447,55 @@ where
     S: Mechanism<N> + OdeSystem<D>,
 {
     const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
-    let bad = |detail: String| Error::InvalidInput {
-        what: "undamped_modes",
-        detail,
-    };
+    // Generated models with constraint rows are their own passage bridge.
+    if sys.passage().is_some() {
+        return Err(Error::InvalidInput {
+            what: "undamped_modes",
+            detail: "a closed loop in the augmented form: its constraint directions would \
+                     read as rigid-body modes; use `constrained_undamped_modes`"
+                .into(),
+        });
+    }
+    normal_modes(sys, t, q, DMatrix::identity(N, N), "undamped_modes")
+}
+
+/// [`undamped_modes`] of a closed loop in the augmented form at its equilibrium `q` (at
+/// rest, time-independent constraints), in the loop's independent motions `dq = Z u` (`Z`
+/// an orthonormal null basis of `Phi_q`, as in [`constrained_modes`]):
+/// `Z^T K Z u = w^2 Z^T M Z u`. At an equilibrium this is the reduced stiffness, the
+/// multipliers' geometric stiffness included: differentiating `M qdd + Phi_q^T lambda = f`
+/// with `qdd = 0` and `Phi_q dqdd = 0` gives `Z^T M dqdd = Z^T (f_q - (Phi_q^T lambda)_q)
+/// dq`. Shapes are `v = Z u` over all coordinates, mass-normalised (`v^T M v = 1`).
+///
+/// Errors: those of [`constrained_modes`] (not assembled, time-dependent constraints, rank
+/// loss) and of [`undamped_modes`].
+pub fn constrained_undamped_modes<S, const N: usize, const M: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+) -> Result<Vec<NormalMode<N>>>
+where
+    S: Constrained<N, M> + OdeSystem<D>,
+{
+    const { assert!(D == 2 * N, "first-order state must be [q; qd]") };
+    let what = "constrained_undamped_modes";
+    let tm = tangent_basis::<S, N, M, D>(sys, t, q, what)?;
+    let z = tm.view((0, 0), (N, tm.ncols() / 2)).into_owned();
+    normal_modes(sys, t, q, z, what)
+}
+
+/// `Z^T K Z u = w^2 Z^T M Z u` with the checks of [`undamped_modes`]; shapes `Z u`.
+fn normal_modes<S, const N: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    z: DMatrix<f64>,
+    what: &'static str,
+) -> Result<Vec<NormalMode<N>>>
+where
+    S: Mechanism<N> + OdeSystem<D>,
+{
+    let bad = |detail: String| Error::InvalidInput { what, detail };
     let y = Vector::<D>::from_fn(|i, _| if i < N { q[i] } else { 0.0 });
     let a = linearize(sys, t, &y)?;
     let scale = a.abs().max().max(1.0);
@@ -471,38 +518,36 @@ where
             "{kind}: |dqdd/dqd| = {damping:.3e}; use `modes`"
         )));
     }
-    let k = -(mass * a.fixed_view::<N, N>(N, 0));
-    let asym = (k - k.transpose()).abs().max();
-    if asym > 1e-9 * k.abs().max() {
+    let dyn_n = |m: Matrix<N, N>| DMatrix::from_iterator(N, N, m.iter().copied());
+    let k = z.transpose() * dyn_n(-(mass * a.fixed_view::<N, N>(N, 0))) * &z;
+    let asym = (&k - k.transpose()).amax();
+    if asym > 1e-9 * k.amax() {
         return Err(bad(format!("K is not symmetric (|K - K^T| = {asym:.3e})")));
     }
-    let dm = DMatrix::from_iterator(N, N, mass.iter().copied());
+    let dm = z.transpose() * dyn_n(mass) * &z;
     let l = dm
+        .clone()
         .cholesky()
         .ok_or_else(|| bad("M is not positive definite".into()))?
         .l();
-    let linv = l
-        .clone()
-        .try_inverse()
-        .ok_or_else(|| bad("M is singular".into()))?;
-    let dk = DMatrix::from_iterator(N, N, (0.5 * (k + k.transpose())).iter().copied());
-    let c = &linv * dk * linv.transpose();
+    let linv = l.try_inverse().ok_or_else(|| bad("M is singular".into()))?;
+    let ks = (&k + k.transpose()) * 0.5;
+    let c = &linv * &ks * linv.transpose();
     let eig = SymmetricEigen::try_new(c, f64::EPSILON, 10_000)
         .ok_or_else(|| bad("the symmetric eigen-iteration did not converge".into()))?;
     let top = eig.eigenvalues.amax();
-    let ks = 0.5 * (k + k.transpose());
-    let mut out: Vec<NormalMode<N>> = (0..N)
+    let mut out: Vec<NormalMode<N>> = (0..z.ncols())
         .map(|i| {
-            let v = linv.transpose() * eig.eigenvectors.column(i);
-            let shape = Vector::<N>::from_fn(|r, _| v[r]);
+            let u = linv.transpose() * eig.eigenvectors.column(i);
+            let v = &z * &u;
             let w2 = eig.eigenvalues[i];
             NormalMode {
                 omega_squared: if w2.abs() <= NEUTRAL_W2 * top {
-                    small_omega_squared(&ks, &mass, &shape)
+                    small_omega_squared(&ks, &dm, &u)
                 } else {
                     w2
                 },
-                shape,
+                shape: Vector::<N>::from_fn(|r, _| v[r]),
             }
         })
         .collect();
@@ -514,16 +559,12 @@ where
 /// rounding of the fastest (`eps max |w^2|`, more than a slow `w^2` beside a very stiff
 /// one): the Rayleigh quotient `v^T K v / v^T M v` of the original `K`, `M` (error
 /// quadratic in the shape's), exactly 0 (a rigid-body mode) when it lies within its own
-/// rounding, `64 N eps sum |v_i| |K_ij| |v_j| / v^T M v`.
-fn small_omega_squared<const N: usize>(
-    k: &Matrix<N, N>,
-    mass: &Matrix<N, N>,
-    v: &Vector<N>,
-) -> f64 {
+/// rounding, `64 n eps sum |v_i| |K_ij| |v_j| / v^T M v`.
+fn small_omega_squared(k: &DMatrix<f64>, mass: &DMatrix<f64>, v: &DVector<f64>) -> f64 {
     let vmv = v.dot(&(mass * v));
     let quotient = v.dot(&(k * v)) / vmv;
     let va = v.abs();
-    let rounding = 64.0 * N as f64 * f64::EPSILON * va.dot(&(k.abs() * va)) / vmv;
+    let rounding = 64.0 * v.len() as f64 * f64::EPSILON * va.dot(&(k.abs() * &va)) / vmv;
     if quotient.abs() <= rounding {
         0.0
     } else {

@@ -21,8 +21,8 @@ pub use assembly::{assemble, consistent_velocities};
 pub use dynamics::{Reactions, inverse_dynamics};
 pub use kinematics::{KinematicState, kinematic_sweep, kinematics};
 pub use linear::{
-    Mode, ModeKind, NormalMode, StateSpace, constrained_modes, constrained_state_space, linearize,
-    modes, state_space, undamped_modes,
+    Mode, ModeKind, NormalMode, StateSpace, constrained_modes, constrained_state_space,
+    constrained_undamped_modes, linearize, modes, state_space, undamped_modes,
 };
 pub use projection::{constraint_drift, project_positions, project_state, project_velocities};
 pub use redundancy::{rank_and_redundant, redundant_constraints};
