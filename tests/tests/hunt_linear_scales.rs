@@ -146,3 +146,58 @@ fn a_millihertz_part_on_a_megahertz_mount() {
         assert!((vmv - 1.0).abs() < 1e-12, "{vmv}");
     }
 }
+
+/// A block on a damper to the wall (no spring: it creeps and stays where it stops) beside
+/// an independent block on a stiff spring: `A` has the creep's simple zero (neutral: the
+/// block rests anywhere), its decay `lambda = -c1 / m1` (real, time constant `m1 / c1`) and
+/// the stiff pair `+-i sqrt(k2 / m2)`.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(x1, x2)]
+#[point(wall, at = [0.0, 0.0])]
+#[particle(p1, mass = m1, at = [x1, 0.0])]
+#[particle(p2, mass = m2, at = [x2, 0.0])]
+#[damper(d1, from = wall, to = p1, c = c1)]
+#[spring(s2, from = wall, to = p2, k = k2, length = l0)]
+pub struct CreepAndRing {
+    pub m1: f64,
+    pub m2: f64,
+    pub c1: f64,
+    pub k2: f64,
+    pub l0: f64,
+}
+
+/// Time constants of 1000 s and 1 s beside a 1 MHz ring: the decay is a real mode at
+/// `-c1 / m1` (not neutral, not unstable), the zero neutral, the ring at 1 MHz.
+#[test]
+fn a_slow_creep_beside_a_megahertz_ring() {
+    for rate in [1e-3, 1.0] {
+        let p = CreepAndRing {
+            m1: 2.0,
+            m2: 1.0,
+            c1: 2.0 * rate,
+            k2: (TAU * 1e6).powi(2),
+            l0: 1.0,
+        };
+        let y = Vector::<4>::new(0.3, p.l0, 0.0, 0.0);
+        let found = modes(&linearize(&p, 0.0, &y).unwrap()).unwrap();
+        let kinds: Vec<_> = found.iter().map(|m| m.kind).collect();
+        assert_eq!(
+            kinds,
+            [ModeKind::Neutral, ModeKind::Real, ModeKind::Oscillatory],
+            "rate {rate}: {found:?}"
+        );
+        let decay = &found[1];
+        assert!(
+            (decay.eigenvalue.re + rate).abs() < 1e-10 * rate && decay.eigenvalue.im == 0.0,
+            "{decay:?}"
+        );
+        assert_eq!(decay.damping_ratio, Some(1.0));
+        // The creeping block alone, its velocity `-rate` times its position.
+        let v = &decay.shape;
+        assert!((v[2] / v[0] + rate).norm() < 1e-12 * rate, "{v}");
+        assert!(v[1].norm() + v[3].norm() < 1e-12 * v[0].norm(), "{v}");
+        assert!(!decay.unstable);
+        assert!((found[2].frequency_hz() - 1e6).abs() < 1e-10 * 1e6);
+    }
+}

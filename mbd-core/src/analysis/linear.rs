@@ -196,7 +196,14 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
             },
             damping_ratio: (!neutral).then(|| -lambda.re / modulus),
             unstable: !neutral && lambda.re > floor,
-            shape: shape(&a, lambda, norm, &repeated(&out, lambda, tol)),
+            // Repeated within the eigenvalue's own resolution: a resolved slow one is not
+            // a copy of a neutral zero beside it.
+            shape: shape(
+                &a,
+                lambda,
+                norm,
+                &repeated(&out, lambda, if neutral { tol } else { floor }),
+            ),
         });
     }
     out.sort_by(|x, y| x.omega_n.total_cmp(&y.omega_n));
@@ -205,8 +212,12 @@ pub fn modes_of(a: DMatrix<f64>) -> Result<Vec<Mode>> {
 
 /// A small eigenvalue is resolved (not neutral) above `RESOLVED eps |A_b| kappa`: the
 /// first-order bound of its rounding error, `eps |A_b| kappa`, with a margin for the
-/// Schur iteration's backward error (a modest multiple of `eps |A_b|`).
-const RESOLVED: f64 = 1e3;
+/// Schur iteration's backward error. A double zero `[[0, s], [0, 0]]` perturbed by
+/// `delta` splits into `+-sqrt(s delta)` with `kappa = s / (2 |lambda|)`, so the bound is
+/// `RESOLVED (eps |A_b| / delta) |lambda| / 2`: it stays neutral for a backward error up
+/// to `delta = 50 eps |A_b|`, while a creep at `1e-3` 1/s beside a 1 MHz mode
+/// (`kappa ~ 1e3`) is resolved.
+const RESOLVED: f64 = 100.0;
 
 /// A slow eigenvalue beside fast ones, refined: Schur's carries rounding of the fastest
 /// (`eps |A_b| kappa`); the two-sided Rayleigh quotient `w^T A x / w^T x` of its right and
