@@ -309,3 +309,83 @@ fn static_deflection_under_a_tip_load_is_the_hand_compliance() {
         assert!((q - want).amax() < 1e-12, "{q} vs {want}");
     }
 }
+
+/// The chain cut from the wall: three blocks joined by two springs, free to translate, a
+/// force `f3` on the tip and `f1` on the first block.
+#[derive(Debug, Mechanism)]
+#[mechanism(jacobian)]
+#[coords(x1, x2, x3)]
+#[particle(b1, mass = m, at = [x1, 0.0])]
+#[particle(b2, mass = m, at = [x2, 0.0])]
+#[particle(b3, mass = m, at = [x3, 0.0])]
+#[spring(s2, from = b1, to = b2, k = k, length = l0)]
+#[spring(s3, from = b2, to = b3, k = k, length = l0)]
+#[generalized_force(push1, along = x1, value = f1)]
+#[generalized_force(push3, along = x3, value = f3)]
+pub struct FreeChain {
+    pub m: f64,
+    pub k: f64,
+    pub l0: f64,
+    pub f1: f64,
+    pub f3: f64,
+}
+
+/// Free of the wall the chain has a rigid-body mode: `undamped_modes` gives `w^2 = 0`
+/// exactly with the shape `(1, 1, 1) / sqrt(3 m)` beside the free-free chain's
+/// `w^2 = (k / m)(1, 3)` (`K = k [[1, -1, 0], [-1, 2, -1], [0, -1, 1]]`, `det(K - mu m I)
+/// = -mu m (mu m - k)(mu m - 3 k)`). Under a net load (`f3` alone) there is no equilibrium
+/// (it accelerates as a whole at `f3 / 3 m`): `static_equilibrium` must not return `Ok`
+/// but a typed error. With balanced loads (`f1 = -f3 = -F`) every translate of the chain
+/// with both springs stretched by `F / k` is an equilibrium: what it returns must be one
+/// (which translate is left to rounding: the stiffness is singular along it).
+#[test]
+fn a_free_chain_has_a_rigid_body_mode_and_no_unique_equilibrium() {
+    let p = FreeChain {
+        m: 1.5,
+        k: 600.0,
+        l0: 0.4,
+        f1: 0.0,
+        f3: 0.0,
+    };
+    let q = Vector::<3>::new(0.0, p.l0, 2.0 * p.l0);
+    let normal = undamped_modes(&p, 0.0, &q).unwrap();
+    assert_eq!(normal[0].omega_squared, 0.0, "{normal:?}");
+    let rigid = Vector::<3>::repeat(1.0 / (3.0 * p.m).sqrt());
+    let sign = normal[0].shape.dot(&rigid).signum();
+    assert!(
+        (normal[0].shape * sign - rigid).amax() < 1e-14,
+        "{}",
+        normal[0].shape
+    );
+    for (nm, r) in normal[1..].iter().zip([1.0, 3.0]) {
+        let w2 = r * p.k / p.m;
+        assert!((nm.omega_squared - w2).abs() < 1e-12 * w2, "{nm:?}");
+    }
+    let found = modes(&linearize(&p, 0.0, &state(&q)).unwrap()).unwrap();
+    let kinds: Vec<_> = found.iter().map(|m| m.kind).collect();
+    assert_eq!(
+        kinds,
+        [
+            ModeKind::Neutral,
+            ModeKind::Neutral,
+            ModeKind::Oscillatory,
+            ModeKind::Oscillatory
+        ],
+        "{found:?}"
+    );
+    let net = FreeChain { f3: 30.0, ..p };
+    match static_equilibrium(&net, 0.0, &q, &NewtonOptions::default()) {
+        Err(Error::StaticsFailed { .. }) => {}
+        other => panic!("net load: {other:?}"),
+    }
+    let balanced = FreeChain {
+        f1: -30.0,
+        f3: 30.0,
+        ..p
+    };
+    if let Ok(e) = static_equilibrium(&balanced, 0.0, &q, &NewtonOptions::default()) {
+        let stretched = p.l0 + 30.0 / p.k;
+        assert!((e[1] - e[0] - stretched).abs() < 1e-12, "{e}");
+        assert!((e[2] - e[1] - stretched).abs() < 1e-12, "{e}");
+    }
+}

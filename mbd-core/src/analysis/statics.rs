@@ -18,7 +18,9 @@ use crate::model::{Constrained, Mechanism, Vector};
 /// Converged when the Newton step satisfies `max |dq_i| <= tol (1 + max |q_i|)`. A step
 /// that leaves a minimal closed loop's domain is halved back into it.
 /// Errors: [`Error::StaticsFailed`] when the iterations run out or the stiffness
-/// `-df/dq` is singular (neutral equilibrium, or a coordinate nothing holds);
+/// `-df/dq` is singular (neutral equilibrium, or a coordinate nothing holds) and no
+/// equilibrium is reached; where a singular stiffness has a family of equilibria (a free
+/// body under balanced loads) the one returned is one of them, which one left to rounding;
 /// [`Error::SingularPosition`] when `f` cannot be evaluated at an iterate (a closed loop
 /// outside its domain, naming the coordinate and the configuration); the model's errors.
 pub fn static_equilibrium<S: Mechanism<N>, const N: usize>(
