@@ -95,3 +95,64 @@ fn campbell_diagram_has_the_closed_form_forward_and_backward_whirls() {
         }
     }
 }
+
+/// The rotor with viscous dampers `ct` on the gimbal angles beside the springs (bearing
+/// damping, non-rotating).
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial, jacobian)]
+#[body(gimbal, joint = universal(a, b), mass = m0)]
+#[body(disc, parent = gimbal, joint = revolute(c, z), mass = m, inertia = diag(id, id, ip))]
+#[generalized_force(tilt_a, along = a, value = -kt * a - ct * der(a))]
+#[generalized_force(tilt_b, along = b, value = -kt * b - ct * der(b))]
+pub struct DampedRotor {
+    pub m0: f64,
+    pub m: f64,
+    pub id: f64,
+    pub ip: f64,
+    pub kt: f64,
+    pub ct: f64,
+}
+
+/// With the dampers, `id z'' + (ct - i ip W) z' + kt z = 0`, so `z = e^{lambda t}` with
+/// `id lambda^2 + (ct - i ip W) lambda + kt = 0`: `lambda = (-(ct - i ip W) +- sqrt((ct -
+/// i ip W)^2 - 4 id kt)) / (2 id)`; the real state's eigenvalues are these two and their
+/// conjugates (the conjugate equation, the other sign of the gyroscopic term). Each whirl
+/// decays at its own rate: damping ratios differ between forward and backward whirl
+/// (gyroscopic coupling with damping), checked against these roots to `1e-10`.
+#[test]
+fn damped_whirls_have_the_roots_of_the_complex_quadratic() {
+    let p = DampedRotor {
+        m0: 0.1,
+        m: 4.0,
+        id: 0.03,
+        ip: 0.05,
+        kt: 800.0,
+        ct: 0.6,
+    };
+    for rpm in [0.0, 3000.0, 30000.0] {
+        let spin = rpm * std::f64::consts::TAU / 60.0;
+        let y = Vector::<6>::new(0.0, 0.0, 0.0, 0.0, 0.0, spin);
+        let found = modes(&linearize(&p, 0.0, &y).unwrap()).unwrap();
+        let whirls: Vec<_> = found
+            .iter()
+            .filter(|m| m.kind != ModeKind::Neutral)
+            .collect();
+        assert_eq!(whirls.len(), 2, "{rpm} rpm: {found:?}");
+        let b = mbd::nalgebra::Complex::new(p.ct, -p.ip * spin);
+        let root = (b * b - 4.0 * p.id * p.kt).sqrt();
+        // Both roots, reflected into the upper half-plane (a mode is reported once).
+        let mut want: Vec<_> = [(-b + root) / (2.0 * p.id), (-b - root) / (2.0 * p.id)]
+            .iter()
+            .map(|z| if z.im < 0.0 { z.conj() } else { *z })
+            .collect();
+        want.sort_by(|x, y| x.norm().total_cmp(&y.norm()));
+        for (m, z) in whirls.iter().zip(&want) {
+            assert!(
+                (m.eigenvalue - z).norm() < 1e-10 * z.norm(),
+                "{rpm} rpm: {} vs {z}",
+                m.eigenvalue
+            );
+            assert!((m.damping_ratio.unwrap() - (-z.re / z.norm())).abs() < 1e-10);
+        }
+    }
+}
