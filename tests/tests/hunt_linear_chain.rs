@@ -4,7 +4,9 @@
 //! DC gain against a hand complex solve, the static deflection under load, and the order
 //! and names of inputs and outputs. Each reference is derived beside its test.
 
-use mbd::analysis::linear::{ModeKind, linearize, modes, state_space, undamped_modes};
+use mbd::analysis::linear::{
+    ModeKind, linearize, mode_sensitivity, modes, state_space, undamped_modes,
+};
 use mbd::analysis::{NewtonOptions, static_equilibrium};
 use mbd::prelude::*;
 use nalgebra::{Complex, DMatrix};
@@ -387,5 +389,51 @@ fn a_free_chain_has_a_rigid_body_mode_and_no_unique_equilibrium() {
         let stretched = p.l0 + 30.0 / p.k;
         assert!((e[1] - e[0] - stretched).abs() < 1e-12, "{e}");
         assert!((e[2] - e[1] - stretched).abs() < 1e-12, "{e}");
+    }
+}
+
+/// Eigen-sensitivities of the undamped chain against closed forms. Every `w_j` is
+/// `sqrt(k / m)` times a number, so `dlambda/dk = i w / (2 k)` and `dlambda/dm =
+/// -i w / (2 m)`. A damper is a first-order perturbation of `lambda^2 M v + lambda C v + K v
+/// = 0` at `C = 0`: with `v` mass-normalised, `2 lambda dlambda + lambda v^T dC v = 0`, so
+/// `dlambda/dc1 = -v_1^2 / 2` (the damper from the wall to block 1) and `dlambda/dc3 =
+/// -(v_2 - v_3)^2 / 2`: the modal damping each damper adds, with the shapes
+/// `sin(i th_j)` of the test above.
+#[test]
+fn eigenvalue_sensitivities_are_the_closed_forms() {
+    let p = CHAIN;
+    let y = state(&rest(&p));
+    let by = |name: &str| mode_sensitivity(&p, 0.0, &y, name).unwrap();
+    let (dk, dm, dc1, dc3) = (by("k"), by("m"), by("c1"), by("c3"));
+    for j in 1..=3 {
+        let th = (2 * j - 1) as f64 * PI / 7.0;
+        let w = 2.0 * (p.k / p.m).sqrt() * (th / 2.0).sin();
+        let raw = Vector::<3>::from_fn(|i, _| ((i + 1) as f64 * th).sin());
+        let v = raw / (p.m * raw.norm_squared()).sqrt();
+        let i = j - 1;
+        assert!((dk[i].0.omega_d - w).abs() < 1e-12 * w);
+        for (got, want, name) in [
+            (dk[i].1.unwrap(), Complex::new(0.0, w / (2.0 * p.k)), "k"),
+            (dm[i].1.unwrap(), Complex::new(0.0, -w / (2.0 * p.m)), "m"),
+            (
+                dc1[i].1.unwrap(),
+                Complex::new(-v[0] * v[0] / 2.0, 0.0),
+                "c1",
+            ),
+            (
+                dc3[i].1.unwrap(),
+                Complex::new(-(v[1] - v[2]).powi(2) / 2.0, 0.0),
+                "c3",
+            ),
+        ] {
+            assert!(
+                (got - want).norm() < 1e-8 * want.norm(),
+                "mode {j}, d lambda / d {name}: {got} vs {want}"
+            );
+        }
+    }
+    match mode_sensitivity(&p, 0.0, &y, "stiffness") {
+        Err(Error::InvalidInput { detail, .. }) => assert!(detail.contains("\"k\""), "{detail}"),
+        other => panic!("{other:?}"),
     }
 }

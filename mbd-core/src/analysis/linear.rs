@@ -795,6 +795,66 @@ pub fn state_space<S: Parametric<D>, const D: usize>(
     })
 }
 
+/// How each mode's eigenvalue moves with the parameter `param` at the fixed state `y`:
+/// `dlambda/dp = w^T (dA/dp) x / w^T x` (first-order perturbation of a simple eigenvalue;
+/// right `A x = lambda x`, left `A^T w = lambda w`), beside the modes of [`modes`]. `dA/dp`
+/// is `d(df/dp)/dy`, by central differences of the exact `df/dp`
+/// ([`Parametric::linear_parts`]) with steps `1e-5 (1 + |y_j|)`: error `O(h^2)`, about
+/// `1e-9` relative. The state is held: at an equilibrium that moves with `p` the total
+/// derivative adds the change of `A` along `dy/dp`
+/// ([`equilibrium_sensitivity`](super::equilibrium_sensitivity)). A neutral mode has `None`
+/// (a zero of a Jordan block has no derivative); a repeated eigenvalue's is not defined.
+///
+/// Errors: [`Error::InvalidInput`] for a name that is not a parameter (the message lists
+/// them); those of [`state_space`] and [`modes`].
+pub fn mode_sensitivity<S: Parametric<D>, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    param: &str,
+) -> Result<Vec<(Mode, Option<Complex<f64>>)>> {
+    let p = S::PARAMETERS
+        .iter()
+        .position(|&n| n == param)
+        .ok_or_else(|| Error::InvalidInput {
+            what: "mode_sensitivity",
+            detail: format!(
+                "no parameter `{param}`; the parameters are {:?}",
+                S::PARAMETERS
+            ),
+        })?;
+    let a = sys.linear_parts(t, y)?.a;
+    let mut da = DMatrix::<f64>::zeros(D, D);
+    let mut yj = *y;
+    for j in 0..D {
+        let h = 1e-5 * (1.0 + y[j].abs());
+        yj[j] = y[j] + h;
+        let plus = sys.linear_parts(t, &yj)?.f_p.column(p).into_owned();
+        yj[j] = y[j] - h;
+        let minus = sys.linear_parts(t, &yj)?.f_p.column(p).into_owned();
+        yj[j] = y[j];
+        da.set_column(j, &((plus - minus) / (2.0 * h)));
+    }
+    let norm = a.abs().column_sum().max();
+    let dac = da.map(|v| Complex::new(v, 0.0));
+    let found = modes_of(a.clone())?;
+    Ok(found
+        .into_iter()
+        .map(|m| {
+            if m.kind == ModeKind::Neutral {
+                return (m, None);
+            }
+            let x = inverse_iteration(&a, m.eigenvalue, norm, &[]);
+            let w = inverse_iteration(&a.transpose(), m.eigenvalue, norm, &[]);
+            let dot = |u: &DVector<Complex<f64>>| -> Complex<f64> {
+                w.iter().zip(u.iter()).map(|(p, q)| p * q).sum()
+            };
+            let d = dot(&(&dac * &x)) / dot(&x);
+            (m, Some(d))
+        })
+        .collect())
+}
+
 /// [`state_space`] of a closed loop (augmented form) at rest on its constraints, in
 /// independent coordinates `x = T^T dy` (`T = diag(Z, Z)` as in [`constrained_modes`]):
 /// `A_r = T^T A T`, `B_r = T^T B`, `C_r = C T`, `D`; the map `T` back to the full state is

@@ -22,7 +22,7 @@ pub use dynamics::{Reactions, inverse_dynamics};
 pub use kinematics::{KinematicState, kinematic_sweep, kinematics};
 pub use linear::{
     Mode, ModeKind, NormalMode, StateSpace, constrained_modes, constrained_state_space,
-    constrained_undamped_modes, linearize, modes, state_space, undamped_modes,
+    constrained_undamped_modes, linearize, mode_sensitivity, modes, state_space, undamped_modes,
 };
 pub use projection::{constraint_drift, project_positions, project_state, project_velocities};
 pub use redundancy::{rank_and_redundant, redundant_constraints};
