@@ -22,7 +22,7 @@
 //! output are the same on both sides of the switch.
 
 use crate::lower;
-use crate::parse::{Joint, Mechanism};
+use crate::parse::Mechanism;
 use crate::sym::{Expr, Graph};
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -158,20 +158,18 @@ pub fn moment(g: &mut Graph, sigma: V3, tau: V3) -> V3 {
     })
 }
 
-/// The generated chart switch of a model's ball joints (`None`: it has none): each joint's
-/// state indices, for `mbd::chart::shadow` in `OdeSystem::project`. A ball joint whose
-/// coordinates are not all free coordinates (a closure made one dependent) keeps its chart.
+/// The generated chart switch of a model's ball joints and free joints' rotations (`None`:
+/// it has none): each joint's state indices, for `mbd::chart::shadow` in
+/// `OdeSystem::project`. A ball joint whose coordinates are not all free coordinates (a closure made one dependent) keeps its chart.
 pub fn switch(ast: &Mechanism, free: &[syn::Ident], n: usize) -> Option<TokenStream> {
     let balls: Vec<TokenStream> = ast
         .tree
         .iter()
-        .filter_map(|tb| match &tb.joint {
-            Joint::Ball(a, b, c) => {
-                let at = |x: &syn::Ident| free.iter().position(|f| f == x);
-                let (a, b, c) = (at(a)?, at(b)?, at(c)?);
-                Some(quote!([#a, #b, #c]))
-            }
-            _ => None,
+        .filter_map(|tb| {
+            let [a, b, c] = tb.joint.ball_coords()?;
+            let at = |x: &syn::Ident| free.iter().position(|f| f == x);
+            let (a, b, c) = (at(a)?, at(b)?, at(c)?);
+            Some(quote!([#a, #b, #c]))
         })
         .collect();
     (!balls.is_empty()).then(|| quote!(::mbd::__private::chart::shadow(y, #n, &[#(#balls),*]);))

@@ -641,9 +641,7 @@ fn driven_loads(ast: &Mechanism, errors: &mut Errors) {
                 ),
             );
         }
-        let ball = ast.tree.iter().any(|tb| {
-            matches!(tb.joint, crate::parse::Joint::Ball(..)) && tb.joint.coords().contains(&c)
-        });
+        let ball = (ast.tree.iter()).any(|tb| tb.joint.ball_coords().is_some_and(|b| b.contains(&c)));
         if ball {
             errors.at(
                 c.span(),

@@ -295,6 +295,7 @@ fn tree_body(b: &TreeBody, l: &mut impl FnMut(&syn::Expr) -> Term) -> TreeBody<T
         Joint::Universal(a, b) => Joint::Universal(a.clone(), b.clone()),
         Joint::Spherical(a, b, c) => Joint::Spherical(a.clone(), b.clone(), c.clone()),
         Joint::Ball(a, b, c) => Joint::Ball(a.clone(), b.clone(), c.clone()),
+        Joint::Free(at, r) => Joint::Free(at.clone(), r.clone()),
         Joint::Fixed => Joint::Fixed,
     };
     TreeBody {

@@ -141,6 +141,10 @@ pub enum Joint<E = Expr> {
     /// (rotation by `phi` about the unit `n`; no singularity short of `phi = 2π`, and the
     /// integrators switch to the shadow set past `phi = π`: `ball.rs`).
     Ball(Ident, Ident, Ident),
+    /// Spatial, six degrees of freedom (a floating base): the joint origin moves by
+    /// `(x, y, z)` in the parent's axes, and the body turns about it as on a `ball` joint
+    /// (the same chart and switch): `free(x, y, z, s1, s2, s3)`.
+    Free([Ident; 3], [Ident; 3]),
     /// Welded to the parent.
     Fixed,
 }
@@ -152,7 +156,17 @@ impl<E> Joint<E> {
             Joint::Revolute { coord, .. } | Joint::Prismatic { coord, .. } => vec![coord],
             Joint::Universal(a, b) => vec![a, b],
             Joint::Spherical(a, b, c) | Joint::Ball(a, b, c) => vec![a, b, c],
+            Joint::Free(at, [a, b, c]) => vec![&at[0], &at[1], &at[2], a, b, c],
             Joint::Fixed => Vec::new(),
+        }
+    }
+
+    /// The modified Rodrigues parameters of a `ball` joint or of a `free` joint's rotation:
+    /// coordinates that switch to the shadow set together.
+    pub fn ball_coords(&self) -> Option<[&Ident; 3]> {
+        match self {
+            Joint::Ball(a, b, c) | Joint::Free(_, [a, b, c]) => Some([a, b, c]),
+            _ => None,
         }
     }
 }
@@ -895,12 +909,14 @@ impl Mechanism {
 }
 
 /// `revolute(q)` (planar), `revolute(q, x | y | z)` (spatial), `prismatic(s, axis)`,
-/// `universal(a, b)`, `spherical(a, b, c)`, `ball(a, b, c)` or `fixed`. Which joints suit the mechanism's
+/// `universal(a, b)`, `spherical(a, b, c)`, `ball(a, b, c)`, `free(x, y, z, s1, s2, s3)` or
+/// `fixed`. Which joints suit the mechanism's
 /// dimension is checked with the mechanics.
 fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
     const EXPECTED: &str = "expected a joint: `revolute(coordinate)` (planar), \
         `revolute(coordinate, x | y | z)` (spatial), `prismatic(coordinate, axis)`, \
-        `universal(a, b)`, `spherical(a, b, c)`, `ball(a, b, c)` or `fixed`";
+        `universal(a, b)`, `spherical(a, b, c)`, `ball(a, b, c)`, \
+        `free(x, y, z, s1, s2, s3)` (spatial, six degrees of freedom) or `fixed`";
     match &e {
         Expr::Path(p) if p.path.is_ident("fixed") => Some(Joint::Fixed),
         Expr::Call(c) => {
@@ -941,6 +957,10 @@ fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
                 }
                 (Some("ball"), Some(a), 3) if name(1).is_some() && name(2).is_some() => {
                     Some(Joint::Ball(a, name(1)?, name(2)?))
+                }
+                (Some("free"), Some(x), 6) if (1..6).all(|i| name(i).is_some()) => {
+                    let n = |i: usize| name(i).expect("checked above");
+                    Some(Joint::Free([x, n(1), n(2)], [n(3), n(4), n(5)]))
                 }
                 _ => {
                     errors.over(&e, EXPECTED);

@@ -31,8 +31,11 @@ pub(super) fn planar(
                 scope.errors.at(a.span(), "a planar revolute joint turns about the plane's normal: write `revolute(q)` without an axis");
                 continue;
             }
-            parse::Joint::Universal(..) | parse::Joint::Spherical(..) | parse::Joint::Ball(..) => {
-                scope.errors.at(tb.joint_span, "a `universal`, `spherical` or `ball` joint needs a spatial mechanism: `#[mechanism(spatial)]`");
+            parse::Joint::Universal(..)
+            | parse::Joint::Spherical(..)
+            | parse::Joint::Ball(..)
+            | parse::Joint::Free(..) => {
+                scope.errors.at(tb.joint_span, "a `universal`, `spherical`, `ball` or `free` joint needs a spatial mechanism: `#[mechanism(spatial)]`");
                 continue;
             }
             _ => {}
@@ -208,13 +211,12 @@ pub(super) fn spatial(
             .collect();
         let step_parent = parent.map(|p| step_of_frame[p]);
         push_steps(
+            &mut scope.g,
             &mut tree.steps,
             step_parent,
-            tb,
-            &turns,
+            (tb, &turns),
             &coord_of,
             &input,
-            zero,
         );
         step_of_frame.push(tree.steps.len() - 1);
         tree.frame_of.insert(tb.name.to_string(), tree.frames.len());
@@ -255,7 +257,16 @@ fn spatial_inputs(lw: &mut Lowerer<'_>, tb: &parse::TreeBody<Term>) -> Option<Sp
 /// angle, rate), or a ball joint's modified Rodrigues parameters and their rates.
 enum Turns {
     Elementary(Vec<(usize, Expr, Expr)>),
-    Ball { sigma: [Expr; 3], rate: [Expr; 3] },
+    Ball {
+        sigma: [Expr; 3],
+        rate: [Expr; 3],
+    },
+    /// A free joint: the joint origin moved by `travel` in the parent's axes, then a ball.
+    Free {
+        travel: [Expr; 3],
+        sigma: [Expr; 3],
+        rate: [Expr; 3],
+    },
 }
 
 /// The joint's rotation; a prismatic joint moves `at` along its axis instead. `None`: a
@@ -269,6 +280,11 @@ fn joint_turns(
     if let (parse::Joint::Ball(..), &[a, b, c]) = (&tb.joint, z) {
         let (sigma, rate) = ([a.0, b.0, c.0], [a.1, b.1, c.1]);
         return Some(Turns::Ball { sigma, rate });
+    }
+    if let (parse::Joint::Free(..), &[x, y, w, a, b, c]) = (&tb.joint, z) {
+        let (sigma, rate) = ([a.0, b.0, c.0], [a.1, b.1, c.1]);
+        let travel = [x.0, y.0, w.0];
+        return Some(Turns::Free { travel, sigma, rate });
     }
     Some(Turns::Elementary(match (&tb.joint, z) {
         (parse::Joint::Revolute { axis: None, .. }, _) => {
@@ -313,10 +329,16 @@ fn compose(
     let zero = identity[0][1];
     let (relative, omega_joint) = match turns {
         Turns::Elementary(turns) => elementary(g, identity, turns),
-        &Turns::Ball { sigma, rate } => (
+        &Turns::Ball { sigma, rate } | &Turns::Free { sigma, rate, .. } => (
             crate::ball::rotation(g, sigma),
             crate::ball::omega(g, sigma, rate),
         ),
+    };
+    let at: Vec<Expr> = match turns {
+        Turns::Free { travel, .. } => (at.iter().zip(travel))
+            .map(|(&a, &d)| g.add(a, d))
+            .collect(),
+        _ => at.to_vec(),
     };
     let parent = parent.unwrap_or(Frame {
         origin: [zero; 3],
@@ -332,7 +354,7 @@ fn compose(
     });
     let rot = lower::matmul(g, &parent.rot, &relative);
     let mut origin: [Expr; 3] = std::array::from_fn(|i| {
-        let moved = g.dot(&parent.rot[i], at);
+        let moved = g.dot(&parent.rot[i], &at);
         g.add(parent.origin[i], moved)
     });
     free_joint(g, &mut origin, tb, coords);
@@ -360,53 +382,62 @@ fn elementary(
     (relative, omega_joint)
 }
 
+/// A step of the spatial recursion, its turn and its shift from the previous frame.
+type StepAt = (spatial::Step, Option<(usize, Expr)>, [Expr; 3]);
+
 /// The joint as one-degree-of-freedom steps of the spatial recursion; the body's mass and
 /// inertia ride on the last.
 fn push_steps(
+    g: &mut Graph,
     steps: &mut Vec<spatial::Node>,
     mut step_parent: Option<usize>,
-    tb: &parse::TreeBody<Term>,
-    turns: &Turns,
+    (tb, turns): (&parse::TreeBody<Term>, &Turns),
     coord_of: &[usize],
     input: &SpatialInputs,
-    zero: Expr,
 ) {
-    let (at, com, axis) = (&input.at, &input.com, &input.axis);
-    let joint_steps: Vec<(spatial::Step, Option<(usize, Expr)>)> = match (turns, coord_of) {
+    let zero = g.zero();
+    let (com, axis) = (&input.com, &input.axis);
+    let at: [Expr; 3] = std::array::from_fn(|i| input.at[i]);
+    let joint_steps: Vec<StepAt> = match (turns, coord_of) {
         _ if matches!(tb.joint, parse::Joint::Prismatic { .. }) && axis.len() == 3 => {
             let axis = [axis[0], axis[1], axis[2]];
             match coord_of {
-                &[coord] => vec![(spatial::Step::Prismatic { coord, axis }, None)],
-                _ => vec![(spatial::Step::Fixed, None)],
+                &[coord] => vec![(spatial::Step::Prismatic { coord, axis }, None, at)],
+                _ => vec![(spatial::Step::Fixed, None, at)],
             }
         }
         (&Turns::Ball { sigma, .. }, &[c0, c1, c2]) => {
             let coords = [c0, c1, c2];
-            vec![(spatial::Step::Ball { coords, sigma }, None)]
+            vec![(spatial::Step::Ball { coords, sigma }, None, at)]
+        }
+        (Turns::Free { travel, sigma, .. }, &[x, y, w, c0, c1, c2]) => {
+            let ball = spatial::Step::Ball {
+                coords: [c0, c1, c2],
+                sigma: *sigma,
+            };
+            free_steps(g, at, (*travel, [x, y, w]), ball)
         }
         (Turns::Elementary(turns), _) if turns.len() == coord_of.len() && !turns.is_empty() => {
             turns
                 .iter()
                 .zip(coord_of)
-                .map(|(&(axis, angle, _), &coord)| {
-                    (spatial::Step::Revolute { coord, axis }, Some((axis, angle)))
+                .enumerate()
+                .map(|(k, (&(axis, angle, _), &coord))| {
+                    let shift = if k == 0 { at } else { [zero; 3] };
+                    (spatial::Step::Revolute { coord, axis }, Some((axis, angle)), shift)
                 })
                 .collect()
         }
-        _ => vec![(spatial::Step::Fixed, None)],
+        _ => vec![(spatial::Step::Fixed, None, at)],
     };
     let last = joint_steps.len() - 1;
-    for (k, (step, turn)) in joint_steps.into_iter().enumerate() {
+    for (k, (step, turn, shift)) in joint_steps.into_iter().enumerate() {
         let body = k == last;
         steps.push(spatial::Node {
             parent: step_parent,
             step,
             turn,
-            at: if k == 0 {
-                std::array::from_fn(|i| at[i])
-            } else {
-                [zero; 3]
-            },
+            at: shift,
             com: if body {
                 std::array::from_fn(|i| com[i])
             } else {
@@ -422,24 +453,55 @@ fn push_steps(
     }
 }
 
-/// A ball joint's coordinates move together (its rates are one angular velocity): none of
-/// them may be driven. `false` after a spanned error.
+/// A free joint as steps: prismatic along the parent's `x`, `y`, `z` (massless frames, each
+/// shifted by its own travel only, so that each transform depends on its own coordinate),
+/// then the ball at the moved origin: the articulated-body recursion takes a floating base
+/// with three scalar divisions and one 3x3 inverse, with nothing singular.
+fn free_steps(
+    g: &mut Graph,
+    at: [Expr; 3],
+    (travel, coords): ([Expr; 3], [usize; 3]),
+    ball: spatial::Step,
+) -> Vec<StepAt> {
+    let (zero, one) = (g.zero(), g.one());
+    let mut out: Vec<StepAt> = (0..3)
+        .map(|k| {
+            let (mut axis, mut shift) = ([zero; 3], if k == 0 { at } else { [zero; 3] });
+            axis[k] = one;
+            shift[k] = g.add(shift[k], travel[k]);
+            let step = spatial::Step::Prismatic {
+                coord: coords[k],
+                axis,
+            };
+            (step, None, shift)
+        })
+        .collect();
+    out.push((ball, None, [zero; 3]));
+    out
+}
+
+/// A ball joint's coordinates (or a free joint's rotation's) move together (their rates
+/// are one angular velocity): none of them may be driven. `false` after a spanned error.
 fn ball_coordinates_free(
     tb: &parse::TreeBody<Term>,
     coords: &[Coord],
     errors: &mut Errors,
 ) -> bool {
-    if !matches!(tb.joint, parse::Joint::Ball(..)) {
+    let Some(ball) = tb.joint.ball_coords() else {
         return true;
-    }
-    let driven = tb.joint.coords().into_iter().find(|c| {
+    };
+    let what = match tb.joint {
+        parse::Joint::Free(..) => "the rotation of a free joint",
+        _ => "a ball joint",
+    };
+    let driven = ball.into_iter().find(|c| {
         coords
             .iter()
             .any(|k| k.name == **c && !matches!(k.kind, super::CoordKind::Free))
     });
     match driven {
         Some(c) => {
-            errors.at(c.span(), format!("`{c}` is a coordinate of a ball joint, which cannot be driven: its three coordinates describe one rotation (drive a `spherical` joint's angles instead)"));
+            errors.at(c.span(), format!("`{c}` is a coordinate of {what}, which cannot be driven: its three coordinates describe one rotation (drive a `spherical` joint's angles instead)"));
             false
         }
         None => true,
