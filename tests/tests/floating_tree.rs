@@ -11,9 +11,12 @@
 //! velocities and accelerations where they were; a free joint that is not at the root.
 
 use mbd::integrate::{Dopri5, Integrator, Options, Radau5, Vern9};
-use mbd::nalgebra::{DMatrix, DVector};
 use mbd::prelude::*;
 use mbd::{Matrix, Vector};
+
+#[path = "support/floating.rs"]
+mod floating;
+use floating::{Part, mrp_b, mrp_b_dot, mrp_rotation, momenta, pass, reference};
 
 type M3 = Matrix<3, 3>;
 type V3 = Vector<3>;
@@ -35,18 +38,6 @@ type V3 = Vector<3>;
          hand_w = angular_velocity(hand))]
 pub struct Floater {
     pub g: f64,
-}
-
-/// One body of the reference: its parent (`None`: the base, on the free joint), hinge axis
-/// (0, 1, 2 = x, y, z of the parent's frame) and coordinate index in the model.
-struct Part {
-    parent: Option<usize>,
-    axis: usize,
-    coord: usize,
-    at: [f64; 3],
-    com: [f64; 3],
-    mass: f64,
-    inertia: M3,
 }
 
 /// The floater's bodies, typed again from the attributes above (the base first).
@@ -90,150 +81,6 @@ fn parts() -> Vec<Part> {
             inertia: d(0.002, 0.003, 0.001),
         },
     ]
-}
-
-fn skew(a: &V3) -> M3 {
-    M3::new(0.0, -a[2], a[1], a[2], 0.0, -a[0], -a[1], a[0], 0.0)
-}
-
-fn rot(axis: usize, q: f64) -> M3 {
-    let (s, c) = q.sin_cos();
-    match axis {
-        0 => M3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c),
-        1 => M3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c),
-        _ => M3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
-    }
-}
-
-/// Modified Rodrigues parameters: `R = 1 + (8 S^2 + 4 (1 - s2) S) / (1 + s2)^2`.
-fn mrp_rotation(s: &V3) -> M3 {
-    let s2 = s.norm_squared();
-    let x = skew(s);
-    M3::identity() + (8.0 * x * x + 4.0 * (1.0 - s2) * x) / (1.0 + s2).powi(2)
-}
-
-/// `sigma' = B W / 4`, `B = (1 - s2) 1 + 2 [s]x + 2 s s^T`, `B B^T = (1 + s2)^2 1`.
-fn mrp_b(s: &V3) -> M3 {
-    (1.0 - s.norm_squared()) * M3::identity() + 2.0 * skew(s) + 2.0 * s * s.transpose()
-}
-
-fn mrp_b_dot(s: &V3, sd: &V3) -> M3 {
-    -2.0 * s.dot(sd) * M3::identity() + 2.0 * skew(sd) + 2.0 * (sd * s.transpose() + s * sd.transpose())
-}
-
-/// Each body's world rotation, joint origin, hinge axis (world), angular velocity and
-/// origin velocity, and at `u' = 0` its angular and origin accelerations.
-struct Pass {
-    r: Vec<M3>,
-    o: Vec<V3>,
-    axis: Vec<V3>,
-    w: Vec<V3>,
-    v: Vec<V3>,
-    al: Vec<V3>,
-    a: Vec<V3>,
-}
-
-fn pass(parts: &[Part], q: &[f64], qd: &[f64]) -> Pass {
-    let n = parts.len();
-    let z = vec![V3::zeros(); n];
-    let mut f = Pass {
-        r: vec![M3::identity(); n],
-        o: z.clone(),
-        axis: z.clone(),
-        w: z.clone(),
-        v: z.clone(),
-        al: z.clone(),
-        a: z,
-    };
-    let s = V3::new(q[3], q[4], q[5]);
-    let sd = V3::new(qd[3], qd[4], qd[5]);
-    f.r[0] = mrp_rotation(&s);
-    f.o[0] = V3::from(parts[0].at) + V3::new(q[0], q[1], q[2]);
-    f.v[0] = V3::new(qd[0], qd[1], qd[2]);
-    // W = 4 B^T sigma' / (1 + s2)^2 (body axes); w = R W.
-    f.w[0] = f.r[0] * (4.0 * mrp_b(&s).transpose() * sd / (1.0 + s.norm_squared()).powi(2));
-    for i in 1..n {
-        let p = parts[i].parent.expect("only the base is on the free joint");
-        let arm = f.r[p] * V3::from(parts[i].at);
-        f.o[i] = f.o[p] + arm;
-        f.axis[i] = f.r[p].column(parts[i].axis).into_owned();
-        f.r[i] = f.r[p] * rot(parts[i].axis, q[parts[i].coord]);
-        let rate = qd[parts[i].coord];
-        f.w[i] = f.w[p] + f.axis[i] * rate;
-        f.v[i] = f.v[p] + f.w[p].cross(&arm);
-        f.al[i] = f.al[p] + f.w[p].cross(&f.axis[i]) * rate;
-        f.a[i] = f.a[p] + f.al[p].cross(&arm) + f.w[p].cross(&f.w[p].cross(&arm));
-    }
-    f
-}
-
-fn ancestors(parts: &[Part], mut i: usize) -> Vec<usize> {
-    let mut out = vec![i];
-    while let Some(p) = parts[i].parent {
-        out.push(p);
-        i = p;
-    }
-    out
-}
-
-/// Kane's equations in `u` (9 speeds), solved; then `q''` in the model's coordinates.
-fn reference(parts: &[Part], g: f64, q: &[f64], qd: &[f64]) -> Vec<f64> {
-    let f = pass(parts, q, qd);
-    let mut mass = DMatrix::<f64>::zeros(9, 9);
-    let mut force = DVector::<f64>::zeros(9);
-    let grav = V3::new(0.0, 0.0, -g);
-    for (b, part) in parts.iter().enumerate() {
-        let d = f.r[b] * V3::from(part.com);
-        let c = f.o[b] + d;
-        let iw = f.r[b] * part.inertia * f.r[b].transpose();
-        let a0 = f.a[b] + f.al[b].cross(&d) + f.w[b].cross(&f.w[b].cross(&d));
-        let lin = part.mass * (grav - a0);
-        let ang = -(iw * f.al[b] + f.w[b].cross(&(iw * f.w[b])));
-        // Columns (linear, angular) of this body's Jacobians.
-        let mut cols: Vec<(usize, V3, V3)> = Vec::new();
-        for k in 0..3 {
-            let e = V3::ith(k, 1.0);
-            cols.push((k, e, V3::zeros()));
-            cols.push((3 + k, e.cross(&(c - f.o[0])), e));
-        }
-        for &j in ancestors(parts, b).iter().filter(|&&j| j > 0) {
-            let u = f.axis[j];
-            cols.push((parts[j].coord, u.cross(&(c - f.o[j])), u));
-        }
-        for &(j, jv, jw) in &cols {
-            force[j] += jv.dot(&lin) + jw.dot(&ang);
-            for &(k, kv, kw) in &cols {
-                mass[(j, k)] += part.mass * jv.dot(&kv) + jw.dot(&(iw * kw));
-            }
-        }
-    }
-    let ud = mass.cholesky().expect("positive definite").solve(&force);
-    let s = V3::new(q[3], q[4], q[5]);
-    let sd = V3::new(qd[3], qd[4], qd[5]);
-    let rt = f.r[0].transpose();
-    let w_body = rt * f.w[0];
-    let wd = V3::new(ud[3], ud[4], ud[5]);
-    let sdd = (mrp_b(&s) * rt * wd + mrp_b_dot(&s, &sd) * w_body) / 4.0;
-    let mut out: Vec<f64> = ud.iter().copied().collect();
-    out[3..6].copy_from_slice(sdd.as_slice());
-    out
-}
-
-/// Total linear and angular momentum (about the world origin) and kinetic energy, by hand.
-fn momenta(parts: &[Part], y: &Vector<18>) -> (V3, V3, f64) {
-    let (q, qd) = (&y.as_slice()[..9], &y.as_slice()[9..]);
-    let f = pass(parts, q, qd);
-    let (mut lin, mut ang, mut t) = (V3::zeros(), V3::zeros(), 0.0);
-    for (b, part) in parts.iter().enumerate() {
-        let d = f.r[b] * V3::from(part.com);
-        let c = f.o[b] + d;
-        let vc = f.v[b] + f.w[b].cross(&d);
-        let iw = f.r[b] * part.inertia * f.r[b].transpose();
-        lin += part.mass * vc;
-        ang += part.mass * c.cross(&vc) + iw * f.w[b];
-        t += 0.5 * part.mass * vc.norm_squared() + 0.5 * f.w[b].dot(&(iw * f.w[b]));
-    }
-    (lin, ang, t)
 }
 
 fn sample(seed: f64) -> Vector<18> {
@@ -280,7 +127,7 @@ fn floating_base_accelerations_equal_kane_by_hand() {
             assert!((V3::new(o.tip_v_x, o.tip_v_y, o.tip_v_z) - v).norm() < 1e-12 * v.norm().max(1.0));
             assert!((V3::new(o.hand_w_x, o.hand_w_y, o.hand_w_z) - f.w[3]).norm() < 1e-12 * f.w[3].norm().max(1.0));
             // The energy is the kinetic energy by hand plus gravity's potential.
-            let (_, _, t) = momenta(&parts, &y);
+            let (_, _, t) = momenta(&parts, &y.as_slice()[..9], &y.as_slice()[9..]);
             let v_grav: f64 = (0..4)
                 .map(|b| {
                     let c = f.o[b] + f.r[b] * V3::from(parts[b].com);
@@ -312,7 +159,7 @@ fn floating_base_conserves_linear_and_angular_momentum() {
     for k in 12..15 {
         y0[k] *= 2.0;
     }
-    let (l0, h0, t0) = momenta(&parts, &y0);
+    let (l0, h0, t0) = momenta(&parts, &y0.as_slice()[..9], &y0.as_slice()[9..]);
     assert!(l0.norm() > 1.0 && h0.norm() > 1.0, "{l0:?} {h0:?}");
     let t1 = 20.0;
     for (name, sol) in [
@@ -323,7 +170,7 @@ fn floating_base_conserves_linear_and_angular_momentum() {
         let sol = sol.unwrap();
         let mut switches = 0;
         for (k, (t, y)) in sol.t.iter().zip(&sol.y).enumerate() {
-            let (l, h, e) = momenta(&parts, y);
+            let (l, h, e) = momenta(&parts, &y.as_slice()[..9], &y.as_slice()[9..]);
             assert!((l - l0).norm() < 1e-10 * l0.norm(), "{name} t = {t}: {l:?}");
             assert!((h - h0).norm() < 1e-10 * h0.norm(), "{name} t = {t}: {h:?}");
             assert!((e - t0).abs() < 1e-10 * t0, "{name} t = {t}: T {e} against {t0}");
