@@ -11,6 +11,7 @@
 //! | [Trees: recursion or mass matrix](#trees-recursion-or-mass-matrix) | `mechanism(recursive)`, `mechanism(mass_matrix)`, planar `body` with `fixed` joint, a spring between a body's mass centre and a ground `point`, outputs `velocity`, `acceleration`, `angular_acceleration` |
 //! | [Spatial bodies](#spatial-bodies) | `gravity` (3 components), `mechanism(spatial)`, `rigid3`, spatial `torque` and `force`, vector `output` (`angular_velocity`), spatial `body` (`spherical`, `prismatic`, `revolute(q, y)`), spatial `close`, `mechanism(augmented)` in space |
 //! | [Ball joints](#ball-joints) | spatial `body` with `ball(s1, s2, s3)`, `mbd::chart` for its initial state |
+//! | [Free joints](#free-joints) | spatial `body` with `free(x, y, z, s1, s2, s3)` (a floating base), outputs `velocity(b)` |
 //!
 //! The crate-level examples cover the rest: `gravity`, `coords`, `particle`, `init`,
 //! `event(falling, terminal)` (the thrown ball); a planar `body` with a body-fixed offset and
@@ -36,6 +37,7 @@
 //! | `body` `prismatic(s, axis)` | `axis` in the parent's frame: the joint moves `at` by `s axis` (not normalised: `s` counts lengths of `axis`) | `s` positive along `axis`; `axis` not zero (a constant one at compile time, one of parameters by `check_parameters` and every evaluation) | |
 //! | `body` `revolute(q)` (planar) | the frame's angle is the parent's `+ q + angle` | counter-clockwise | |
 //! | `body` `revolute(q, x \| y \| z)` (spatial) | about the parent's axis at the joint, `R = R_parent rot_x(q)` .. | right-handed | |
+//! | `body` `free(x, y, z, s1, s2, s3)` (spatial) | the joint origin at `at + (x, y, z)` in the parent's axes; the body turned about it as by `ball(s1, s2, s3)` | right-handed | every coordinate `0`: at `at`, the parent's orientation |
 //! | `body` `angle` (planar) | a constant angle added to the frame's | counter-clockwise | `0` |
 //! | `body` `parent` | | | `ground` |
 //! | `body` `inertia` | about the mass centre, body axes | | none: a point mass |
@@ -445,6 +447,64 @@
 //!     let want = [p.l * alpha.sin() * -turn.sin(), p.l * alpha.sin() * turn.cos(), -p.l * alpha.cos()];
 //!     assert!((o.centre_x - want[0]).abs() < 1e-8 && (o.centre_y - want[1]).abs() < 1e-8);
 //!     assert!((o.centre_z - want[2]).abs() < 1e-8);
+//! }
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
+//! # Free joints
+//!
+//! `joint = free(x, y, z, s1, s2, s3)` gives a body six degrees of freedom relative to its
+//! parent: a floating base (a humanoid, a satellite with appendages) at the root of a
+//! spatial tree, or a body flying relative to a moving one. `(x, y, z)` moves the joint
+//! origin (`at`, default the parent's origin) along the parent's axes; `(s1, s2, s3)` turn
+//! the body about it exactly as a `ball` joint does (modified Rodrigues parameters, the
+//! shadow switch past a half turn, `mbd::chart` for the initial state). The state is
+//! `[x, y, z, s1, s2, s3, ..; their rates, ..]`: `x'` is the origin's velocity in the
+//! parent's axes, not the body's. The rotation's coordinates cannot be driven (its
+//! translation can) and carry no friction. A tree of two bodies or more gets its
+//! accelerations from the articulated-body recursion (one free body alone: add
+//! `mechanism(recursive)`).
+//!
+//! Below, a base with a boom on a hinge is thrown, spinning: whatever the two bodies do
+//! relative to each other, their common mass centre follows the parabola of its initial
+//! position and velocity.
+//!
+//! ```
+//! use mbd::integrate::{Dopri5, Integrator, Options};
+//! use mbd::prelude::*;
+//! use mbd::Vector;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[mechanism(spatial)]
+//! #[gravity(0.0, 0.0, -g)]
+//! #[body(base, joint = free(x, y, z, s1, s2, s3), com = [0.0, 0.0, 0.1], mass = m,
+//!        inertia = diag(0.4, 0.5, 0.3))]
+//! #[body(boom, parent = base, joint = revolute(q, y), at = [0.3, 0.0, 0.0],
+//!        com = [0.25, 0.0, 0.0], mass = mb, inertia = diag(0.001, 0.02, 0.02))]
+//! #[output(cb = position(base), cm = position(boom), vb = velocity(base), vm = velocity(boom))]
+//! pub struct Thrown { pub m: f64, pub mb: f64, pub g: f64 }
+//!
+//! let p = Thrown { m: 4.0, mb: 1.0, g: 9.81 };
+//! let sigma = Vector::<3>::new(0.1, -0.2, 0.05);
+//! let rate = mbd::chart::rates(&sigma, &Vector::<3>::new(1.0, 0.5, 3.0)); // body axes
+//! let y0 = Vector::<14>::from_column_slice(&[
+//!     0.0, 0.0, 1.0, sigma[0], sigma[1], sigma[2], 0.3, // x, y, z, s1, s2, s3, q
+//!     1.0, 0.0, 5.0, rate[0], rate[1], rate[2], -2.0, // their rates
+//! ]);
+//! let centre = |o: &ThrownOutputs| {
+//!     let [b, m] = [[o.cb_x, o.cb_y, o.cb_z], [o.cm_x, o.cm_y, o.cm_z]];
+//!     let [vb, vm] = [[o.vb_x, o.vb_y, o.vb_z], [o.vm_x, o.vm_y, o.vm_z]];
+//!     let mass = p.m + p.mb;
+//!     let c = |a: [f64; 3], b: [f64; 3]| Vector::<3>::from_fn(|i, _| (p.m * a[i] + p.mb * b[i]) / mass);
+//!     (c(b, m), c(vb, vm))
+//! };
+//! let (c0, v0) = centre(&p.outputs(0.0, &y0)?);
+//! let opts = Options { rtol: 1e-11, atol: 1e-11, ..Default::default() };
+//! let sol = Dopri5::new(opts).solve(&p, 0.0, y0, 1.0, &[])?;
+//! for (t, y) in sol.t.iter().zip(&sol.y) {
+//!     let (c, _) = centre(&p.outputs(*t, y)?);
+//!     let want = c0 + v0 * *t - Vector::<3>::new(0.0, 0.0, 0.5 * p.g * t * t);
+//!     assert!((c - want).norm() < 1e-9);
 //! }
 //! # Ok::<(), mbd::Error>(())
 //! ```

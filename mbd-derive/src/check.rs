@@ -641,12 +641,17 @@ fn driven_loads(ast: &Mechanism, errors: &mut Errors) {
                 ),
             );
         }
-        let ball = (ast.tree.iter()).any(|tb| tb.joint.ball_coords().is_some_and(|b| b.contains(&c)));
-        if ball {
+        let ball =
+            (ast.tree.iter()).find(|tb| tb.joint.ball_coords().is_some_and(|b| b.contains(&c)));
+        if let Some(tb) = ball {
+            let what = match tb.joint {
+                crate::parse::Joint::Free(..) => "of a free joint's rotation",
+                _ => "of a ball joint",
+            };
             errors.at(
                 c.span(),
                 format!(
-                    "friction along `{c}`, a coordinate of a ball joint: its three coordinates describe one rotation (they jump to the shadow set once a turn), so `{c}'` is no sliding velocity; put the friction on an angle of `revolute` or `spherical` joints"
+                    "friction along `{c}`, a coordinate {what}: its three coordinates describe one rotation (they jump to the shadow set once a turn), so `{c}'` is no sliding velocity; put the friction on an angle of `revolute` or `spherical` joints"
                 ),
             );
         }

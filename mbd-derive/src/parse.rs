@@ -868,14 +868,23 @@ impl Mechanism {
         }
         // Each joint brings its coordinate: free, unless a `drive` gives its law.
         let mut moved = std::collections::HashSet::new();
-        for c in m.tree.iter().flat_map(|b| b.joint.coords()) {
-            if !moved.insert(c.to_string()) {
-                errors.at(
-                    c.span(),
-                    format!("coordinate `{c}` is already moved by another joint"),
-                );
-            } else if !m.coords.contains(c) && !m.drives.iter().any(|d| d.name == *c) {
-                m.coords.push(c.clone());
+        for b in &m.tree {
+            let coords = b.joint.coords();
+            for (k, c) in coords.iter().copied().enumerate() {
+                if coords[..k].contains(&c) {
+                    let why = "each of the joint's degrees of freedom needs its own coordinate";
+                    errors.at(
+                        c.span(),
+                        format!("coordinate `{c}` is named twice in this joint: {why}"),
+                    );
+                } else if !moved.insert(c.to_string()) {
+                    errors.at(
+                        c.span(),
+                        format!("coordinate `{c}` is already moved by another joint"),
+                    );
+                } else if !m.coords.contains(c) && !m.drives.iter().any(|d| d.name == *c) {
+                    m.coords.push(c.clone());
+                }
             }
         }
     }
@@ -961,6 +970,10 @@ fn joint(e: Expr, errors: &mut Errors) -> Option<Joint> {
                 (Some("free"), Some(x), 6) if (1..6).all(|i| name(i).is_some()) => {
                     let n = |i: usize| name(i).expect("checked above");
                     Some(Joint::Free([x, n(1), n(2)], [n(3), n(4), n(5)]))
+                }
+                (Some("free"), ..) => {
+                    errors.over(&e, "a free joint names its six coordinates: `free(x, y, z, s1, s2, s3)` (the joint origin's travel in the parent's axes, then a ball's rotation)");
+                    None
                 }
                 _ => {
                     errors.over(&e, EXPECTED);

@@ -1,14 +1,18 @@
 //! The right-hand side of the 30-dof humanoid-like spatial tree of `hunt_big_humanoid`
-//! (generated articulated-body recursion, 14 bodies): the least time per call over batches,
-//! which background load does not skew. For scale: RigidBodyDynamics.jl reports 17.7 us for
-//! the forward dynamics of a 30-dof humanoid (Atlas, floating base); that is another model
-//! on another machine, a yardstick, not a same-run ratio.
+//! (generated articulated-body recursion, 14 bodies), and of the same tree on a floating
+//! base (`floating_humanoid`: the torso on a free joint, 33 dof): the least time per call
+//! over batches, which background load does not skew. For scale: RigidBodyDynamics.jl
+//! reports 17.7 us for the forward dynamics of a 30-dof humanoid (Atlas, floating base);
+//! that is another model on another machine, a yardstick, not a same-run ratio.
 //!
 //! `cargo bench -p tests --bench hunt_big`
 
+#[path = "../tests/support/floating_humanoid.rs"]
+mod floating_humanoid;
 #[path = "../tests/support/humanoid.rs"]
 mod humanoid;
 
+use floating_humanoid::FloatingHumanoid;
 use humanoid::Humanoid;
 use mbd::prelude::*;
 use std::hint::black_box;
@@ -44,5 +48,23 @@ fn main() {
     });
     println!(
         "humanoid (30 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
+    );
+    let p = FloatingHumanoid { g: 9.81 };
+    let y = Vector::<66>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
+    let (q, qd) = (
+        y.fixed_rows::<33>(0).into_owned(),
+        y.fixed_rows::<33>(33).into_owned(),
+    );
+    let rhs = least_ns(&|| {
+        let _ = black_box(p.rhs(0.0, black_box(&y)));
+    });
+    let mass = least_ns(&|| {
+        let _ = black_box(p.mass_matrix(0.0, black_box(&q)));
+    });
+    let forces = least_ns(&|| {
+        let _ = black_box(p.forces(0.0, black_box(&q), black_box(&qd)));
+    });
+    println!(
+        "floating humanoid (33 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
     );
 }

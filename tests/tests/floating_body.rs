@@ -208,10 +208,30 @@ fn split(y: &Vector<12>) -> (Vector<6>, Vector<6>) {
 }
 
 const STATES: [([f64; 3], [f64; 3], [f64; 3], [f64; 3]); 4] = [
-    ([0.3, -1.0, 2.0], [0.3, -0.2, 0.5], [0.4, 1.1, -0.7], [0.5, 0.0, -0.3]),
-    ([0.0, 0.0, 0.0], [-0.7, 0.6, 0.1], [-2.0, 0.3, 1.5], [0.0, 2.0, 0.0]),
-    ([5.0, 2.0, -1.0], [0.9, 0.4, -0.1], [1.0, -1.0, 0.5], [-1.0, 0.4, 2.0]),
-    ([0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
+    (
+        [0.3, -1.0, 2.0],
+        [0.3, -0.2, 0.5],
+        [0.4, 1.1, -0.7],
+        [0.5, 0.0, -0.3],
+    ),
+    (
+        [0.0, 0.0, 0.0],
+        [-0.7, 0.6, 0.1],
+        [-2.0, 0.3, 1.5],
+        [0.0, 2.0, 0.0],
+    ),
+    (
+        [5.0, 2.0, -1.0],
+        [0.9, 0.4, -0.1],
+        [1.0, -1.0, 0.5],
+        [-1.0, 0.4, 2.0],
+    ),
+    (
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0],
+    ),
 ];
 
 /// The generated recursion (articulated body, three prismatic steps and a ball) and the
@@ -276,21 +296,33 @@ fn free_body_conserves_momentum_and_energy_over_many_turns() {
     let c0 = motion(&y0).com;
     let t1 = 40.0;
     let runs = [
-        ("DOPRI5", Dopri5::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[])),
-        ("Vern9", Vern9::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[])),
+        (
+            "DOPRI5",
+            Dopri5::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[]),
+        ),
+        (
+            "Vern9",
+            Vern9::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[]),
+        ),
     ];
     for (name, sol) in runs {
         let sol = sol.unwrap();
         let mut switches = 0;
         for (k, (t, y)) in sol.t.iter().zip(&sol.y).enumerate() {
             let (e, l) = invariants(y);
-            assert!((e - t0).abs() < 1e-10 * t0, "{name} t = {t}: T {e} against {t0}");
+            assert!(
+                (e - t0).abs() < 1e-10 * t0,
+                "{name} t = {t}: T {e} against {t0}"
+            );
             assert!(
                 (l - l0).norm() < 1e-10 * l0.norm(),
                 "{name} t = {t}: L {l:?} against {l0:?}"
             );
             let c = motion(y).com;
-            assert!((c - (c0 + vc0 * *t)).norm() < 1e-10 * (1.0 + t), "{name} t = {t}");
+            assert!(
+                (c - (c0 + vc0 * *t)).norm() < 1e-10 * (1.0 + t),
+                "{name} t = {t}"
+            );
             let sigma = y.fixed_rows::<3>(3);
             assert!(sigma.norm() <= 1.0, "{name}: |sigma| = {}", sigma.norm());
             if k > 0 && (sigma - sol.y[k - 1].fixed_rows::<3>(3)).norm() > 1.0 {
@@ -376,8 +408,16 @@ fn free_body_flips_about_its_intermediate_axis_as_in_closed_form() {
         Vector::<3>::new(a1 * cn, a2 * sn, a3 * dn)
     };
     for (name, sol, tol) in [
-        ("Radau5", Radau5::new(tight(1e-12)).solve(&p, 0.0, y0, t1, &[]), 1e-6),
-        ("DOPRI5", Dopri5::new(tight(1e-12)).solve(&p, 0.0, y0, t1, &[]), 3e-8),
+        (
+            "Radau5",
+            Radau5::new(tight(1e-12)).solve(&p, 0.0, y0, t1, &[]),
+            1e-6,
+        ),
+        (
+            "DOPRI5",
+            Dopri5::new(tight(1e-12)).solve(&p, 0.0, y0, t1, &[]),
+            3e-8,
+        ),
     ] {
         let sol = sol.unwrap();
         let mut worst: f64 = 0.0;

@@ -154,6 +154,18 @@ fn the_floating_humanoid_equals_the_hand_written_floating_base_reference() {
                 .solve(&p.forces(0.0, &q, &qd).unwrap())
                 .unwrap();
             assert!((solved - acc).amax() < 1e-10 * scale);
+            // The generated inverse dynamics (Newton-Euler) is `M qdd - f` at any `qdd`,
+            // and zero at the free motion's.
+            let qdd_any = Vector::<N>::from_fn(|i, _| 3.0 * (2.1 * i as f64 + seed).sin());
+            let (m, f) = (
+                p.mass_matrix(0.0, &q).unwrap(),
+                p.forces(0.0, &q, &qd).unwrap(),
+            );
+            let tau = p.inverse_dynamics(0.0, &q, &qd, &qdd_any).unwrap();
+            let want = m * qdd_any - f;
+            assert!((tau - want).amax() < 1e-10 * want.amax());
+            let rest = p.inverse_dynamics(0.0, &q, &qd, &acc).unwrap();
+            assert!(rest.amax() < 1e-10 * f.amax().max(1.0), "{rest:?}");
         }
     }
 }

@@ -16,7 +16,7 @@ use mbd::{Matrix, Vector};
 
 #[path = "support/floating.rs"]
 mod floating;
-use floating::{Part, mrp_b, mrp_b_dot, mrp_rotation, momenta, pass, reference};
+use floating::{Part, momenta, mrp_b, mrp_b_dot, mrp_rotation, pass, reference};
 
 type M3 = Matrix<3, 3>;
 type V3 = Vector<3>;
@@ -86,7 +86,11 @@ fn parts() -> Vec<Part> {
 fn sample(seed: f64) -> Vector<18> {
     Vector::<18>::from_fn(|i, _| {
         let x = (1.3 * i as f64 + seed).sin();
-        if (3..6).contains(&i) { 0.55 * x } else { 1.5 * x }
+        if (3..6).contains(&i) {
+            0.55 * x
+        } else {
+            1.5 * x
+        }
     })
 }
 
@@ -124,8 +128,13 @@ fn floating_base_accelerations_equal_kane_by_hand() {
             let arm = f.r[3] * V3::new(0.0, 0.1, 0.2);
             assert!((V3::new(o.tip_x, o.tip_y, o.tip_z) - (f.o[3] + arm)).norm() < 1e-13);
             let v = f.v[3] + f.w[3].cross(&arm);
-            assert!((V3::new(o.tip_v_x, o.tip_v_y, o.tip_v_z) - v).norm() < 1e-12 * v.norm().max(1.0));
-            assert!((V3::new(o.hand_w_x, o.hand_w_y, o.hand_w_z) - f.w[3]).norm() < 1e-12 * f.w[3].norm().max(1.0));
+            assert!(
+                (V3::new(o.tip_v_x, o.tip_v_y, o.tip_v_z) - v).norm() < 1e-12 * v.norm().max(1.0)
+            );
+            assert!(
+                (V3::new(o.hand_w_x, o.hand_w_y, o.hand_w_z) - f.w[3]).norm()
+                    < 1e-12 * f.w[3].norm().max(1.0)
+            );
             // The energy is the kinetic energy by hand plus gravity's potential.
             let (_, _, t) = momenta(&parts, &y.as_slice()[..9], &y.as_slice()[9..]);
             let v_grav: f64 = (0..4)
@@ -163,9 +172,18 @@ fn floating_base_conserves_linear_and_angular_momentum() {
     assert!(l0.norm() > 1.0 && h0.norm() > 1.0, "{l0:?} {h0:?}");
     let t1 = 20.0;
     for (name, sol) in [
-        ("DOPRI5", Dopri5::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[])),
-        ("Vern9", Vern9::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[])),
-        ("Radau5", Radau5::new(tight(1e-12)).solve(&p, 0.0, y0, t1, &[])),
+        (
+            "DOPRI5",
+            Dopri5::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[]),
+        ),
+        (
+            "Vern9",
+            Vern9::new(tight(1e-13)).solve(&p, 0.0, y0, t1, &[]),
+        ),
+        (
+            "Radau5",
+            Radau5::new(tight(1e-12)).solve(&p, 0.0, y0, t1, &[]),
+        ),
     ] {
         let sol = sol.unwrap();
         let mut switches = 0;
@@ -173,7 +191,10 @@ fn floating_base_conserves_linear_and_angular_momentum() {
             let (l, h, e) = momenta(&parts, &y.as_slice()[..9], &y.as_slice()[9..]);
             assert!((l - l0).norm() < 1e-10 * l0.norm(), "{name} t = {t}: {l:?}");
             assert!((h - h0).norm() < 1e-10 * h0.norm(), "{name} t = {t}: {h:?}");
-            assert!((e - t0).abs() < 1e-10 * t0, "{name} t = {t}: T {e} against {t0}");
+            assert!(
+                (e - t0).abs() < 1e-10 * t0,
+                "{name} t = {t}: T {e} against {t0}"
+            );
             let sigma = y.fixed_rows::<3>(3);
             assert!(sigma.norm() <= 1.0);
             if k > 0 && (sigma - sol.y[k - 1].fixed_rows::<3>(3)).norm() > 1.0 {
@@ -224,7 +245,10 @@ fn the_chart_switch_moves_nothing() {
         assert!((a.w[i] - b.w[i]).norm() < 1e-13);
         assert!((a.v[i] - b.v[i]).norm() < 1e-13);
     }
-    assert!((al_a - al_b).norm() < 1e-12 * al_a.norm(), "{al_a:?} {al_b:?}");
+    assert!(
+        (al_a - al_b).norm() < 1e-12 * al_a.norm(),
+        "{al_a:?} {al_b:?}"
+    );
     for k in [9, 10, 11, 15, 16, 17] {
         assert!((acc_a[k] - acc_b[k]).abs() < 1e-12 * acc_a.amax(), "{k}");
     }
@@ -303,9 +327,16 @@ fn a_free_joint_off_the_root_and_a_driven_free_joint_equal_their_mass_matrix_for
         );
         h.energy(0.0, &q, &qd).unwrap()
     };
-    let sol = Dopri5::new(tight(1e-12)).solve(&h, 0.0, y0, 2.0, &[]).unwrap();
+    let sol = Dopri5::new(tight(1e-12))
+        .solve(&h, 0.0, y0, 2.0, &[])
+        .unwrap();
     for y in &sol.y {
-        assert!((e(y) - e(&y0)).abs() < 1e-10 * e(&y0).abs(), "{} {}", e(y), e(&y0));
+        assert!(
+            (e(y) - e(&y0)).abs() < 1e-10 * e(&y0).abs(),
+            "{} {}",
+            e(y),
+            e(&y0)
+        );
     }
 
     let (c, ck) = (Carried { g: 9.81 }, CarriedKane { g: 9.81 });

@@ -284,7 +284,11 @@ fn joint_turns(
     if let (parse::Joint::Free(..), &[x, y, w, a, b, c]) = (&tb.joint, z) {
         let (sigma, rate) = ([a.0, b.0, c.0], [a.1, b.1, c.1]);
         let travel = [x.0, y.0, w.0];
-        return Some(Turns::Free { travel, sigma, rate });
+        return Some(Turns::Free {
+            travel,
+            sigma,
+            rate,
+        });
     }
     Some(Turns::Elementary(match (&tb.joint, z) {
         (parse::Joint::Revolute { axis: None, .. }, _) => {
@@ -424,7 +428,11 @@ fn push_steps(
                 .enumerate()
                 .map(|(k, (&(axis, angle, _), &coord))| {
                     let shift = if k == 0 { at } else { [zero; 3] };
-                    (spatial::Step::Revolute { coord, axis }, Some((axis, angle)), shift)
+                    (
+                        spatial::Step::Revolute { coord, axis },
+                        Some((axis, angle)),
+                        shift,
+                    )
                 })
                 .collect()
         }

@@ -51,7 +51,9 @@ pub fn mrp_b(s: &V3) -> M3 {
 }
 
 pub fn mrp_b_dot(s: &V3, sd: &V3) -> M3 {
-    -2.0 * s.dot(sd) * M3::identity() + 2.0 * skew(sd) + 2.0 * (sd * s.transpose() + s * sd.transpose())
+    -2.0 * s.dot(sd) * M3::identity()
+        + 2.0 * skew(sd)
+        + 2.0 * (sd * s.transpose() + s * sd.transpose())
 }
 
 /// Each body's world rotation, joint origin, hinge axis (world), angular velocity and
@@ -169,7 +171,6 @@ pub fn momenta(parts: &[Part], q: &[f64], qd: &[f64]) -> (V3, V3, f64) {
     }
     (lin, ang, t)
 }
-
 
 /// A joint of elementary hinges (`axes`: axis and model coordinate index), massless frames
 /// between them, the body on the last: a spherical joint `rot_z rot_y rot_x`, a universal
