@@ -207,7 +207,10 @@ fn split(y: &Vector<12>) -> (Vector<6>, Vector<6>) {
     )
 }
 
-const STATES: [([f64; 3], [f64; 3], [f64; 3], [f64; 3]); 4] = [
+/// Joint origin, parameters, body-axes angular velocity, mass-centre velocity.
+type Start = ([f64; 3], [f64; 3], [f64; 3], [f64; 3]);
+
+const STATES: [Start; 4] = [
     (
         [0.3, -1.0, 2.0],
         [0.3, -0.2, 0.5],
