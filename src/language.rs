@@ -53,7 +53,7 @@
 //! | `init` | | | every coordinate and rate `0`; in the augmented form of a closed loop the rates not given follow from the velocity constraints (the given ones held) |
 //! | spring or damper end naming a body | its mass centre (a `point(.., on = b)` for another point) | | |
 //! | `event` | a zero of the expression | `rising`: from negative to positive | both directions, not terminal |
-//! | `mechanism` | | | planar unless `gravity` has 3 components; articulated-body recursion for a tree of 2 or more bodies; `minimal` where the closure has a closed form |
+//! | `mechanism` | | | planar unless `gravity` has 3 components; articulated-body recursion for a tree of 2 or more bodies or with a `free` joint; `minimal` where the closure has a closed form |
 //! | `input(u, ..)` | struct fields used as inputs in loads or drive laws | as written | the field's value in the right-hand side; `B`, `D` need `mechanism(jacobian)` |
 //! | `mechanism(inverse_dynamics)` | a joint tree's `inverse_dynamics(t, q, qd, qdd)` by Newton-Euler | the generalised forces that must act besides the model's loads | not generated: `M qdd - f` answers |
 //!
@@ -461,9 +461,8 @@
 //! shadow switch past a half turn, `mbd::chart` for the initial state). The state is
 //! `[x, y, z, s1, s2, s3, ..; their rates, ..]`: `x'` is the origin's velocity in the
 //! parent's axes, not the body's. The rotation's coordinates cannot be driven (its
-//! translation can) and carry no friction. A tree of two bodies or more gets its
-//! accelerations from the articulated-body recursion (one free body alone: add
-//! `mechanism(recursive)`).
+//! translation can) and carry no friction. A tree with a free joint gets its accelerations
+//! from the articulated-body recursion, even a single free body.
 //!
 //! Below, a base with a boom on a hinge is thrown, spinning: whatever the two bodies do
 //! relative to each other, their common mass centre follows the parabola of its initial
