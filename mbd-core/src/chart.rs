@@ -1,6 +1,7 @@
 //! Charts of the rotation group that the integrators re-centre on the fly.
 //!
-//! A ball joint (`joint = ball(a, b, c)`) has the modified Rodrigues parameters
+//! A ball joint (`joint = ball(a, b, c)`, and a free joint's rotation,
+//! `joint = free(x, y, z, a, b, c)`) has the modified Rodrigues parameters
 //! `sigma = tan(phi / 4) n` of its rotation (by `phi` about the unit `n`) as coordinates:
 //! regular everywhere but at the full turn `phi = 2π`, where `|sigma|` grows without bound.
 //! The same rotation has the *shadow* parameters `-sigma / |sigma|^2` (the rotation by

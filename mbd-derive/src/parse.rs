@@ -726,6 +726,10 @@ impl Mechanism {
             let joint_expr = item.require("joint", errors, "body");
             let joint_span = joint_expr.as_ref().map_or(item.name.span(), Spanned::span);
             let joint = joint_expr.and_then(|j| joint(j, errors));
+            if let (Some(Joint::Free(..)), Some(flag)) = (&joint, item.flags.first()) {
+                errors.at(flag.span(), "a free joint transmits no force: its origin already moves freely, so `reaction` would have nothing to report");
+                return;
+            }
             let parent = item.take("parent").and_then(|p| parent(p, errors));
             if let Some(joint) = joint {
                 self.tree.push(TreeBody {
