@@ -532,6 +532,16 @@ fn articulate(
             ia.b[*axis][k] = z;
         }
     }
+    let slide = unit_axis(g, step);
+    if let Some(k) = slide {
+        // S = (0, e_k) (a free joint's travel): I^a S = 0 exactly, the linear column k.
+        let z = g.zero();
+        for r in 0..3 {
+            ia.b[r][k] = z;
+            ia.m[r][k] = z;
+            ia.m[k][r] = z;
+        }
+    }
     let ic = si_mul(g, &ia, o.c);
     let uu = sv_scale(g, ud, u);
     let pa = sv_add(g, p_a, ic);
@@ -540,12 +550,26 @@ fn articulate(
         // The step transmits no moment about its axis but its own effort.
         pa.a[*axis] = tau;
     }
+    if let Some(k) = slide {
+        // Nor a force along its axis.
+        pa.l[k] = tau;
+    }
     let art = Articulated::Step {
         u_vec: uv,
         u,
         inv_d,
     };
     (ia, pa, art)
+}
+
+/// The axis `k` of a prismatic step along `e_k` (a free joint's travel), whose subspace is
+/// then `(0, e_k)`: a prismatic step has no rotation, so its axis is the same in both frames.
+fn unit_axis(g: &Graph, step: &Step) -> Option<usize> {
+    let Step::Prismatic { axis, .. } = step else {
+        return None;
+    };
+    let v = axis.map(|a| g.as_const(a));
+    (0..3).find(|&k| (0..3).all(|i| v[i] == Some(if i == k { 1.0 } else { 0.0 })))
 }
 
 /// A free ball joint in its angular velocity (`S = (1, 0)`, `D = a`): `I^a` keeps only
