@@ -689,6 +689,18 @@ fn method(f: Func) -> &'static str {
 }
 
 fn literal(v: f64) -> TokenStream {
+    // A constant folded to a non-finite value (a division by an exact zero: a model
+    // singular at every state) stays one, for the run-time checks to report.
+    if v.is_nan() {
+        return quote!(f64::NAN);
+    }
+    if v.is_infinite() {
+        return if v > 0.0 {
+            quote!(f64::INFINITY)
+        } else {
+            quote!(f64::NEG_INFINITY)
+        };
+    }
     let lit = Literal::f64_suffixed(v.abs());
     if v.is_sign_negative() {
         quote!((-#lit))

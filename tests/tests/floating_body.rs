@@ -475,3 +475,26 @@ fn free_body_under_gravity_follows_the_parabola() {
         assert!((e(y1) - e(&y0)).abs() < tol * e(&y0), "{name} energy");
     }
 }
+
+/// Two point masses welded on a line, flying free: nothing resists a turn about the line,
+/// so the motion is undetermined at every state (the derive folds the articulated inertia's
+/// zero determinant): a typed error from every evaluation, never a NaN handed back.
+#[derive(Debug, Mechanism)]
+#[mechanism(spatial)]
+#[body(dumbbell, joint = free(x, y, z, s1, s2, s3), mass = 1.0)]
+#[body(other_end, parent = dumbbell, joint = fixed, at = [0.5, 0.0, 0.0], mass = 1.0)]
+pub struct Dumbbell {}
+
+#[test]
+fn an_undetermined_rotation_is_a_typed_error() {
+    let p = Dumbbell {};
+    let q = Vector::<6>::new(0.0, 0.0, 0.0, 0.1, 0.2, 0.3);
+    let qd = Vector::<6>::new(1.0, 0.0, 0.0, 0.1, -0.2, 0.3);
+    let a = p.acceleration(0.0, &q, &qd);
+    assert!(matches!(a, Err(Error::NonFinite { .. })), "{a:?}");
+    let mut y = Vector::<12>::zeros();
+    y.fixed_rows_mut::<6>(0).copy_from(&q);
+    y.fixed_rows_mut::<6>(6).copy_from(&qd);
+    let run = Dopri5::default().solve(&p, 0.0, y, 1.0, &[]);
+    assert!(run.is_err(), "{run:?}");
+}

@@ -168,7 +168,9 @@ pub(super) fn spatial(
             .iter()
             .filter_map(|c| coords.iter().find(|k| k.name == **c).map(|k| (k.z, k.zd)))
             .collect();
-        if !ball_coordinates_free(tb, coords, &mut scope.errors) {
+        if !ball_coordinates_free(tb, coords, &mut scope.errors)
+            || !turns_something(ast, tb, &mut scope.errors)
+        {
             continue;
         }
         let Some(mut input) = spatial_inputs(&mut scope.lowerer(None), tb) else {
@@ -514,6 +516,18 @@ fn ball_coordinates_free(
         }
         None => true,
     }
+}
+
+/// A point mass alone on a ball or free joint has no inertia about the line through the
+/// joint origin and its mass centre: its rotation about it is undetermined at every state.
+/// `false` after a spanned error.
+fn turns_something(ast: &Ast, tb: &parse::TreeBody<Term>, errors: &mut Errors) -> bool {
+    let carries = ast.tree.iter().any(|b| b.parent.as_ref() == Some(&tb.name));
+    if tb.joint.ball_coords().is_none() || tb.inertia.is_some() || carries {
+        return true;
+    }
+    errors.at(tb.name.span(), format!("`{}` is a point mass on a three-axis rotation: nothing resists its turning about the line through the joint and its mass centre, so its rotation is undetermined; give it an `inertia`", tb.name));
+    false
 }
 
 /// A tree body's parent (`None`: the ground) among the bodies declared before it, or a
