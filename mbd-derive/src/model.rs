@@ -168,6 +168,8 @@ pub struct Equations {
     pub init_qd: Vec<Expr>,
     /// Which of `init_qd` an `init` gives (the augmented form completes the others).
     pub init_rate_given: Vec<bool>,
+    /// Which of `init_q` an `init` gives (the augmented form assembles the others).
+    pub init_position_given: Vec<bool>,
     /// Minimal coordinates of a closed loop (closure.rs): the `asin`/`acos` arguments the
     /// generated code checks, `None` when the model is not one (no loop, or augmented).
     pub closure_domain: Option<Vec<closure::Domain>>,
@@ -408,7 +410,7 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
         outputs: &outputs,
     };
     let linear = crate::linear::derive(&mut scope.g, ast, &mut scope.errors, linear_parts);
-    let (init_q, init_qd, init_rate_given) =
+    let (init_q, init_qd, [init_position_given, init_rate_given]) =
         initial::initial_conditions(ast, &mut scope, &kin.coords, free_idx);
     let free = free_idx
         .iter()
@@ -450,6 +452,7 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
         init_q,
         init_qd,
         init_rate_given,
+        init_position_given,
         closure_domain: minimal.map(|m| m.domain),
         checks,
     };

@@ -783,17 +783,31 @@ fn frictions(
     })
 }
 
-/// In the augmented form, the rates `init` does not give follow from the velocity
-/// constraints (the least-norm consistent ones, the given rates held), as the closure gives
-/// them in minimal coordinates: `init(der(th) = 2.0)` means the same in both forms. Left as
-/// given where the held rates do not determine them (the solve then refuses the start).
-fn complete_rates(eq: &Equations, sh: &Shape<'_>) -> TokenStream {
+/// In the augmented form, the positions `init` does not give are assembled onto the
+/// position constraints by Newton's method from zero (the given positions held), and the
+/// rates it does not give follow from the velocity constraints (the least-norm consistent
+/// ones, the given rates held), as the closure gives both in minimal coordinates:
+/// `init(th = 0.3, der(th) = 2.0)` means the same in both forms. Left as given where the
+/// held values do not determine them (the solve then refuses the start).
+fn complete_init(eq: &Equations, sh: &Shape<'_>) -> TokenStream {
     let (n, m) = (sh.n, sh.m);
-    if !sh.constrained || eq.init_rate_given.iter().all(|&g| g) {
+    let all = |v: &[bool]| v.iter().all(|&g| g);
+    if !sh.constrained || (all(&eq.init_rate_given) && all(&eq.init_position_given)) {
         return TokenStream::new();
     }
-    let held = &eq.init_rate_given;
+    let (held_q, held) = (&eq.init_position_given, &eq.init_rate_given);
+    let positions = (!all(held_q)).then(|| {
+        quote! {
+            let held_q: [bool; #n] = [#(#held_q),*];
+            let q0 = y.fixed_rows::<#n>(0).into_owned();
+            let newton = ::mbd::__private::analysis::NewtonOptions::default();
+            if let Ok(q) = ::mbd::__private::analysis::assemble::<Self, #n, #m>(self, t, &q0, &held_q, &newton) {
+                y.fixed_rows_mut::<#n>(0).copy_from(&q);
+            }
+        }
+    });
     quote! {
+        #positions
         let held: [bool; #n] = [#(#held),*];
         let q = y.fixed_rows::<#n>(0).into_owned();
         let qd = y.fixed_rows::<#n>(#n).into_owned();
@@ -815,7 +829,7 @@ fn state(
     let init_roots: Vec<Expr> = eq.init_q.iter().chain(&eq.init_qd).copied().collect();
     let init = Block::new(eq, &init_roots);
     let (init_s, init_v) = (init.stmts(), init.vector("y", d, &init_roots));
-    let init_rates = complete_rates(eq, &sh);
+    let init_rates = complete_init(eq, &sh);
     let state_struct = format_ident!("{}State", ident);
     let q_ids: Vec<_> = eq.free.clone();
     let qd_ids: Vec<_> = eq.free.iter().map(|c| format_ident!("{}_dot", c)).collect();
@@ -859,7 +873,8 @@ fn state(
             };
             #check_parameters
             /// The initial state `[q; qd]` given by `#[init(..)]` (zero where not given; in the
-            /// augmented form the rates not given follow from the velocity constraints).
+            /// augmented form the positions not given are assembled onto the constraints from
+            /// zero and the rates not given follow from the velocity constraints).
             pub fn initial_state(&self) -> ::mbd::__private::Vector<#d> {
                 let t = 0.0_f64;
                 #init_s

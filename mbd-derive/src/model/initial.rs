@@ -1,6 +1,7 @@
 //! Initial positions and velocities of the free coordinates (parameters allowed); a
-//! dependent coordinate's follow from the closure. Which rates `init` gives is kept: the
-//! augmented form completes the others from the velocity constraints (codegen/items.rs).
+//! dependent coordinate's follow from the closure. Which positions and rates `init` gives
+//! is kept: the augmented form completes the others from the position and velocity
+//! constraints (codegen/items.rs).
 
 use super::Ast;
 use super::scope::Scope;
@@ -13,12 +14,13 @@ pub(super) fn initial_conditions(
     scope: &mut Scope,
     coords: &[Coord],
     free_idx: &[usize],
-) -> (Vec<Expr>, Vec<Expr>, Vec<bool>) {
+) -> (Vec<Expr>, Vec<Expr>, [Vec<bool>; 2]) {
     let zero = scope.g.zero();
     let n = free_idx.len();
     let mut init_q = vec![zero; n];
     let mut init_qd = vec![zero; n];
     let mut rate_given = vec![false; n];
+    let mut position_given = vec![false; n];
     for i in &ast.inits {
         let dependent = |c: &Coord| matches!(c.kind, CoordKind::Dependent(_));
         if coords.iter().any(|c| c.name == i.coord && dependent(c)) {
@@ -44,9 +46,10 @@ pub(super) fn initial_conditions(
                 init_qd[a] = v;
                 rate_given[a] = true;
             } else {
-                init_q[a] = v
+                init_q[a] = v;
+                position_given[a] = true;
             }
         }
     }
-    (init_q, init_qd, rate_given)
+    (init_q, init_qd, [position_given, rate_given])
 }
