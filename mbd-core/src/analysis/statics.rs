@@ -34,8 +34,11 @@ pub fn static_equilibrium<S: Mechanism<N>, const N: usize>(
 }
 
 /// The equilibrium `(q, lambda)` of a constrained mechanism from `q_guess` (`A = N + M`):
-/// `f(q, 0, t) - Phi_q^T lambda = 0` and `Phi(q, t) = 0`, Newton on `(q, lambda)` from
-/// `lambda = 0`. The multipliers follow the convention of [`Constrained`]
+/// `f(q, 0, t) - Phi_q^T lambda = 0` and `Phi(q, t) = 0`, Newton on `(q, lambda)` from the
+/// least-squares multipliers at the guess (`Phi_q Phi_q^T lambda = Phi_q f`; zero where
+/// `Phi_q` lacks rank there). Not from `lambda = 0`: with loads that do not depend on the
+/// configuration (a press's load and torque) the residual's Jacobian at `lambda = 0` is
+/// `[[0, -Phi_q^T], [Phi_q, 0]]`, singular, since the stiffness `lambda . Phi_qq` is missing. The multipliers follow the convention of [`Constrained`]
 /// (`-Phi_q^T lambda` is the constraint force).
 ///
 /// Converged when every component of the step satisfies `|dz_i| <= tol (1 + |z_i|)`,
@@ -64,6 +67,13 @@ pub fn static_equilibrium_constrained<
     };
     let mut z0 = Vector::<A>::zeros();
     z0.fixed_rows_mut::<N>(0).copy_from(q_guess);
+    let jac = sys.phi_q(t, q_guess);
+    if let Some(lu) = Lu::factor(jac * jac.transpose()) {
+        let lambda = lu.solve(&(jac * sys.forces(t, q_guess, &zero)?));
+        if lambda.iter().all(|v| v.is_finite()) {
+            z0.fixed_rows_mut::<M>(N).copy_from(&lambda);
+        }
+    }
     let z = newton(t, &z0, residual, opts)?;
     Ok((
         z.fixed_rows::<N>(0).into_owned(),
