@@ -245,10 +245,11 @@
 //! continuously). Its own rotation (revolute), its two angles (universal) or its travel
 //! (prismatic) are not coordinates: they follow from the tree's. A planar `close` is a
 //! revolute joint about the plane's normal and takes no `joint` but `revolute` and no
-//! directions. A mechanism that moves in a plane but is written in space (a planar
-//! four-bar on revolute joints about `z`, closed by a revolute `close`) has rows that are
-//! identically zero (the points' `z`, the axes' tilt): the derive refuses them (the
-//! constraint Jacobian would be singular everywhere); write it planar. Redundant rows that are not identically zero (Bricard's
+//! directions. A row that is identically zero constrains nothing and is dropped: the
+//! tree's own joints keep it (a Sarrus linkage's closing hinge, whose axis the legs keep
+//! normal to the plate's; a planar four-bar on revolute joints about `z` written in space
+//! and closed by a revolute `close`, whose points' `z` and axes' tilt never change: write
+//! it planar for speed); a `close` all of whose rows vanish closes no loop and is refused. Redundant rows that are not identically zero (Bricard's
 //! linkage: five equations of rank four) are found at run time and the multipliers are the
 //! minimum-norm ones.
 //!

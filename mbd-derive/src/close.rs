@@ -279,20 +279,23 @@ pub fn rows(
     nonzero(g, errors, cl, rows)
 }
 
-/// The rows, or an error when some are identically zero (they would make the constraint
-/// Jacobian singular everywhere).
+/// The rows that are not identically zero, or an error when none is (the joint closes
+/// nothing). A row that is zero whatever the coordinates constrains nothing: the tree's own
+/// joints keep it (a Sarrus linkage's closing hinge, whose axis the legs keep normal to the
+/// plate's; a planar loop written in space), so it is dropped rather than left to make the
+/// constraint Jacobian singular everywhere.
 fn nonzero(
     g: &Graph,
     errors: &mut Errors,
     cl: &Closure<Term>,
     rows: Vec<Expr>,
 ) -> Option<Vec<Expr>> {
-    let zero = rows.iter().filter(|r| g.is_zero(**r)).count();
-    if zero > 0 {
-        errors.over(&cl.tokens, format!("{zero} of this joint's {} equations are identically zero: the loop never leaves what they constrain (a mechanism moving in a plane, written in space); write it planar, or close it by a joint of fewer equations", rows.len()));
+    let kept: Vec<Expr> = rows.iter().copied().filter(|r| !g.is_zero(*r)).collect();
+    if kept.is_empty() {
+        errors.over(&cl.tokens, format!("all {} of this joint's equations are identically zero: the tree's own joints already keep what it would (a `close` of a body at its own joint closes no loop); remove it", rows.len()));
         return None;
     }
-    Some(rows)
+    Some(kept)
 }
 
 /// The rows of a planar `close` (a revolute joint: the two points coincide); `None` after

@@ -309,7 +309,10 @@ fn released_at_rest_it_settles_at_the_static_equilibrium_in_both_forms() {
             "dopri5",
             Dopri5::new(opts.clone()).solve(&pa, 0.0, y0, t_end, &[]),
         ),
-        ("radau5", Radau5::new(opts.clone()).solve(&pa, 0.0, y0, t_end, &[])),
+        (
+            "radau5",
+            Radau5::new(opts.clone()).solve(&pa, 0.0, y0, t_end, &[]),
+        ),
     ] {
         let sol = run.unwrap_or_else(|e| panic!("{name}: {e}"));
         let y = sol.y.last().unwrap();
@@ -350,7 +353,9 @@ fn the_coupler_point_traces_the_coupler_curve_in_both_forms() {
         ..Options::default()
     };
     let y0 = Vector::<2>::new(1.0, 9.0);
-    let sol = Dopri5::new(opts.clone()).solve(&p, 0.0, y0, 4.0, &[]).unwrap();
+    let sol = Dopri5::new(opts.clone())
+        .solve(&p, 0.0, y0, 4.0, &[])
+        .unwrap();
     assert!(sol.y.last().unwrap()[0] > 1.0 + 2.0 * std::f64::consts::TAU);
     for (&t, y) in sol.t.iter().zip(&sol.y) {
         let o = p.outputs(t, y).unwrap();
@@ -374,6 +379,9 @@ fn the_coupler_point_traces_the_coupler_curve_in_both_forms() {
             o.p_x,
             o.p_y
         );
-        assert!(coupler_curve(o.p_x, o.p_y).abs() < 1e-9, "augmented t = {t}");
+        assert!(
+            coupler_curve(o.p_x, o.p_y).abs() < 1e-9,
+            "augmented t = {t}"
+        );
     }
 }
