@@ -45,8 +45,10 @@ macro_rules! rocker {
         #[potential(k / 2.0 * (ga - ga0) * (ga - ga0))]
         #[generalized_force(crank_damper, along = th, value = -cd * der(th))]
         #[generalized_force(rocker_damper, along = ga, value = -cr * der(ga))]
+        #[torque(motor, on = crank, value = tau)]
+        #[input(tau)]
         #[init(th = 1.0, be = 0.47548940880699897, ga = 1.68958837974869)]
-        #[output(p = position(coupler, [px, py]), rocker_angle = ga)]
+        #[output(p = position(coupler, [px, py]), rocker_angle = ga, crank_angle = th)]
         pub struct $name {
             #[default(1.0)] pub a: f64,
             #[default(2.5)] pub b: f64,
@@ -62,6 +64,7 @@ macro_rules! rocker {
             pub cr: f64,
             pub px: f64,
             pub py: f64,
+            pub tau: f64,
         }
     };
 }
@@ -87,7 +90,7 @@ macro_rules! reference {
             #[allow(unused_mut)]
             let mut p = $ty {
                 a: A, b: B, c: C, d: D, m1: M[0], m2: M[1], m3: M[2], g: G, k: K, ga0: GA0,
-                cd: CD, cr: CR, px: PX, py: PY,
+                cd: CD, cr: CR, px: PX, py: PY, tau: 0.0,
             };
             $(p.$field = $value;)*
             p
@@ -384,4 +387,46 @@ fn the_coupler_point_traces_the_coupler_curve_in_both_forms() {
             "augmented t = {t}"
         );
     }
+}
+
+/// The motor torque's frequency response to the crank angle about the equilibrium is the
+/// hand's `1 / (K - J w^2 + i C w)`, in both forms (`state_space` of the minimal model,
+/// `constrained_state_space` of the augmented one).
+#[test]
+fn the_torque_to_crank_frequency_response_is_the_hand_one_in_both_forms() {
+    use mbd::analysis::{Parametric, constrained_state_space, state_space};
+    let th = equilibrium();
+    let h = 1e-5;
+    let kk = (slope(th + h) - slope(th - h)) / (2.0 * h);
+    let (_, kg) = ratios(th);
+    let (j, cc) = (inertia(th), CD + CR * kg * kg);
+    let out = <Rocker as Parametric<2>>::OUTPUT_NAMES
+        .iter()
+        .position(|n| *n == "crank_angle")
+        .unwrap();
+    let p = reference!(Rocker);
+    let ss = state_space(&p, 0.0, &Vector::<2>::new(th, 0.0)).unwrap();
+    assert_eq!(ss.inputs, ["tau"]);
+    let pa = reference!(RockerAugmented);
+    let (be, ga) = close(th);
+    let (ssa, _) =
+        constrained_state_space::<_, 3, 2, 6>(&pa, 0.0, &Vector::<3>::new(th, be, ga)).unwrap();
+    for w in [0.3, 1.0, 2.0, 6.0] {
+        let want = num_complex_inverse(kk - j * w * w, cc * w);
+        for (name, g) in [
+            ("minimal", ss.frequency_response(w).unwrap()),
+            ("augmented", ssa.frequency_response(w).unwrap()),
+        ] {
+            let got = g[(out, 0)];
+            let err = ((got.re - want.0).powi(2) + (got.im - want.1).powi(2)).sqrt();
+            let size = want.0.hypot(want.1);
+            assert!(err < 1e-7 * size, "{name} w = {w}: {got} vs {want:?}");
+        }
+    }
+}
+
+/// `1 / (re + i im)` as `(re, im)`.
+fn num_complex_inverse(re: f64, im: f64) -> (f64, f64) {
+    let d = re * re + im * im;
+    (re / d, -im / d)
 }
