@@ -331,3 +331,53 @@ fn the_planar_loop_in_space_in_its_default_form_is_the_planar_model() {
         assert!((q[0] + q[1]).abs() < 1e-12, "{q}");
     }
 }
+
+/// The index-3 methods on the Sarrus linkage (its four rows kept): ALI3-P and
+/// generalized-α's constrained form follow DOPRI5 at `1e-11` (the plate's height), and the
+/// legs stay symmetric.
+#[test]
+fn index_three_methods_follow_the_reference() {
+    let p = model();
+    let y0 = state(0.7, 0.0);
+    let t1 = 2.0;
+    let reference = Dopri5::new(Options {
+        rtol: 1e-11,
+        atol: 1e-11,
+        ..Options::default()
+    })
+    .solve(&p, 0.0, y0, t1, &[])
+    .unwrap();
+    let (q0, qd0) = (
+        y0.fixed_rows::<5>(0).into_owned(),
+        y0.fixed_rows::<5>(5).into_owned(),
+    );
+    let (iq1, ip1) = (index("q1"), index("p1"));
+    let runs =
+        [
+            (
+                "ali3",
+                mbd::integrate::Ali3::new(1e-3).solve::<_, 5, 4, 10>(&p, 0.0, q0, qd0, t1, &[]),
+            ),
+            (
+                "alpha",
+                mbd::integrate::GeneralizedAlpha::new(0.9, 1e-3)
+                    .solve_constrained::<_, 5, 4, 9, 10>(&p, 0.0, q0, qd0, t1, &[]),
+            ),
+        ];
+    for (name, run) in runs {
+        let sol = run.unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut worst = 0.0f64;
+        for (&t, y) in sol.t.iter().zip(&sol.y) {
+            let want = reference.at(t).unwrap()[iq1];
+            worst = worst.max((y[iq1] - want).abs());
+            assert!(
+                (y[ip1] - y[iq1]).abs() < 1e-8,
+                "{name} t = {t}: legs {} {}",
+                y[ip1],
+                y[iq1]
+            );
+        }
+        println!("{name}: worst {worst:.2e}");
+        assert!(worst < 2e-4, "{name}: {worst:.2e}");
+    }
+}
