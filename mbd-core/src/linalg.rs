@@ -60,6 +60,21 @@ impl<T: ComplexField<RealField = f64> + Copy, const N: usize> Lu<T, N> {
         if hi > 0.0 { lo / hi } else { 0.0 }
     }
 
+    /// `det A`: the product of `U`'s diagonal, with the row swaps' sign.
+    pub fn determinant(&self) -> T {
+        let mut perm = self.perm;
+        let mut det = T::one();
+        for i in 0..N {
+            det *= self.lu[(i, i)];
+            while perm[i] != i {
+                let j = perm[i];
+                perm.swap(i, j);
+                det = -det;
+            }
+        }
+        det
+    }
+
     /// Solve `A x = b` with the stored factors.
     pub fn solve(&self, b: &SVector<T, N>) -> SVector<T, N> {
         let mut x = SVector::<T, N>::from_fn(|i, _| b[self.perm[i]]);

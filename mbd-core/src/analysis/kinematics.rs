@@ -5,7 +5,8 @@
 //! accelerations from `Phi_q qdd = gamma`.
 
 use super::{NewtonOptions, assemble, max_norm, min_norm_solve};
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
+use crate::linalg::Lu;
 use crate::model::{Constrained, Vector};
 
 /// Positions, velocities and accelerations of a zero-DOF mechanism at one instant.
@@ -56,6 +57,11 @@ pub fn kinematics<S: Constrained<N, N>, const N: usize>(
 /// move), the interval is marched in halved sub-steps (not returned), so a coarse sampling
 /// cannot land Newton on another branch: a crank-rocker sampled 5 times a turn switched
 /// elbows. The model is `Constrained<N, N>`, as for [`kinematics`].
+///
+/// Errors as [`kinematics`], and [`Error::SingularConstraintJacobian`] when the sweep passes
+/// a singular position between two of its states (`det Phi_q` changes sign): there the
+/// drivers do not determine the motion (a fold or change point, where another branch
+/// meets), so continuing on either would choose a branch silently.
 pub fn kinematic_sweep<S: Constrained<N, N>, const N: usize>(
     sys: &S,
     times: &[f64],
@@ -71,6 +77,36 @@ pub fn kinematic_sweep<S: Constrained<N, N>, const N: usize>(
         out.push(next);
     }
     Ok(out)
+}
+
+/// `SingularConstraintJacobian` when `det Phi_q` changes sign from `a` to `b`: the path
+/// between them crossed a configuration where `Phi_q` is singular.
+fn passes_no_singular_position<S: Constrained<N, N>, const N: usize>(
+    sys: &S,
+    a: &KinematicState<N>,
+    b: &KinematicState<N>,
+) -> Result<()> {
+    let det =
+        |s: &KinematicState<N>| Lu::factor(sys.phi_q(s.t, &s.q)).map_or(0.0, |lu| lu.determinant());
+    let (da, db) = (det(a), det(b));
+    if da * db < 0.0 {
+        let at = |s: &KinematicState<N>| {
+            let q: Vec<String> = (S::COORDINATES.iter().zip(s.q.iter()))
+                .map(|(name, v)| format!("{name} = {}", Num(*v)))
+                .collect();
+            format!("t = {} (q = [{}])", Num(s.t), q.join(", "))
+        };
+        return Err(Error::SingularConstraintJacobian {
+            t: b.t,
+            detail: format!(
+                "passed between {} and {}: det Phi_q changed sign, so another branch of the \
+                 motion meets this one in between and the drivers do not choose",
+                at(a),
+                at(b)
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Most halvings of a sub-step in [`continued`]; past them the step is taken as Newton
@@ -103,7 +139,9 @@ fn continued<S: Constrained<N, N>, const N: usize>(
             halvings += 1;
             continue;
         }
-        s = next?;
+        let next = next?;
+        passes_no_singular_position(sys, &s, &next)?;
+        s = next;
         if last {
             return Ok(s);
         }
