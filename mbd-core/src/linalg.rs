@@ -178,6 +178,17 @@ mod tests {
         assert_relative_eq!(lu.solve(&(a * x)), x, epsilon = 1e-14);
     }
 
+    /// With row exchanges the sign follows the permutation: `det` by cofactors is
+    /// `0 (3 - 1) - 2 (3 - 2) + 1 (1 - 2) = -3`; one more swap of rows flips it.
+    #[test]
+    fn determinant_keeps_the_sign_of_the_row_exchanges() {
+        let a = Matrix3::new(0.0, 2.0, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0, 3.0);
+        assert_relative_eq!(Lu::factor(a).unwrap().determinant(), -3.0, epsilon = 1e-14);
+        let mut b = a;
+        b.swap_rows(0, 2);
+        assert_relative_eq!(Lu::factor(b).unwrap().determinant(), 3.0, epsilon = 1e-14);
+    }
+
     #[test]
     fn ldlt_solves_a_positive_definite_system_and_refuses_an_indefinite_one() {
         let a = Matrix3::new(4.0, 1.0, 0.5, 1.0, 3.0, -0.2, 0.5, -0.2, 2.0);
