@@ -378,11 +378,15 @@ body.drawings h2 { font-size: 0.8em; height: 2.4em; overflow: hidden; margin: 0;
 /// moved frame by frame (about five seconds a run), with the stills drawn faintly.
 const SCRIPT: &str = r##"<script>
 (function () {
-  // `report.html?case=28` shows case 28 alone (for links and screenshots).
-  const query = new URLSearchParams(location.search), only = query.get("case");
-  if (only) document.querySelectorAll("body > *:not(script)").forEach(e => {
-    e.hidden = e.id !== "case" + only;
-  });
+  // `report.html?case=28` shows case 28 alone (for links and screenshots); `case=5` is
+  // case 05, and a case the report does not have leaves the whole page shown.
+  const query = new URLSearchParams(location.search);
+  const only = (query.get("case") || "").trim().padStart(2, "0");
+  if (document.getElementById("case" + only)) {
+    document.querySelectorAll("body > *:not(script)").forEach(e => {
+      e.hidden = e.id !== "case" + only;
+    });
+  }
   // `report.html?drawings`: every case's drawing alone, in a grid (to check them at a glance).
   if (query.has("drawings")) document.body.classList.add("drawings");
   // `report.html?at=0.5`: every drawing stopped at that fraction of its run (screenshots).
