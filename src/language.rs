@@ -4,6 +4,7 @@
 //!
 //! | example | attributes it exercises |
 //! |---|---|
+//! | [From other tools' words](#from-other-tools-words) | `body` with `inertia`, `generalized_force` as a torsional spring and damper, `torque` on a tree body, `init` in degrees, outputs in degrees and `norm(velocity(..))` |
 //! | [Loads on a free body](#loads-on-a-free-body) | `#[default]`, `mechanism(planar, jacobian)`, `coords`, `rigid`, `point` (ground), `spring` (default and given `length`), `damper`, `force` (at a body-fixed point), `torque`, `generalized_force`, `potential`, scalar `output` with `der`, `angle`, `angular_velocity`, `position(b, [..])[i]`, named constants |
 //! | [Constraints and multipliers](#constraints-and-multipliers) | `mechanism(augmented)`, `constraint`, `particle`, `init`, `event(rising)` |
 //! | [Drives and reactions](#drives-and-reactions) | `drive`, `body` (`revolute`, `prismatic`, `reaction`), `reaction(u)` of a driven and of relaxed coordinates, `mechanism(mass_matrix)` |
@@ -85,6 +86,54 @@
 //! `core::f64::consts::PI`, `f64::consts::PI`, `consts::PI`). `^` is refused (it is not a
 //! power in Rust) with a hint to `powi`.
 //!
+//! # From other tools' words
+//!
+//! What a newcomer reaches for, and how it is written here (an unknown key or name such as
+//! `rest_length`, `stiffness`, `m =`, `dth` or `th_dot` is refused with the spelling below):
+//!
+//! | you want | write |
+//! |---|---|
+//! | a coordinate's rate `q'`, `qdot`, `dq` | `der(q)` (in the state vector: `q_dot`) |
+//! | gravity `g` downwards | a vector: `#[gravity(0.0, -g)]` (`y` up), `#[gravity(0.0, 0.0, -g)]` in space |
+//! | a spring's stiffness and rest length | `k = ..`, `length = ..` |
+//! | a torsional spring or damper at a joint | a `generalized_force` on its angle, `value = -kt * (q - q0) - ct * der(q)` (or `#[potential(0.5 * kt * q * q)]`); `spring` and `damper` act between two points |
+//! | a motor torque on a crank | `#[torque(motor, on = crank, value = tau)]` on a rigid body (`rigid`, or a `body` with `inertia`), or a `generalized_force` along the crank's angle |
+//! | a force input for control (`B`, `D` matrices) | `#[input(u)]` with `#[mechanism(jacobian)]`, then `mbd::analysis::linear::state_space` |
+//! | degrees | radians everywhere: `#[init(th = 30.0 * PI / 180.0)]`; an output in degrees `th * 180.0 / PI` |
+//! | a speed, a point of a body | `norm(velocity(b))`, `position(b, [dx, dy])` |
+//! | the kinetic plus potential energy | `model.energy(t, &q, &qd)` at run time |
+//! | a run | `Dopri5::new(Options { rtol, atol, ..Options::default() }).solve(&model, t0, model.initial_state(), t1, &events)`; then `sol.at(t)` (dense output), `sol.last()` |
+//!
+//! A pendulum with a torsional spring `kt` and damper `ct` at its pivot and a motor torque
+//! `tau` on its arm (a `body` with `inertia`), released at 30 degrees:
+//! `(m l^2 + j) th'' = -m g l sin th - kt th - ct th' + tau`.
+//!
+//! ```
+//! use mbd::prelude::*;
+//!
+//! #[derive(Debug, Mechanism)]
+//! #[gravity(0.0, -g)]
+//! #[body(arm, joint = revolute(th), com = [0.0, -l], mass = m, inertia = j)]
+//! #[generalized_force(pivot, along = th, value = -kt * th - ct * der(th))]
+//! #[torque(motor, on = arm, value = tau)]
+//! #[init(th = 30.0 * PI / 180.0)]
+//! #[output(degrees = th * 180.0 / PI, speed = norm(velocity(arm)))]
+//! pub struct Sprung { pub m: f64, pub l: f64, pub j: f64, pub g: f64, pub kt: f64, pub ct: f64, pub tau: f64 }
+//!
+//! let p = Sprung { m: 1.0, l: 0.5, j: 0.01, g: 9.81, kt: 2.0, ct: 0.3, tau: 0.4 };
+//! let y = p.initial_state();
+//! assert!((y[0] - std::f64::consts::FRAC_PI_6).abs() < 1e-15 && y[1] == 0.0);
+//! let (th, thd) = (0.5_f64, 1.5);
+//! let acc = p.acceleration(0.0, &Vector::<1>::new(th), &Vector::<1>::new(thd))?[0];
+//! let want = (-p.m * p.g * p.l * th.sin() - p.kt * th - p.ct * thd + p.tau)
+//!     / (p.m * p.l * p.l + p.j);
+//! assert!((acc - want).abs() < 1e-13);
+//! let out = p.outputs(0.0, &Vector::<2>::new(th, thd))?;
+//! assert!((out.degrees - th.to_degrees()).abs() < 1e-12);
+//! assert!((out.speed - p.l * thd).abs() < 1e-14);
+//! # Ok::<(), mbd::Error>(())
+//! ```
+//!
 //! # Loads on a free body
 //!
 //! A rigid block on coordinates `x` (along the ground `x` axis) and `th` (its angle), with
@@ -151,7 +200,6 @@
 //!
 //! ```
 //! use mbd::prelude::*;
-//! use mbd::integrate::{Dopri5, Integrator};
 //!
 //! #[derive(Debug, Mechanism)]
 //! #[mechanism(planar, augmented)]
@@ -194,7 +242,6 @@
 //!
 //! ```
 //! use mbd::prelude::*;
-//! use mbd::integrate::{Dopri5, Integrator};
 //!
 //! #[derive(Debug, Mechanism)]
 //! #[mechanism(planar, mass_matrix)]
@@ -417,9 +464,7 @@
 //! circle.
 //!
 //! ```
-//! use mbd::integrate::{Dopri5, Integrator, Options};
 //! use mbd::prelude::*;
-//! use mbd::{Matrix, Vector};
 //!
 //! #[derive(Debug, Mechanism)]
 //! #[mechanism(spatial)]

@@ -3,8 +3,7 @@
 //! specialised straight-line Rust, derived symbolically at compile time.
 //!
 //! ```
-//! use mbd::prelude::*;
-//! use mbd::integrate::{Dopri5, Integrator};
+//! use mbd::prelude::*; // the derive, the model traits, the integrators, `Options`, ..
 //!
 //! /// A ball thrown straight up at `v0`; the event is its passing 15 m on the way down.
 //! #[derive(Debug, Mechanism)]
@@ -341,8 +340,6 @@
 //!
 //! ```
 //! use mbd::prelude::*;
-//! use mbd::Slip;
-//! use mbd::integrate::{Dopri5, Integrator};
 //!
 //! /// A crate launched down a 15 degree incline; `n` normal to it, relaxed, so that
 //! /// `reaction(n)` is the normal force.
@@ -393,8 +390,6 @@
 //!
 //! ```
 //! use mbd::prelude::*;
-//!
-//! use mbd::integrate::{Dopri5, Integrator};
 //!
 //! /// A triple pendulum of uniform bars, released with its first joint at 0.5 rad.
 //! #[derive(Debug, Mechanism)]
@@ -448,14 +443,20 @@ pub use mbd_core::*;
 pub use mbd_derive::Mechanism;
 pub use nalgebra;
 
-/// What a mechanism file needs in scope.
+/// What a mechanism file needs in scope: the derive, the model traits (their methods:
+/// `acceleration`, `outputs`, `rhs`, `phi`, ..), the vector types, the integrators with
+/// their `solve` ([`Integrator`]) and [`Options`], the run's [`Solution`], friction's
+/// [`Slip`] and the [`Error`]. Analyses are called by path (`mbd::analysis::..`).
 pub mod prelude {
     pub use crate::Mechanism;
     pub use mbd_core::ensemble::{self, Member};
     pub use mbd_core::geometry::Drawable;
+    pub use mbd_core::integrate::{
+        Auto, Dop853, Dopri5, GeneralizedAlpha, Integrator, Radau5, Rk4,
+    };
     pub use mbd_core::{
-        Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Solution,
-        Vector,
+        Constrained, Error, Matrix, Mechanism as MechanismModel, OdeSystem, Options, Slip,
+        Solution, Vector,
     };
 }
 

@@ -120,7 +120,7 @@ impl fmt::Display for Error {
                 detail,
             } => write!(
                 f,
-                "assembly did not converge at t = {}: residual {residual:.3e} after {iterations} Newton iterations{}",
+                "assembly did not converge at t = {}: residual {residual:.3e} after {iterations} Newton iterations{} (start from a guess closer to an assembled configuration, or check that the constraints can hold there)",
                 Num(*t),
                 Detail(detail)
             ),
@@ -136,11 +136,15 @@ impl fmt::Display for Error {
                 Detail(detail)
             ),
             Error::StepSizeUnderflow { t, h } => {
-                write!(f, "step size underflow at t = {} (h = {h:.3e})", Num(*t))
+                write!(
+                    f,
+                    "step size underflow at t = {} (h = {h:.3e}): the solution cannot be followed past t (a jump, a singularity or a blow-up of the model there); check the model near t",
+                    Num(*t)
+                )
             }
             Error::TooManySteps { t, steps } => write!(
                 f,
-                "stopped at t = {} after the limit of {steps} steps (`Options::max_steps`)",
+                "stopped at t = {} after the limit of {steps} steps: raise `Options::max_steps`, or loosen `rtol`/`atol`",
                 Num(*t)
             ),
             Error::Stiff { t } => write!(
@@ -150,13 +154,13 @@ impl fmt::Display for Error {
             ),
             Error::NewtonFailed { t, h } => write!(
                 f,
-                "Newton iteration failed at t = {} even with h = {h:.3e}",
+                "Newton iteration failed at t = {} even with h = {h:.3e}: the model is not smooth or not defined near this state (check it there)",
                 Num(*t)
             ),
             Error::NonFinite { t } => {
                 write!(
                     f,
-                    "a state or derivative became NaN or infinite at t = {}",
+                    "a state or derivative became NaN or infinite at t = {} (check the model's expressions at this state: a division by zero, `sqrt`, `ln`, `asin`, `acos` outside their domain, or a solution that blows up)",
                     Num(*t)
                 )
             }
@@ -166,7 +170,7 @@ impl fmt::Display for Error {
                 residual,
             } => write!(
                 f,
-                "static equilibrium not found at t = {}: residual {residual:.3e} after {iterations} Newton iterations",
+                "static equilibrium not found at t = {}: residual {residual:.3e} after {iterations} Newton iterations (start from a guess closer to the equilibrium; a neutral one has no isolated solution)",
                 Num(*t)
             ),
             Error::SingularPosition { t, detail } => {
@@ -225,9 +229,10 @@ mod tests {
             t: 1.0 / 3.0,
             h: 1e-300,
         };
-        assert_eq!(
-            e.to_string(),
-            "step size underflow at t = 0.333333 (h = 1.000e-300)"
+        assert!(
+            e.to_string()
+                .starts_with("step size underflow at t = 0.333333 (h = 1.000e-300): "),
+            "{e}"
         );
         let e = Error::TooManySteps { t: 2.5, steps: 100 };
         assert!(!e.to_string().contains("stiff"), "{e}");

@@ -18,6 +18,7 @@ mod expand;
 mod friction;
 mod geometry;
 mod guard;
+mod hints;
 mod linear;
 mod lower;
 mod lowered;

@@ -137,6 +137,7 @@ pub fn unknown_name<'a>(
     struct_name: &str,
     declared: impl IntoIterator<Item = &'a str>,
 ) -> String {
+    let declared: Vec<&str> = declared.into_iter().collect();
     let upper = name.to_uppercase();
     let hint = if named_constant(&upper).is_some() {
         format!(": did you mean the constant `{upper}`?")
@@ -144,6 +145,8 @@ pub fn unknown_name<'a>(
         format!(": a coordinate's rate is written `der({base})`")
     } else if name == "time" {
         ": time is `t`".to_string()
+    } else if let Some(rate) = crate::hints::rate(name, &declared) {
+        format!(": if it is meant as a rate, write `{rate}`")
     } else if let Some(near) = closest(name, declared) {
         format!(": did you mean `{near}`?")
     } else {
@@ -293,14 +296,13 @@ impl Lowerer<'_> {
                 let why = if len == 3 {
                     ": the mechanism is spatial (`gravity` of 3 components, or `#[mechanism(spatial)]`)"
                 } else {
-                    ""
+                    ": the mechanism is planar (by `#[mechanism(planar)]`, or by default: spatial needs `#[mechanism(spatial)]` or `gravity` of 3 components)"
                 };
+                let n = v.len();
+                let s = if n == 1 { "" } else { "s" };
                 self.errors.at(
                     e.span(),
-                    format!(
-                        "expected a {dims} vector, found {} components{why}",
-                        v.len()
-                    ),
+                    format!("expected a {dims} vector, found {n} component{s}{why}"),
                 );
                 None
             }

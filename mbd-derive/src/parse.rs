@@ -333,6 +333,8 @@ struct Item {
     name: Ident,
     keys: Vec<(Ident, Expr)>,
     flags: Vec<Ident>,
+    /// Keys an unknown key's hint already stands for: not reported missing again.
+    hinted: Vec<String>,
 }
 
 impl Item {
@@ -373,6 +375,7 @@ impl Item {
             name,
             keys: Vec::new(),
             flags: Vec::new(),
+            hinted: Vec::new(),
         };
         for arg in it {
             match arg {
@@ -382,14 +385,18 @@ impl Item {
                     }
                     item.keys.push((k, v));
                 }
-                Arg::Keyed(k, _) => errors.at(
-                    k.span(),
-                    format!(
-                        "unknown key `{k}` in `{}`, expected one of `{}`",
-                        attr_name(attr),
-                        allowed.join("`, `")
-                    ),
-                ),
+                Arg::Keyed(k, _) => {
+                    let name = attr_name(attr);
+                    let (hint, meant) = crate::hints::unknown_key(&name, &k.to_string(), allowed);
+                    item.hinted.extend(meant);
+                    let keys = allowed.join("`, `");
+                    let message = if hint.is_empty() {
+                        format!("unknown key `{k}` in `{name}`, expected one of `{keys}`")
+                    } else {
+                        format!("unknown key `{k}` in `{name}`{hint} (its keys: `{keys}`)")
+                    };
+                    errors.at(k.span(), message)
+                }
                 Arg::Flag(f) if flags.contains(&f.to_string().as_str()) => item.flags.push(f),
                 Arg::Flag(f) => errors.at(
                     f.span(),
@@ -409,7 +416,7 @@ impl Item {
     }
     fn require(&mut self, key: &str, errors: &mut Errors, what: &str) -> Option<Expr> {
         let v = self.take(key);
-        if v.is_none() {
+        if v.is_none() && !self.hinted.iter().any(|h| h == key) {
             errors.at(
                 self.name.span(),
                 format!("{what} `{}` has no `{key}`", self.name),
@@ -669,6 +676,19 @@ impl Mechanism {
         match list {
             Ok(list) => {
                 let items: Vec<Expr> = list.into_iter().collect();
+                if !matches!(items.len(), 2 | 3) {
+                    let n = items.len();
+                    errors.at(
+                        args_span,
+                        format!(
+                            "`gravity` has {n} component{}: it is the acceleration of free \
+                             fall as a vector, `#[gravity(0.0, -g)]` in a plane (`y` up), \
+                             `#[gravity(0.0, 0.0, -g)]` in space (`z` up)",
+                            if n == 1 { "" } else { "s" }
+                        ),
+                    );
+                    return;
+                }
                 if !dim_given {
                     self.dim = if items.len() == 3 {
                         Dim::Spatial

@@ -147,6 +147,8 @@ pub fn off_curve(run: &CaseRun, i: usize) -> Option<String> {
 /// What the columns of the validation tables mean, one item each, for readers new to the
 /// report (the text table and `report.md`; the HTML page says the same in its introduction).
 pub const LEGEND: &[&str] = &[
+    "quantity, unit: the manual's name of the compared value (its symbols: case NN's section \
+     of report.html) and its unit, in which theory, RecurDyn, mbd and reference are all given.",
     "theory, RecurDyn: the validation manual's values as printed there. The manual solves 30 \
      textbook problems (Meriam & Kraige, Engineering Mechanics: Dynamics, 7th ed.; each case \
      names its problem) by hand and with the commercial code RecurDyn; its tables are \
@@ -154,11 +156,50 @@ pub const LEGEND: &[&str] = &[
     "reference: the exact value every error is measured against: the manual's theory to full \
      precision or, where the theory is marked *, a corrected value the theory does not round \
      to (report.html and the case's source, mechanisms/src/caseNN_*.rs, say why).",
-    "RD err %, err % (RecurDyn's and mbd's): |value - reference| / |reference| x 100; where \
+    "mbd: mbd's value (10 significant figures). RD err %, mbd err % (RecurDyn's and mbd's): |value - reference| / |reference| x 100; where \
      the reference is 0, |value| x 100 in the row's unit.",
     "method: how mbd obtained the value. time [us]: wall-clock time of the whole case run, \
      shared by its rows.",
 ];
+
+/// The report's bottom line, one sentence each: how many rows and cases were compared, the
+/// largest mbd and RecurDyn errors with their rows, and every case that failed to run with
+/// its error (its rows are missing from the table).
+pub fn summary(rows: &[ReportRow], failed: &[(String, String)]) -> Vec<String> {
+    let mut cases: Vec<&str> = rows.iter().map(|r| r.case.as_str()).collect();
+    cases.dedup();
+    let n = |k: usize, one: &str, many: &str| format!("{k} {}", if k == 1 { one } else { many });
+    let mut out = vec![format!(
+        "{} of {} compared.",
+        n(rows.len(), "quantity", "quantities"),
+        n(cases.len(), "case", "cases")
+    )];
+    let worst = |err: &dyn Fn(&ReportRow) -> Option<f64>| {
+        rows.iter()
+            .filter_map(|r| err(r).map(|e| (e, r)))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+    };
+    if let Some((e, r)) = worst(&|r| Some(r.error_pct)) {
+        out.push(format!(
+            "Largest mbd error: {} % (case {} {}).",
+            pct(e),
+            r.case,
+            r.quantity
+        ));
+    }
+    if let Some((e, r)) = worst(&|r| r.recurdyn_error_pct) {
+        out.push(format!(
+            "Largest RecurDyn error: {} % (case {} {}).",
+            pct(e),
+            r.case,
+            r.quantity
+        ));
+    }
+    for (case, error) in failed {
+        out.push(format!("Case {case} FAILED and is not in the table: {error}"));
+    }
+    out
+}
 
 /// Whether the row's reference is a corrected value (the manual's theory does not round to
 /// it).
@@ -311,8 +352,9 @@ fn section(run: &CaseRun) -> String {
     s
 }
 
-/// The whole page.
-pub fn html(runs: &[CaseRun]) -> String {
+/// The whole page; `failed` are the cases that did not run, with their errors (named under
+/// the summary: they have no section).
+pub fn html(runs: &[CaseRun], failed: &[(String, String)]) -> String {
     let mut s = String::from(HEAD);
     s.push_str("<h1>mbd validation report</h1>\n<p>Each case of the validation manual (30 textbook problems from Meriam &amp; Kraige, \
         <i>Engineering Mechanics: Dynamics</i>, 7th ed., each solved by hand and with the commercial code RecurDyn) \
@@ -335,6 +377,14 @@ pub fn html(runs: &[CaseRun]) -> String {
         );
     }
     s.push_str("</nav>\n<p class=\"small\">Under each case number: its largest mbd error, in percent.</p>\n");
+    let rows: Vec<ReportRow> = runs.iter().flat_map(|r| r.rows.iter().cloned()).collect();
+    let (failures, lines): (Vec<String>, Vec<String>) = summary(&rows, failed)
+        .into_iter()
+        .partition(|l| l.contains("FAILED"));
+    let _ = writeln!(s, "<p class=\"ok\">{}</p>", esc(&lines.join(" ")));
+    for line in failures {
+        let _ = writeln!(s, "<p class=\"wrong\">{}</p>", esc(&line));
+    }
     for r in runs {
         s.push_str(&section(r));
     }

@@ -3,6 +3,7 @@
 //! values, the plot's marks) and from the case's documentation (the manual's errors).
 
 use mechanisms::cases;
+use mechanisms::report::{ReportRow, summary};
 use mechanisms::validation::{Case, OFF_CURVE, error_pct};
 use std::process::Command;
 
@@ -203,4 +204,41 @@ fn case23_is_drawn_over_both_phases() {
     let anim = (case("23").draw)(t, &[t]).expect("drawn");
     let g = anim.stills[0].shapes[0].points[0];
     assert!(g[1] > 0.0 && g[0].abs() < 1e-6 * g[1], "{g:?}");
+}
+
+/// A report row of `case` with mbd's and RecurDyn's errors in percent.
+fn row(case: &str, quantity: &str, mbd: f64, recurdyn: Option<f64>) -> ReportRow {
+    ReportRow {
+        case: case.into(),
+        quantity: quantity.into(),
+        unit: "m".into(),
+        theory: Some(1.0),
+        recurdyn: recurdyn.map(|e| 1.0 + e / 100.0),
+        value: 1.0 + mbd / 100.0,
+        error_pct: mbd,
+        recurdyn_error_pct: recurdyn,
+        reference: 1.0,
+        method: "test".into(),
+        runtime_s: 0.0,
+    }
+}
+
+#[test]
+fn the_summary_names_the_worst_rows_and_every_failed_case() {
+    let rows = [
+        row("01", "h", 2e-12, Some(0.5)),
+        row("01", "v", 3e-9, None),
+        row("02", "a", 1e-14, Some(2.6)),
+    ];
+    let failed = [("05".to_string(), "step size underflow at t = 1".to_string())];
+    let lines = summary(&rows, &failed);
+    assert_eq!(
+        lines,
+        [
+            "3 quantities of 2 cases compared.",
+            "Largest mbd error: 3.0e-9 % (case 01 v).",
+            "Largest RecurDyn error: 2.6 % (case 02 a).",
+            "Case 05 FAILED and is not in the table: step size underflow at t = 1",
+        ]
+    );
 }

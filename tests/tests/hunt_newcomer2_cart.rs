@@ -11,7 +11,6 @@
 //! `wd = w sqrt(1 - z^2)`: `x - l0 = u / k (1 - e^(-z w t) (cos(wd t) + z w / wd sin(wd t)))`.
 
 use mbd::analysis::linear::state_space;
-use mbd::integrate::{Dopri5, Integrator};
 use mbd::prelude::*;
 
 /// A cart between a wall spring and damper, pushed by `u`.

@@ -9,8 +9,6 @@
 //! breaks away down the slope with `s'' = g (sin a - mu_k cos a) = a_dn` and
 //! `s = s1 + a_dn (t - t1)^2 / 2`; if `tan a <= mu_s` it stays at `s1` for good.
 
-use mbd::Slip;
-use mbd::integrate::{Dopri5, Integrator};
 use mbd::prelude::*;
 
 /// A block on an incline of angle `a`, thrown up the slope at `v0 < 0`.

@@ -10,7 +10,6 @@
 //! `wd = w sqrt(1 - z^2)`. The energy `E = m l^2 th'^2 / 2 - m g l cos th` falls at the rate
 //! of the damper's power `-c th'^2`.
 
-use mbd::integrate::{Dopri5, Integrator};
 use mbd::prelude::*;
 
 /// A damped pendulum; `height` and `speed` are the bob's, `damper_power` the damper's.

@@ -12,7 +12,6 @@
 //! only load, so from rest `th'' = tau / M(th)` and, at any later time,
 //! `M(th) th'^2 / 2 = tau (th - th0)` (work-energy).
 
-use mbd::integrate::{Dopri5, Integrator};
 use mbd::prelude::*;
 
 /// A crank (uniform bar), a rod and a piston; the motor torque `tau` turns the crank.

@@ -14,7 +14,6 @@
 //! `W = (C w3 - sqrt(C^2 w3^2 - 4 A cos th m g l)) / (2 A cos th)`), every Euler angle rate
 //! constant and the mass centre at height `l cos th`.
 
-use mbd::integrate::{Dopri5, Integrator};
 use mbd::prelude::*;
 
 /// A symmetric top on a spherical joint at the ground's origin.

@@ -215,7 +215,13 @@ fn lower_load(load: &Load<Term>, scope: &mut Scope, kin: &mut Kin<'_>) -> Option
                 _ => {
                     scope.errors.at(
                         body.span(),
-                        format!("`{body}` is a particle: a torque needs a rigid body"),
+                        format!(
+                            "`{body}` is a point mass (a `particle`, or a `body` without \
+                             `inertia`): a torque needs a rigid body; give it an `inertia` \
+                             (a free body: `rigid`), or, on a joint-tree body, apply the \
+                             torque along its joint's angle `q`: \
+                             `#[generalized_force(name, along = q, value = ..)]`"
+                        ),
                     );
                     None
                 }

@@ -114,6 +114,14 @@ fn main() {
         }
         println!("{} rows, {failed} above the goal {GOAL:e}", rows.len());
         println!(
+            "f_n, f_d: natural and damped frequency of each eigenvalue pair of the linearised \
+             state matrix A; zeta: damping ratio (- where f_n = 0); ref f_n: the closed form; \
+             error: the largest of the relative errors of f_n and f_d against the closed forms \
+             (absolute where the reference is 0) and the absolute error of zeta; stable: \
+             UNSTABLE where the mode grows (an eigenvalue with a positive real part); the goal is error <= {GOAL:e} (exit code 1 \
+             otherwise)."
+        );
+        println!(
             "A [us]: the exact A (one generated evaluation: accelerations, the residuals' \
              derivatives, one factorisation, 2N solves); FD [us]: forward differences \
              (D + 1 right-hand sides); least time over 31 interleaved batches.\n"

@@ -4,7 +4,7 @@
 
 use clap::Parser;
 use mechanisms::cases;
-use mechanisms::report::{CaseRun, LEGEND, ReportRow, corrected, sig};
+use mechanisms::report::{CaseRun, LEGEND, ReportRow, corrected, sig, summary};
 use mechanisms::validation::{Case, ManualRow, Outcome, error_pct, manual_rows};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -12,7 +12,14 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 #[derive(Parser, Debug)]
-#[command(about = "Reproduce the validation manual's comparison tables with mbd")]
+#[command(
+    about = "Reproduce the validation manual's comparison tables with mbd",
+    after_help = "Prints one row per compared quantity (the manual's theory and RecurDyn \
+                  values, mbd's value, each error in percent against the exact reference, \
+                  how mbd got it, the case's run time), then a summary (the largest errors, \
+                  every case that failed and why) and a legend of the columns. Exit status: \
+                  1 if a case fails, 2 for a usage error."
+)]
 struct Args {
     /// Print one JSON array of rows instead of the table.
     #[arg(long)]
@@ -46,7 +53,7 @@ fn main() -> ExitCode {
     }
     let mut rows = Vec::new();
     let mut outcomes = Vec::new();
-    let mut failed = false;
+    let mut failed = Vec::new();
     for (i, case) in selected.iter().enumerate() {
         eprintln!(
             "[{}/{}] case {}: {}",
@@ -73,7 +80,7 @@ fn main() -> ExitCode {
             }
             Err(e) => {
                 eprintln!("case {} failed: {e}", case.id);
-                failed = true;
+                failed.push((case.id.to_string(), e.to_string()));
             }
         }
     }
@@ -86,15 +93,15 @@ fn main() -> ExitCode {
             }
         }
     } else {
-        print!("{}", table(&rows));
+        print!("{}", table(&rows, &failed));
     }
     if let Some(dir) = &args.out
-        && let Err(e) = write_report(dir, &rows, &outcomes)
+        && let Err(e) = write_report(dir, &rows, &outcomes, &failed)
     {
         eprintln!("cannot write the report to {}: {e}", dir.display());
         return ExitCode::FAILURE;
     }
-    if failed {
+    if !failed.is_empty() {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
@@ -178,7 +185,7 @@ fn theory(r: &ReportRow) -> String {
     format!("{}{mark}", fmt_opt(r.theory))
 }
 
-fn table(rows: &[ReportRow]) -> String {
+fn table(rows: &[ReportRow], failed: &[(String, String)]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -190,7 +197,7 @@ fn table(rows: &[ReportRow]) -> String {
         "RecurDyn",
         "RD err %",
         "mbd",
-        "err %",
+        "mbd err %",
         "reference",
         "time [us]"
     );
@@ -212,6 +219,8 @@ fn table(rows: &[ReportRow]) -> String {
             r.method
         );
     }
+    s.push('\n');
+    s.push_str(&wrap(&summary(rows, failed).join(" "), 100));
     s.push('\n');
     for item in LEGEND {
         s.push_str(&wrap(item, 100));
@@ -242,9 +251,15 @@ fn cell(text: &str) -> String {
     text.replace('|', "\\|")
 }
 
-fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io::Result<()> {
+fn write_report(
+    dir: &PathBuf,
+    rows: &[ReportRow],
+    runs: &[CaseRun],
+    failed: &[(String, String)],
+) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let mut md = String::from("# mbd validation report\n\n");
+    let _ = writeln!(md, "{}\n", summary(rows, failed).join(" "));
     md.push_str("`report.html` beside this file has the drawings, animations and plots, and per case where the manual is wrong.\n\n");
     for item in LEGEND {
         let _ = writeln!(md, "- {}", item.replace('*', "\\*"));
@@ -299,5 +314,5 @@ fn write_report(dir: &PathBuf, rows: &[ReportRow], runs: &[CaseRun]) -> std::io:
         }
     }
     std::fs::write(dir.join("report.md"), md)?;
-    std::fs::write(dir.join("report.html"), mechanisms::report::html(runs))
+    std::fs::write(dir.join("report.html"), mechanisms::report::html(runs, failed))
 }
