@@ -87,8 +87,16 @@ mod tests {
         assert_eq!(unknown_key("spring", "on", &spring).1, ["from", "to"]);
         assert_eq!(unknown_key("particle", "m", &["mass", "at"]).1, ["mass"]);
         // `angle` is not a key of a particle: no hint towards it.
-        assert!(unknown_key("particle", "theta", &["mass", "at"]).1.is_empty());
-        assert!(unknown_key("particle", "color", &["mass", "at"]).0.is_empty());
+        assert!(
+            unknown_key("particle", "theta", &["mass", "at"])
+                .1
+                .is_empty()
+        );
+        assert!(
+            unknown_key("particle", "color", &["mass", "at"])
+                .0
+                .is_empty()
+        );
     }
 
     #[test]

@@ -196,7 +196,9 @@ pub fn summary(rows: &[ReportRow], failed: &[(String, String)]) -> Vec<String> {
         ));
     }
     for (case, error) in failed {
-        out.push(format!("Case {case} FAILED and is not in the table: {error}"));
+        out.push(format!(
+            "Case {case} FAILED and is not in the table: {error}"
+        ));
     }
     out
 }

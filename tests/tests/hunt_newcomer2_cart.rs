@@ -61,7 +61,10 @@ fn state_space_is_the_textbook_one() {
         let den = (P.k - P.m * w * w, P.c * w);
         let mag2 = den.0 * den.0 + den.1 * den.1;
         let (re, im) = (den.0 / mag2, -den.1 / mag2);
-        assert!((g.re - re).abs() < 1e-14 && (g.im - im).abs() < 1e-14, "w = {w}");
+        assert!(
+            (g.re - re).abs() < 1e-14 && (g.im - im).abs() < 1e-14,
+            "w = {w}"
+        );
     }
 }
 

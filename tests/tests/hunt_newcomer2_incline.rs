@@ -74,7 +74,10 @@ fn on_a_steep_slope_it_stops_and_slides_back() {
         } else {
             (s1 + a_dn * (t - t1).powi(2) / 2.0, a_dn * (t - t1))
         };
-        assert!((y[0] - s).abs() < 1e-10 && (y[1] - sd).abs() < 1e-10, "t = {t}");
+        assert!(
+            (y[0] - s).abs() < 1e-10 && (y[1] - sd).abs() < 1e-10,
+            "t = {t}"
+        );
     }
 }
 

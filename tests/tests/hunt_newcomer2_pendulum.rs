@@ -114,5 +114,8 @@ fn large_swings_lose_exactly_the_energy_the_damper_dissipates() {
         / 3.0;
     let lost = energy(sol.last().1) - energy(&y0);
     assert!(lost < -0.5, "the damper took {lost} J");
-    assert!((lost - work).abs() < 1e-8, "lost {lost} J, damper work {work} J");
+    assert!(
+        (lost - work).abs() < 1e-8,
+        "lost {lost} J, damper work {work} J"
+    );
 }

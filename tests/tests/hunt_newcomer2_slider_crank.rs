@@ -72,7 +72,10 @@ fn from_rest_the_crank_accelerates_at_torque_over_reduced_inertia() {
             .acceleration(0.0, &Vector::<1>::new(th), &Vector::<1>::zeros())
             .unwrap()[0];
         let want = P.tau / by_hand(&P, th).0;
-        assert!((got - want).abs() < 1e-12 * want, "th = {th}: {got} vs {want}");
+        assert!(
+            (got - want).abs() < 1e-12 * want,
+            "th = {th}: {got} vs {want}"
+        );
     }
 }
 
@@ -98,5 +101,8 @@ fn the_motor_work_becomes_kinetic_energy_and_the_piston_speed_follows() {
         assert!((v - kx * thd).abs() < 1e-12 * (1.0 + v.abs()), "t = {t}");
         turned = th - y0[0];
     }
-    assert!(turned > 2.0 * std::f64::consts::PI, "only {turned} rad in 1 s");
+    assert!(
+        turned > 2.0 * std::f64::consts::PI,
+        "only {turned} rad in 1 s"
+    );
 }

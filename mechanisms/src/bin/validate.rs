@@ -314,5 +314,8 @@ fn write_report(
         }
     }
     std::fs::write(dir.join("report.md"), md)?;
-    std::fs::write(dir.join("report.html"), mechanisms::report::html(runs, failed))
+    std::fs::write(
+        dir.join("report.html"),
+        mechanisms::report::html(runs, failed),
+    )
 }
