@@ -377,6 +377,14 @@ fn newton<const N: usize, const M: usize, const F: usize, const A: usize>(
             lambda += gl * nu[*k].abs();
         }
         let n = at(&qdd, &lambda).ok_or_else(|| no_normals(t))?;
+        // The size of the terms a normal is made of: where they cancel (a normal through
+        // zero) its rounding is theirs, not `eps |nu|`.
+        let terms = unit
+            .iter()
+            .map(|&(k, ..)| {
+                n.d_qdd[k].abs().dot(&qdd.abs()) + n.d_lambda[k].abs().dot(&lambda.abs())
+            })
+            .fold(0.0f64, f64::max);
         let (mut jac, mut r) = (Matrix::<F, F>::identity(), Vector::<F>::zeros());
         for &(k, ..) in &unit {
             r[k] = nu[k] - n.value[k];
@@ -389,7 +397,7 @@ fn newton<const N: usize, const M: usize, const F: usize, const A: usize>(
             .map(|lu| lu.solve(&r))
             .filter(|d| d.iter().all(|v| v.is_finite()))
             .ok_or_else(|| not_converged(t))?;
-        let (mut size, mut scale) = (0.0f64, 0.0f64);
+        let (mut size, mut scale) = (0.0f64, terms);
         for &(k, ..) in &unit {
             nu[k] -= d[k];
             (size, scale) = (size.max(d[k].abs()), scale.max(nu[k].abs()));
@@ -629,6 +637,31 @@ where
             })
         }
     }
+}
+
+/// Kink function `k` ([`crate::model::Hybrid::kink`]): a sliding contact's normal force,
+/// whose sign change is a kink in its friction `mu_k |N|` (the driver locates it and
+/// restarts there); `1.0` for a stuck contact, whose holding load does not depend on `|N|`.
+pub fn kink<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    modes: &[Slip; F],
+    k: usize,
+) -> f64
+where
+    S: Frictional<N, M, F, A>,
+{
+    if modes[k] == Slip::Stick {
+        return 1.0;
+    }
+    let (q, qd) = split::<N, D>(y);
+    if !S::IMPLICIT {
+        return sys.contacts(t, &q, &qd).normal[k];
+    }
+    at_state(sys, t, (&q, &qd), |mut c, n| {
+        resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n).map_or(f64::NAN, |_| c.normal[k])
+    })
 }
 
 /// Where switching function `k` is the sliding velocity (`modes[k]` slides):
