@@ -697,7 +697,7 @@ where
 
 /// The modes after switching function `k` of `modes` crossed zero
 /// ([`crate::model::Hybrid::switch`]): a sliding contact that stopped gets exactly zero
-/// velocity and its mode from the loads; a stuck one that lost its hold slides in the
+/// velocity and its mode from the loads; a stuck one that lost its hold (under a load) slides in the
 /// direction of its load. The other contacts at rest are chosen again with them.
 pub fn switch<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
     sys: &S,
@@ -716,11 +716,14 @@ where
         let held = at_state(sys, t, (&q, &qd), |mut c, n| {
             resolve::<N, M, F, A>(t, &mut c, along, modes, n)
         })?;
-        forced = Some(if held.load[k] > 0.0 {
-            Slip::Forward
-        } else {
-            Slip::Backward
-        });
+        // No load (the bound touched zero with the normal force): nothing to slide
+        // towards; the modes at the state decide (forcing a direction there would start a
+        // slide whose kinetic friction drives the body from rest).
+        forced = match held.load[k] {
+            h if h > 0.0 => Some(Slip::Forward),
+            h if h < 0.0 => Some(Slip::Backward),
+            _ => None,
+        };
     } else {
         y[N + along[k]] = 0.0;
         stop_tied::<S, N, M, F, A, D>(sys, t, y, modes, k);

@@ -204,3 +204,30 @@ fn a_normal_through_zero_in_position_is_located_and_the_energy_balances() {
         assert_eq!(y[1], 0.0, "{name}");
     }
 }
+
+/// With no push, nothing loads the block: it stays at rest, exactly, while its normal
+/// force (and so its friction bound) passes through zero at `t = 2.5`. With fixed steps of
+/// 0.5 a step ends exactly there, where the bound `mu_s |N| - |h|` touches zero: before,
+/// that touch forced a slide "in the direction of the load" (backward, for a load of zero),
+/// whose kinetic friction then drove the block forward from rest (RK4: 24 m/s and 44 m by
+/// `t = 8`).
+#[test]
+fn an_unloaded_block_stays_at_rest_while_its_normal_passes_through_zero() {
+    let p = Unloading {
+        m: 1.0,
+        p: 0.0,
+        n0: 10.0,
+        c: 4.0,
+        mu_k: 0.4,
+        mu_s: 0.5,
+    };
+    for (name, run, _) in every_method(&p, Vector::<2>::zeros(), 8.0, 0.5, [0.0; 8]) {
+        assert!(
+            run.solution.y.iter().all(|y| *y == Vector::<2>::zeros()),
+            "{name}: moved, {:?}, switches {:?}",
+            run.solution.last(),
+            run.switches
+        );
+        assert_eq!(run.mode, [Slip::Stick], "{name}");
+    }
+}
