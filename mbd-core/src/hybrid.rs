@@ -379,7 +379,7 @@ fn drive<S: Hybrid<D>, const D: usize>(
         let kink = k.checked_sub(S::SWITCHES);
         let g = |t: f64, y: &Vector<D>| match kink {
             Some(j) => sides[j] * sys.kink(t, y, &current, j),
-            None => sys.switching(t, y, &current, k),
+            None => watched(sys.switching(t, y, &current, k)),
         };
         // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
         // segment down to adjacent floating-point times.
@@ -447,6 +447,17 @@ fn drive<S: Hybrid<D>, const D: usize>(
     })
 }
 
+/// A switching function's value as the driver watches it: a crossing is a strictly
+/// negative value, so an exact zero counts as still positive. A function that only touches
+/// zero (a bound `mu_s |N| - |h|` met for an instant, which static friction still holds)
+/// is no switch, and one that starts at zero (a mode entered on its boundary: a slide from
+/// rest at `v = 0`, a stick exactly at its bound) is still seen when it goes negative;
+/// before, a start at zero never counted, so a slide whose velocity then turned the wrong
+/// way went on under kinetic friction that drove the body.
+fn watched(g: f64) -> f64 {
+    if g == 0.0 { f64::MIN_POSITIVE } else { g }
+}
+
 /// The user's `events` followed by the switching functions of `mode` as terminal events
 /// (falling crossings), so that index `events.len() + k` is switching function `k`, then
 /// its kink functions times their `sides` (falling crossings).
@@ -468,7 +479,7 @@ fn with_switches<'e, S: Hybrid<D>, const D: usize>(
     all.extend((0..S::SWITCHES).map(|k| {
         Event::new(
             format!("switch {k}"),
-            move |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k),
+            move |t: f64, y: &Vector<D>| watched(sys.switching(t, y, mode, k)),
             Direction::Falling,
         )
         .terminal()
@@ -631,7 +642,8 @@ fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>)
 }
 
 /// The first time in `[a, b]` where `g` is no longer positive, given `g(a) > 0 >= g(b)`, to
-/// adjacent doubles (regula falsi, Illinois, bisection where the secant leaves the bracket).
+/// adjacent doubles (regula falsi, Illinois, bisection where the secant leaves the bracket
+/// or three steps did not halve it).
 fn bracketed<const D: usize>(
     g: &impl Fn(f64, &Vector<D>) -> f64,
     seg: &Segment<D>,
@@ -641,8 +653,18 @@ fn bracketed<const D: usize>(
     let at = |t: f64| g(t, &seg.eval(t));
     let mut kept_a = 0u8;
     let mut kept_b = 0u8;
-    for _ in 0..200 {
+    // The bracket's width three steps ago: a bisection whenever three steps did not halve
+    // it (an end whose value is far smaller than the function's scale, an exact zero
+    // watched as the least positive double, moves the secant point by next to nothing).
+    let mut width = b - a;
+    for i in 0..200 {
         let mut c = (a * gb - b * ga) / (gb - ga);
+        if i % 3 == 2 {
+            if b - a > 0.5 * width {
+                c = 0.5 * (a + b);
+            }
+            width = b - a;
+        }
         if !(c > a && c < b) {
             c = 0.5 * (a + b);
         }
@@ -688,7 +710,7 @@ fn first_inside<S: Hybrid<D>, const D: usize>(
                 .is_none_or(|(i, sign)| !positive_on(seg, i, sign))
         })
         .filter_map(|k| {
-            let g = |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k);
+            let g = |t: f64, y: &Vector<D>| watched(sys.switching(t, y, mode, k));
             hidden(&g, seg).map(|(a, b)| (k, bracketed(&g, seg, a, b)))
         })
         .min_by(|x, y| x.1.total_cmp(&y.1))
