@@ -856,21 +856,52 @@ pub fn forces<S, const N: usize, const M: usize, const F: usize, const A: usize>
 where
     S: Frictional<N, M, F, A>,
 {
-    let along = &S::ALONG;
-    let fixed = moving(along, qd);
-    // The normals the chosen modes resolved (implicit ones need the solution).
-    let (modes, c, s) = at_state(sys, t, (q, qd), |c, n| {
-        choose_in::<N, M, F, A>(t, c, along, &fixed, n)
-    })?;
-    let mut f = c.forces;
+    let (mut f, (_, friction)) = with_contact_forces(sys, t, q, qd)?;
     for k in 0..F {
-        f[along[k]] -= match modes[k] {
-            Slip::Forward => c.mu_k[k] * c.normal[k].abs(),
-            Slip::Backward => -c.mu_k[k] * c.normal[k].abs(),
-            Slip::Stick => s.load[k],
-        };
+        f[S::ALONG[k]] += friction[k];
     }
     Ok(f)
+}
+
+/// Each contact's friction force at a state, along its coordinate (a generalised force: a
+/// torque on an angle), with the modes at that state: `-mu_k |N| sign(qd_s)` sliding, and
+/// at rest the force the chosen mode puts there (stuck, the holding force, `-h`). Its
+/// product with `qd_s` is the friction's power, so its integral over a run is the energy
+/// friction took. The same modes and solve as [`forces`].
+pub fn contact_forces<S, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Result<([Slip; F], [f64; F])>
+where
+    S: Frictional<N, M, F, A>,
+{
+    with_contact_forces(sys, t, q, qd).map(|(_, r)| r)
+}
+
+/// The forces without friction, and the modes and friction forces ([`contact_forces`]).
+#[allow(clippy::type_complexity, reason = "one tuple, named by its callers")]
+fn with_contact_forces<S, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Result<(Vector<N>, ([Slip; F], [f64; F]))>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let fixed = moving(&S::ALONG, qd);
+    // The normals the chosen modes resolved (implicit ones need the solution).
+    let (modes, c, s) = at_state(sys, t, (q, qd), |c, n| {
+        choose_in::<N, M, F, A>(t, c, &S::ALONG, &fixed, n)
+    })?;
+    let friction = std::array::from_fn(|k| match modes[k] {
+        Slip::Forward => -c.mu_k[k] * c.normal[k].abs(),
+        Slip::Backward => c.mu_k[k] * c.normal[k].abs(),
+        Slip::Stick => -s.load[k],
+    });
+    Ok((c.forces, (modes, friction)))
 }
 
 #[cfg(test)]
