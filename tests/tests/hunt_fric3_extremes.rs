@@ -57,9 +57,18 @@ fn a_cylinder_thrown_with_backspin_rolls_back_from_the_closed_form_instant() {
     let y0 = Vector::<4>::new(0.0, 0.0, u0, w0);
     let t1 = 5.0;
     let runs = [
-        ("DOPRI5", hybrid::solve(&Dopri5::new(tight()), &p, 0.0, y0, t1, &[])),
-        ("DOP853", hybrid::solve(&Dop853::new(tight()), &p, 0.0, y0, t1, &[])),
-        ("Radau5", hybrid::solve(&Radau5::new(tight()), &p, 0.0, y0, t1, &[])),
+        (
+            "DOPRI5",
+            hybrid::solve(&Dopri5::new(tight()), &p, 0.0, y0, t1, &[]),
+        ),
+        (
+            "DOP853",
+            hybrid::solve(&Dop853::new(tight()), &p, 0.0, y0, t1, &[]),
+        ),
+        (
+            "Radau5",
+            hybrid::solve(&Radau5::new(tight()), &p, 0.0, y0, t1, &[]),
+        ),
         ("RK4", hybrid::solve(&Rk4::new(0.01), &p, 0.0, y0, t1, &[])),
     ];
     for (name, run) in runs {
@@ -72,7 +81,11 @@ fn a_cylinder_thrown_with_backspin_rolls_back_from_the_closed_form_instant() {
         let x = y[0] + p.r * y[1];
         let want = x_star + v_f * (t1 - t_star);
         assert!((x - want).abs() < 1e-12, "{name}: x off by {:e}", x - want);
-        assert!((p.r * y[3] - v_f).abs() < 1e-12, "{name}: r th' = {}", p.r * y[3]);
+        assert!(
+            (p.r * y[3] - v_f).abs() < 1e-12,
+            "{name}: r th' = {}",
+            p.r * y[3]
+        );
         assert_eq!(y[2], 0.0, "{name}");
         assert!((y[0] - s_star).abs() < 1e-12, "{name}: s = {}", y[0]);
         // Rolling: the slip is frozen to the bit from the stop on.
@@ -126,7 +139,11 @@ fn a_zero_coefficient_is_the_frictionless_model() {
     let smooth = Dopri5::new(tight())
         .solve(&Smooth { m, k }, 0.0, y0, t1, &[])
         .unwrap();
-    assert!(run.switches.iter().all(|s| s.to != [Slip::Stick]), "{:?}", run.switches);
+    assert!(
+        run.switches.iter().all(|s| s.to != [Slip::Stick]),
+        "{:?}",
+        run.switches
+    );
     assert_eq!(run.switches.len(), (w * t1 / PI) as usize);
     for (j, s) in run.switches.iter().enumerate() {
         let t = (j + 1) as f64 * PI / w;
@@ -153,14 +170,27 @@ fn a_zero_normal_force_holds_nothing() {
             mu_k: 0.4,
             mu_s: 0.6,
         };
-        let run =
-            hybrid::solve(&Dopri5::new(tight()), &p, 0.0, Vector::<2>::new(x0, 0.0), 3.0, &[])
-                .unwrap();
+        let run = hybrid::solve(
+            &Dopri5::new(tight()),
+            &p,
+            0.0,
+            Vector::<2>::new(x0, 0.0),
+            3.0,
+            &[],
+        )
+        .unwrap();
         let want = x0 * (w * 3.0).cos();
         let y = run.solution.last().1;
         assert!((y[0] - want).abs() < 1e-10, "n = {n}: {:e}", y[0] - want);
-        let rest = hybrid::solve(&Dopri5::new(tight()), &p, 0.0, Vector::<2>::zeros(), 3.0, &[])
-            .unwrap();
+        let rest = hybrid::solve(
+            &Dopri5::new(tight()),
+            &p,
+            0.0,
+            Vector::<2>::zeros(),
+            3.0,
+            &[],
+        )
+        .unwrap();
         assert_eq!(rest.solution.last().1, &Vector::<2>::zeros());
         assert_eq!(rest.mode, [Slip::Stick]);
     }
@@ -181,19 +211,36 @@ fn huge_and_tiny_coefficients_keep_their_closed_forms() {
         mu_s: 1e12,
     };
     for (name, run) in [
-        ("DOPRI5", hybrid::solve(&Dopri5::new(tight()), &huge, 0.0, launched, 1.0, &[])),
-        ("Radau5", hybrid::solve(&Radau5::new(tight()), &huge, 0.0, launched, 1.0, &[])),
-        ("RK4", hybrid::solve(&Rk4::new(1e-3), &huge, 0.0, launched, 1.0, &[])),
+        (
+            "DOPRI5",
+            hybrid::solve(&Dopri5::new(tight()), &huge, 0.0, launched, 1.0, &[]),
+        ),
+        (
+            "Radau5",
+            hybrid::solve(&Radau5::new(tight()), &huge, 0.0, launched, 1.0, &[]),
+        ),
+        (
+            "RK4",
+            hybrid::solve(&Rk4::new(1e-3), &huge, 0.0, launched, 1.0, &[]),
+        ),
     ] {
         let run = run.unwrap_or_else(|e| panic!("{name}: {e}"));
         let t_stop = v0 / (1e12 * g);
         let x_stop = v0 * v0 / (2.0 * 1e12 * g);
         assert_eq!(run.switches.len(), 1, "{name}: {:?}", run.switches);
-        assert!((run.switches[0].t - t_stop).abs() < 1e-9 * t_stop, "{name}: {}", run.switches[0].t);
+        assert!(
+            (run.switches[0].t - t_stop).abs() < 1e-9 * t_stop,
+            "{name}: {}",
+            run.switches[0].t
+        );
         let y = run.solution.last().1;
         // Relative 1e-8 of a distance of 5e-14, far below `atol`: Radau IIA's Newton
         // iteration stops at a fraction of the tolerance (measured 1.9e-9 relative).
-        assert!((y[0] - x_stop).abs() < 1e-8 * x_stop, "{name}: {:e} vs {x_stop:e}", y[0]);
+        assert!(
+            (y[0] - x_stop).abs() < 1e-8 * x_stop,
+            "{name}: {:e} vs {x_stop:e}",
+            y[0]
+        );
         assert_eq!(y[1], 0.0, "{name}");
     }
     let tiny = Rough {
@@ -205,6 +252,11 @@ fn huge_and_tiny_coefficients_keep_their_closed_forms() {
     assert!(run.switches.is_empty());
     let y = run.solution.last().1;
     let (v, x) = (v0 - 1e-12 * g * 10.0, v0 * 10.0 - 1e-12 * g * 50.0);
-    assert!((y[1] - v).abs() < 1e-15 && (y[0] - x).abs() < 1e-13, "{:e} {:e}", y[1] - v, y[0] - x);
+    assert!(
+        (y[1] - v).abs() < 1e-15 && (y[0] - x).abs() < 1e-13,
+        "{:e} {:e}",
+        y[1] - v,
+        y[0] - x
+    );
     assert!(y[1] < v0, "the tiny friction is not lost to rounding");
 }
