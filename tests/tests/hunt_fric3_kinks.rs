@@ -231,3 +231,49 @@ fn an_unloaded_block_stays_at_rest_while_its_normal_passes_through_zero() {
         assert_eq!(run.mode, [Slip::Stick], "{name}");
     }
 }
+
+/// With `Settings::polish` (switches placed from step ends, for Radau IIA's degree-3 dense
+/// output) the kink is polished like a switch: the block of the first test rests at
+/// `7 / 15 + 5.4` to rounding with every adaptive method.
+#[test]
+fn polished_kinks_rest_exactly_too() {
+    let p = Unloading {
+        m: 1.0,
+        p: 2.0,
+        n0: 10.0,
+        c: 4.0,
+        mu_k: 0.4,
+        mu_s: 0.5,
+    };
+    let settings = hybrid::Settings {
+        polish: true,
+        ..hybrid::Settings::default()
+    };
+    let y0 = Vector::<2>::zeros();
+    let runs = [
+        (
+            "DOPRI5",
+            hybrid::solve_with(&Dopri5::new(tight()), &p, 0.0, y0, 8.0, &[], &settings),
+        ),
+        (
+            "Vern9",
+            hybrid::solve_with(&Vern9::new(tight()), &p, 0.0, y0, 8.0, &[], &settings),
+        ),
+        (
+            "Radau5",
+            hybrid::solve_with(&Radau5::new(tight()), &p, 0.0, y0, 8.0, &[], &settings),
+        ),
+    ];
+    for (name, run) in runs {
+        let run = run.unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(run.switches.len(), 2, "{name}: {:?}", run.switches);
+        let (_, y) = run.solution.last();
+        let x_stop = 7.0 / 15.0 + 5.4;
+        assert!(
+            (y[0] - x_stop).abs() < 1e-12,
+            "{name}: rests off by {:e}",
+            y[0] - x_stop
+        );
+        assert_eq!(y[1], 0.0, "{name}");
+    }
+}
