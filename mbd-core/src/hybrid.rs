@@ -579,7 +579,8 @@ fn retake<const D: usize>(
     let (ta, ya, ts) = (seg.t0, seg.coeffs[0], seg.t1());
     // A step within rounding of its start is below any method's smallest step (and its
     // polynomial is as good as a step there).
-    if !(ts - ta > 64.0 * f64::EPSILON * ts.abs().max(ta.abs())) {
+    let span = ts - ta;
+    if span.is_nan() || span <= 64.0 * f64::EPSILON * ts.abs().max(ta.abs()) {
         return Ok(());
     }
     let run = method.run(view, (ta, ya, ts), &[], Some(ts - ta), None)?;
