@@ -313,7 +313,10 @@
 //! spaced by the function's own slope and curvature: a body stuck under a load that varies
 //! in time has a constant state, so its steps grow, and a breakaway that comes and goes
 //! within one step is still found, without `Options::h_max` (a pulse shorter than the
-//! sample spacing its approach allows is the limit). One `friction` per coordinate. Each
+//! sample spacing its approach allows is the limit). A sliding contact's normal force
+//! passing through zero (a kink in `mu_k |n|`) is located the same way and the method
+//! restarted there, in the same mode. `mbd::friction::contact_forces` gives each contact's
+//! friction force and mode at a state. One `friction` per coordinate. Each
 //! contact is one-dimensional: two contacts on a body's `x` and `y` (a puck sliding on a
 //! table) act separately, a box rather than a disc (a diagonal slide meets `sqrt(2) mu |n|`);
 //! isotropic planar friction is not available. Friction on a moving surface (a belt) is

@@ -377,6 +377,14 @@ fn newton<const N: usize, const M: usize, const F: usize, const A: usize>(
             lambda += gl * nu[*k].abs();
         }
         let n = at(&qdd, &lambda).ok_or_else(|| no_normals(t))?;
+        // The size of the terms a normal is made of: where they cancel (a normal through
+        // zero) its rounding is theirs, not `eps |nu|`.
+        let terms = unit
+            .iter()
+            .map(|&(k, ..)| {
+                n.d_qdd[k].abs().dot(&qdd.abs()) + n.d_lambda[k].abs().dot(&lambda.abs())
+            })
+            .fold(0.0f64, f64::max);
         let (mut jac, mut r) = (Matrix::<F, F>::identity(), Vector::<F>::zeros());
         for &(k, ..) in &unit {
             r[k] = nu[k] - n.value[k];
@@ -389,7 +397,7 @@ fn newton<const N: usize, const M: usize, const F: usize, const A: usize>(
             .map(|lu| lu.solve(&r))
             .filter(|d| d.iter().all(|v| v.is_finite()))
             .ok_or_else(|| not_converged(t))?;
-        let (mut size, mut scale) = (0.0f64, 0.0f64);
+        let (mut size, mut scale) = (0.0f64, terms);
         for &(k, ..) in &unit {
             nu[k] -= d[k];
             (size, scale) = (size.max(d[k].abs()), scale.max(nu[k].abs()));
@@ -631,6 +639,31 @@ where
     }
 }
 
+/// Kink function `k` ([`crate::model::Hybrid::kink`]): a sliding contact's normal force,
+/// whose sign change is a kink in its friction `mu_k |N|` (the driver locates it and
+/// restarts there); `1.0` for a stuck contact, whose holding load does not depend on `|N|`.
+pub fn kink<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
+    sys: &S,
+    t: f64,
+    y: &Vector<D>,
+    modes: &[Slip; F],
+    k: usize,
+) -> f64
+where
+    S: Frictional<N, M, F, A>,
+{
+    if modes[k] == Slip::Stick {
+        return 1.0;
+    }
+    let (q, qd) = split::<N, D>(y);
+    if !S::IMPLICIT {
+        return sys.contacts(t, &q, &qd).normal[k];
+    }
+    at_state(sys, t, (&q, &qd), |mut c, n| {
+        resolve::<N, M, F, A>(t, &mut c, &S::ALONG, modes, n).map_or(f64::NAN, |_| c.normal[k])
+    })
+}
+
 /// Where switching function `k` is the sliding velocity (`modes[k]` slides):
 /// `(N + along[k], +-1)` ([`crate::model::Hybrid::switching_state`]).
 pub fn switching_state<const N: usize, const F: usize>(
@@ -664,7 +697,7 @@ where
 
 /// The modes after switching function `k` of `modes` crossed zero
 /// ([`crate::model::Hybrid::switch`]): a sliding contact that stopped gets exactly zero
-/// velocity and its mode from the loads; a stuck one that lost its hold slides in the
+/// velocity and its mode from the loads; a stuck one that lost its hold (under a load) slides in the
 /// direction of its load. The other contacts at rest are chosen again with them.
 pub fn switch<S, const N: usize, const M: usize, const F: usize, const A: usize, const D: usize>(
     sys: &S,
@@ -683,11 +716,14 @@ where
         let held = at_state(sys, t, (&q, &qd), |mut c, n| {
             resolve::<N, M, F, A>(t, &mut c, along, modes, n)
         })?;
-        forced = Some(if held.load[k] > 0.0 {
-            Slip::Forward
-        } else {
-            Slip::Backward
-        });
+        // No load (the bound touched zero with the normal force): nothing to slide
+        // towards; the modes at the state decide (forcing a direction there would start a
+        // slide whose kinetic friction drives the body from rest).
+        forced = match held.load[k] {
+            h if h > 0.0 => Some(Slip::Forward),
+            h if h < 0.0 => Some(Slip::Backward),
+            _ => None,
+        };
     } else {
         y[N + along[k]] = 0.0;
         stop_tied::<S, N, M, F, A, D>(sys, t, y, modes, k);
@@ -820,21 +856,52 @@ pub fn forces<S, const N: usize, const M: usize, const F: usize, const A: usize>
 where
     S: Frictional<N, M, F, A>,
 {
-    let along = &S::ALONG;
-    let fixed = moving(along, qd);
-    // The normals the chosen modes resolved (implicit ones need the solution).
-    let (modes, c, s) = at_state(sys, t, (q, qd), |c, n| {
-        choose_in::<N, M, F, A>(t, c, along, &fixed, n)
-    })?;
-    let mut f = c.forces;
+    let (mut f, (_, friction)) = with_contact_forces(sys, t, q, qd)?;
     for k in 0..F {
-        f[along[k]] -= match modes[k] {
-            Slip::Forward => c.mu_k[k] * c.normal[k].abs(),
-            Slip::Backward => -c.mu_k[k] * c.normal[k].abs(),
-            Slip::Stick => s.load[k],
-        };
+        f[S::ALONG[k]] += friction[k];
     }
     Ok(f)
+}
+
+/// Each contact's friction force at a state, along its coordinate (a generalised force: a
+/// torque on an angle), with the modes at that state: `-mu_k |N| sign(qd_s)` sliding, and
+/// at rest the force the chosen mode puts there (stuck, the holding force, `-h`). Its
+/// product with `qd_s` is the friction's power, so its integral over a run is the energy
+/// friction took. The same modes and solve as [`forces`].
+pub fn contact_forces<S, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Result<([Slip; F], [f64; F])>
+where
+    S: Frictional<N, M, F, A>,
+{
+    with_contact_forces(sys, t, q, qd).map(|(_, r)| r)
+}
+
+/// The forces without friction, and the modes and friction forces ([`contact_forces`]).
+#[allow(clippy::type_complexity, reason = "one tuple, named by its callers")]
+fn with_contact_forces<S, const N: usize, const M: usize, const F: usize, const A: usize>(
+    sys: &S,
+    t: f64,
+    q: &Vector<N>,
+    qd: &Vector<N>,
+) -> Result<(Vector<N>, ([Slip; F], [f64; F]))>
+where
+    S: Frictional<N, M, F, A>,
+{
+    let fixed = moving(&S::ALONG, qd);
+    // The normals the chosen modes resolved (implicit ones need the solution).
+    let (modes, c, s) = at_state(sys, t, (q, qd), |c, n| {
+        choose_in::<N, M, F, A>(t, c, &S::ALONG, &fixed, n)
+    })?;
+    let friction = std::array::from_fn(|k| match modes[k] {
+        Slip::Forward => -c.mu_k[k] * c.normal[k].abs(),
+        Slip::Backward => c.mu_k[k] * c.normal[k].abs(),
+        Slip::Stick => -s.load[k],
+    });
+    Ok((c.forces, (modes, friction)))
 }
 
 #[cfg(test)]

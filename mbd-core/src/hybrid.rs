@@ -320,9 +320,13 @@ fn drive<S: Hybrid<D>, const D: usize>(
     let mut switches = Vec::new();
     // The last full step the method took in each mode met so far.
     let mut steps_in: Vec<(S::Mode, f64)> = Vec::new();
+    // The side each kink function is on (`+-1`), and the kink just restarted at.
+    let mut sides = vec![1.0; S::KINKS];
+    let mut crossed: Option<usize> = None;
     loop {
         let current = mode;
-        let all = with_switches(sys, &current, events);
+        kink_sides(sys, (t, &y), &current, &mut sides, crossed.take());
+        let all = with_switches(sys, &current, events, &sides);
         let frozen = InMode { sys, mode };
         let view = View::new(&frozen);
         // A crossing inside a step that its ends did not show: (function, time).
@@ -370,9 +374,15 @@ fn drive<S: Hybrid<D>, const D: usize>(
             (None, Some(i)) => (i - events.len(), None),
             (None, None) => break,
         };
+        // Index `k` past the switching functions is a kink: located the same way (leaving
+        // its side), then the same mode restarts.
+        let kink = k.checked_sub(S::SWITCHES);
+        let g = |t: f64, y: &Vector<D>| match kink {
+            Some(j) => sides[j] * sys.kink(t, y, &current, j),
+            None => watched(sys.switching(t, y, &current, k)),
+        };
         // The located time is within 1e-12 (|t| + 1) past the crossing: bisect the last
         // segment down to adjacent floating-point times.
-        let g = |t: f64, y: &Vector<D>| sys.switching(t, y, &current, k);
         if let Some(mut seg) = last {
             let ts = ts.unwrap_or_else(|| refine(&g, &seg));
             if ts < seg.t1() {
@@ -391,10 +401,19 @@ fn drive<S: Hybrid<D>, const D: usize>(
             }
             if settings.polish {
                 polish(method, &view, &mut out, &seg, &g)?;
+            } else if kink.is_some() {
+                retake(method, &view, &mut out, &seg)?;
             }
         }
         t = *out.t.last().expect("a step");
         y = *out.y.last().expect("a step");
+        if kink.is_some() {
+            crossed = kink;
+            if t >= t1 {
+                break;
+            }
+            continue;
+        }
         mode = sys.switch(t, &mut y, &current, k)?;
         // The record holds the state the next mode starts from (a stop's velocity exactly 0).
         *out.y.last_mut().expect("a step") = y;
@@ -428,12 +447,25 @@ fn drive<S: Hybrid<D>, const D: usize>(
     })
 }
 
+/// A switching function's value as the driver watches it: a crossing is a strictly
+/// negative value, so an exact zero counts as still positive. A function that only touches
+/// zero (a bound `mu_s |N| - |h|` met for an instant, which static friction still holds)
+/// is no switch, and one that starts at zero (a mode entered on its boundary: a slide from
+/// rest at `v = 0`, a stick exactly at its bound) is still seen when it goes negative;
+/// before, a start at zero never counted, so a slide whose velocity then turned the wrong
+/// way went on under kinetic friction that drove the body.
+fn watched(g: f64) -> f64 {
+    if g == 0.0 { f64::MIN_POSITIVE } else { g }
+}
+
 /// The user's `events` followed by the switching functions of `mode` as terminal events
-/// (falling crossings), so that index `events.len() + k` is switching function `k`.
+/// (falling crossings), so that index `events.len() + k` is switching function `k`, then
+/// its kink functions times their `sides` (falling crossings).
 fn with_switches<'e, S: Hybrid<D>, const D: usize>(
     sys: &'e S,
     mode: &'e S::Mode,
     events: &'e [Event<'_, D>],
+    sides: &[f64],
 ) -> Vec<Event<'e, D>> {
     let mut all: Vec<Event<'e, D>> = events
         .iter()
@@ -447,12 +479,45 @@ fn with_switches<'e, S: Hybrid<D>, const D: usize>(
     all.extend((0..S::SWITCHES).map(|k| {
         Event::new(
             format!("switch {k}"),
-            move |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k),
+            move |t: f64, y: &Vector<D>| watched(sys.switching(t, y, mode, k)),
+            Direction::Falling,
+        )
+        .terminal()
+    }));
+    // Kinks: leaving their side, at step ends only (not sampled inside steps: a kink
+    // crossed and recrossed within one step costs accuracy, not a wrong mode).
+    all.extend(sides.iter().enumerate().map(|(k, &side)| {
+        Event::new(
+            format!("kink {k}"),
+            move |t: f64, y: &Vector<D>| side * sys.kink(t, y, mode, k),
             Direction::Falling,
         )
         .terminal()
     }));
     all
+}
+
+/// The side of each kink function at the start `(t, y)` of a run in `mode`: its sign there,
+/// except for the kink `crossed` just restarted at, which is on its other side whatever the
+/// sign (the restart state, from a step that stops at the located time, may still show the
+/// old one to rounding: its crossing was that one, not a new one), and a zero keeps the last.
+fn kink_sides<S: Hybrid<D>, const D: usize>(
+    sys: &S,
+    (t, y): (f64, &Vector<D>),
+    mode: &S::Mode,
+    sides: &mut [f64],
+    crossed: Option<usize>,
+) {
+    for (k, side) in sides.iter_mut().enumerate() {
+        if crossed == Some(k) {
+            *side = -*side;
+            continue;
+        }
+        let v = sys.kink(t, y, mode, k);
+        if v != 0.0 && !v.is_nan() {
+            *side = v.signum();
+        }
+    }
 }
 
 /// The switch from step ends instead of the dense output (whose degree, 3 for Radau IIA,
@@ -496,6 +561,35 @@ fn polish<const D: usize>(
     out.t[n - 1] = t;
     out.y[n - 1] = y;
     add(&mut out.stats, work);
+    Ok(())
+}
+
+/// The state at a kink from a step that does not cross it: the cut step `seg` again from
+/// its start to its (cut) end, in one step where the method takes one. The step that found
+/// the kink evaluated its stages past it, where the mode's right-hand side is another
+/// smooth function, so its polynomial is off by more than the method's local error (DOPRI5
+/// at rtol 1e-12: a velocity 4e-11 off). The record's last point (and kept segments)
+/// become the new step's; the work is added to the statistics.
+fn retake<const D: usize>(
+    method: &dyn Method<D>,
+    view: &View<'_, D>,
+    out: &mut Solution<D>,
+    seg: &Segment<D>,
+) -> Result<()> {
+    let (ta, ya, ts) = (seg.t0, seg.coeffs[0], seg.t1());
+    // A step within rounding of its start is below any method's smallest step (and its
+    // polynomial is as good as a step there).
+    let span = ts - ta;
+    if span.is_nan() || span <= 64.0 * f64::EPSILON * ts.abs().max(ta.abs()) {
+        return Ok(());
+    }
+    let run = method.run(view, (ta, ya, ts), &[], Some(ts - ta), None)?;
+    let n = out.t.len();
+    out.y[n - 1] = *run.last().1;
+    if !run.segments.is_empty() && out.segments.pop().is_some() {
+        out.segments.extend(run.segments.iter().cloned());
+    }
+    add(&mut out.stats, run.stats);
     Ok(())
 }
 
@@ -549,7 +643,8 @@ fn refine<const D: usize>(g: &impl Fn(f64, &Vector<D>) -> f64, seg: &Segment<D>)
 }
 
 /// The first time in `[a, b]` where `g` is no longer positive, given `g(a) > 0 >= g(b)`, to
-/// adjacent doubles (regula falsi, Illinois, bisection where the secant leaves the bracket).
+/// adjacent doubles (regula falsi, Illinois, bisection where the secant leaves the bracket
+/// or three steps did not halve it).
 fn bracketed<const D: usize>(
     g: &impl Fn(f64, &Vector<D>) -> f64,
     seg: &Segment<D>,
@@ -559,8 +654,18 @@ fn bracketed<const D: usize>(
     let at = |t: f64| g(t, &seg.eval(t));
     let mut kept_a = 0u8;
     let mut kept_b = 0u8;
-    for _ in 0..200 {
+    // The bracket's width three steps ago: a bisection whenever three steps did not halve
+    // it (an end whose value is far smaller than the function's scale, an exact zero
+    // watched as the least positive double, moves the secant point by next to nothing).
+    let mut width = b - a;
+    for i in 0..200 {
         let mut c = (a * gb - b * ga) / (gb - ga);
+        if i % 3 == 2 {
+            if b - a > 0.5 * width {
+                c = 0.5 * (a + b);
+            }
+            width = b - a;
+        }
         if !(c > a && c < b) {
             c = 0.5 * (a + b);
         }
@@ -606,7 +711,7 @@ fn first_inside<S: Hybrid<D>, const D: usize>(
                 .is_none_or(|(i, sign)| !positive_on(seg, i, sign))
         })
         .filter_map(|k| {
-            let g = |t: f64, y: &Vector<D>| sys.switching(t, y, mode, k);
+            let g = |t: f64, y: &Vector<D>| watched(sys.switching(t, y, mode, k));
             hidden(&g, seg).map(|(a, b)| (k, bracketed(&g, seg, a, b)))
         })
         .min_by(|x, y| x.1.total_cmp(&y.1))

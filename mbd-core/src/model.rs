@@ -203,6 +203,19 @@ pub trait Hybrid<const D: usize> {
     fn project_in(&self, _t: f64, _y: &mut Vector<D>, _mode: &Self::Mode) -> Result<()> {
         Ok(())
     }
+
+    /// The number of kink functions: functions across whose sign change `rhs_in` is
+    /// continuous but not smooth, in every mode (a sliding contact's normal force `N`, in
+    /// `mu_k |N|`). The driver locates their sign changes as it does switches and restarts
+    /// the integrator there in the same mode, so that no step crosses the kink (a step
+    /// across one loses the method's order). The default: none.
+    const KINKS: usize = 0;
+
+    /// Kink function `k` of `mode` at `(t, y)`; only its sign changes matter, and a
+    /// constant (say `1.0`) where the mode has no kink. NaN when it cannot be evaluated.
+    fn kink(&self, _t: f64, _y: &Vector<D>, _mode: &Self::Mode, _k: usize) -> f64 {
+        1.0
+    }
 }
 
 /// Coulomb friction at one contact: sliding forward (`qd_s > 0`), backward, or stuck.

@@ -98,6 +98,10 @@ pub fn emit(
             fn switching(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode, k: usize) -> f64 {
                 #p::friction::switching::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode, k)
             }
+            const KINKS: usize = #nf;
+            fn kink(&self, t: f64, y: &#p::Vector<#d>, mode: &Self::Mode, k: usize) -> f64 {
+                #p::friction::kink::<Self, #n, #m, #nf, #a, #d>(self, t, y, mode, k)
+            }
             fn switching_state(&self, mode: &Self::Mode, k: usize) -> Option<(usize, f64)> {
                 #p::friction::switching_state::<#n, #nf>(&<Self as #p::Frictional<#n, #m, #nf, #a>>::ALONG, mode, k)
             }

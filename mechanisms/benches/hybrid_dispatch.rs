@@ -5,13 +5,15 @@
 //! nanoseconds: the worst case for a fixed per-call cost), so the difference is the dispatch.
 //!
 //! `cargo bench -p mechanisms --bench hybrid_dispatch`. Prints, as the least time over
-//! interleaved batches: one rhs call in a sliding and in a stuck mode, and a DOPRI5 run in
-//! one sliding mode per rhs evaluation.
+//! interleaved batches: one rhs call in a sliding and in a stuck mode, a DOPRI5 run in
+//! one sliding mode per rhs evaluation, and a whole `hybrid::solve` of the belt with its
+//! kink events (the normal force's sign, watched at every step end; constant here, so pure
+//! cost) against the same driver with them hidden.
 
-use mbd::Slip;
-use mbd::hybrid::{InMode, View};
+use mbd::hybrid::{self, InMode, View};
 use mbd::integrate::{Dopri5, Integrator};
 use mbd::prelude::*;
+use mbd::{Hybrid, Slip};
 use mechanisms::stick_slip;
 use std::hint::black_box;
 use std::time::Instant;
@@ -89,5 +91,76 @@ fn main() {
         per(erased),
         per(erased - direct),
         100.0 * (erased / direct - 1.0)
+    );
+    kink_cost(&belt, &dopri);
+}
+
+/// The belt with its kink functions hidden (the driver as it was before them).
+struct NoKinks<'a>(&'a stick_slip::Belt);
+
+impl Hybrid<2> for NoKinks<'_> {
+    type Mode = [Slip; 1];
+    const SWITCHES: usize = 1;
+    fn rhs_in(&self, t: f64, y: &Vector<2>, m: &[Slip; 1]) -> mbd::Result<Vector<2>> {
+        self.0.rhs_in(t, y, m)
+    }
+    fn switching(&self, t: f64, y: &Vector<2>, m: &[Slip; 1], k: usize) -> f64 {
+        self.0.switching(t, y, m, k)
+    }
+    fn mode_at(&self, t: f64, y: &Vector<2>) -> mbd::Result<[Slip; 1]> {
+        self.0.mode_at(t, y)
+    }
+    fn switch(&self, t: f64, y: &mut Vector<2>, m: &[Slip; 1], k: usize) -> mbd::Result<[Slip; 1]> {
+        self.0.switch(t, y, m, k)
+    }
+    fn switching_state(&self, m: &[Slip; 1], k: usize) -> Option<(usize, f64)> {
+        self.0.switching_state(m, k)
+    }
+}
+
+/// `hybrid::solve` of the belt over 20 s (about six stick-slip cycles) with and without
+/// its kink events: the same steps and switches, so the difference is watching the kink.
+fn kink_cost(belt: &stick_slip::Belt, dopri: &Dopri5) {
+    let y0 = belt.initial_state();
+    let with = hybrid::solve(dopri, belt, 0.0, y0, 20.0, &[]).unwrap();
+    let without = hybrid::solve(dopri, &NoKinks(belt), 0.0, y0, 20.0, &[]).unwrap();
+    assert_eq!(with.solution.stats, without.solution.stats);
+    assert_eq!(with.switches.len(), without.switches.len());
+    // The least time of 200 interleaved runs each (`interleaved` repeats far more).
+    let time = |run: &dyn Fn()| {
+        let start = Instant::now();
+        run();
+        start.elapsed().as_secs_f64() * 1e9
+    };
+    let (mut a, mut b) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..200 {
+        a = a.min(time(&|| {
+            drop(black_box(hybrid::solve(
+                dopri,
+                belt,
+                0.0,
+                black_box(y0),
+                20.0,
+                &[],
+            )))
+        }));
+        b = b.min(time(&|| {
+            drop(black_box(hybrid::solve(
+                dopri,
+                &NoKinks(belt),
+                0.0,
+                black_box(y0),
+                20.0,
+                &[],
+            )))
+        }));
+    }
+    println!(
+        "hybrid::solve 20 s, {} steps, {} switches: kinks watched {:.1} us, hidden {:.1} us ({:+.1} %)",
+        with.solution.stats.n_steps,
+        with.switches.len(),
+        a / 1e3,
+        b / 1e3,
+        100.0 * (a / b - 1.0)
     );
 }

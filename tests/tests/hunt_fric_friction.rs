@@ -233,11 +233,9 @@ fn a_normal_force_through_zero_releases_and_recaptures_the_block() {
         assert!((y[0] - x_at_t0).abs() < acc, "{name}: x(t0) = {}", y[0]);
         assert!((y[1] - mv0 / p.m).abs() < acc, "{name}: v(t0) = {}", y[1]);
         let (_, y) = run.solution.last();
-        // The normal force's zero at t0 is a kink in mu_k |n| that no switch locates: an
-        // ordinary step crosses it, and its error (DOPRI5 at rtol 1e-12: v(t0) 4.2e-11 off,
-        // the rest position 1.8e-10 off after the hybrid driver's restart steps changed) is
-        // the error control's, not the switches'. Locating the normal's zero is open.
-        let acc = if name == "DOPRI5" { 1e-9 } else { acc };
+        // The normal force's zero at t0 is a kink in mu_k |n|: the driver locates it and
+        // restarts there (`Hybrid::kink`), so no step crosses it (before, DOPRI5 at rtol
+        // 1e-12 came to rest 1.8e-10 off).
         assert!(
             (y[0] - x_stop).abs() < acc,
             "{name}: rests off by {:e}",
