@@ -351,7 +351,6 @@ fn derive_with(lowered: Lowered, errors: Errors, form: InertialForm) -> syn::Res
         &kin.coords,
         &mut inertial,
         &loops.phi,
-        ast.jacobian,
         minimal.as_ref(),
     );
     let minimal = minimal.map(|m| m.reduced(&mut scope.g, &red.map));
@@ -522,6 +521,46 @@ mod tests {
                 input.ident
             );
         }
+    }
+
+    /// A spatial chain of `n` bodies on universal joints, each of its own mass (so that no
+    /// tail is rolled into loops), the graph's size after the mechanics.
+    fn chain_nodes(n: usize) -> usize {
+        let mut src = String::from("#[mechanism(spatial)]\n#[gravity(0.0, 0.0, -g)]\n");
+        for k in 1..=n {
+            let parent = if k == 1 {
+                String::new()
+            } else {
+                format!("parent = u{}, at = [0.0, 0.0, -l], ", k - 1)
+            };
+            src += &format!(
+                "#[body(u{k}, {parent}joint = universal(a{k}, b{k}), com = [0.0, 0.0, -l / 2.0], \
+                 mass = m * {k}.0, inertia = diag(i, i, j))]\n"
+            );
+        }
+        src += "struct Chain { m: f64, l: f64, i: f64, j: f64, g: f64 }";
+        let input: syn::DeriveInput = syn::parse_str(&src).expect("parses");
+        let ast = parse::Mechanism::from_syn(&input).expect("parses");
+        let mut errors = Errors::default();
+        let lowered = crate::lowered::lower(&ast, &mut errors);
+        let eq = derive_with(lowered, errors, InertialForm::Shorter).expect("derives");
+        assert!(eq.mass_times.is_some(), "a long tree's M by columns");
+        eq.g.len()
+    }
+
+    /// The mechanics of a long pure tree is O(n): neither gravity's virtual work (a
+    /// derivative of every body's position by every coordinate) nor the written-out
+    /// composite-rigid-body `M` (every column carried to the root), both O(n^2) in a chain
+    /// and unused where the recursions give `f` and `M qdd`, may be built. Measured: 32 -> 64
+    /// bodies 138 445 -> 482 701 nodes (3.5x) with both, 41 811 -> 84 723 (2.0x) without.
+    #[test]
+    fn a_long_trees_mechanics_grows_linearly() {
+        let (a, b) = (chain_nodes(32), chain_nodes(64));
+        let ratio = b as f64 / a as f64;
+        assert!(
+            ratio < 2.1,
+            "32 bodies {a} nodes, 64 bodies {b}: ratio {ratio}"
+        );
     }
 
     #[test]

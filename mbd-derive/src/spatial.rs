@@ -815,7 +815,10 @@ pub struct Inertial {
     pub twice_kinetic: Expr,
 }
 
-pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inertial {
+/// `carried`: whether `M` is written out; without, only each joint's own diagonal block
+/// (what the singular-mass check reads; `M` is then formed at run time from [`mass_times`]),
+/// since carrying every column up to the root is O(n d) terms, quadratic in a chain.
+pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>, carried: bool) -> Inertial {
     let nz = inp.velocity.len();
     let zero = g.zero();
     let xs: Vec<Transform> = nodes.iter().map(|n| Transform::new(g, n)).collect();
@@ -880,7 +883,7 @@ pub fn mass_and_forces(g: &mut Graph, nodes: &[Node], inp: &Inputs<'_>) -> Inert
                 mass[jk][ji] = m;
             }
             let mut k = i;
-            while let Some(p) = nodes[k].parent {
+            while let Some(p) = nodes[k].parent.filter(|_| carried) {
                 f = xs[k].force(g, f);
                 k = p;
                 for &(jk, sk) in &out[k].s {

@@ -7,7 +7,9 @@ use super::Ast;
 use super::kinematics::{BodyKin, Kin, Kinematics, drop_qdd};
 use super::loads::Forces;
 use super::scope::Scope;
-use super::{Coord, CoordKind, InertialForm, LAGRANGE_MAX_COORDINATES, RECURSIVE_FROM_BODIES};
+use super::{
+    Coord, CoordKind, InertialForm, LAGRANGE_MAX_COORDINATES, LAZY_MASS_FROM, RECURSIVE_FROM_BODIES,
+};
 use crate::lower;
 use crate::parse::{self, Dim};
 use crate::sym::{Expr, Graph, Sym, schedule};
@@ -20,8 +22,9 @@ pub(super) struct Inertial {
     pub energy_full: Expr,
     /// The accelerations come from the articulated-body recursion.
     pub recursive: bool,
-    /// `M` and `f` come from the composite-rigid-body and Newton-Euler recursions.
-    pub m_by_recursion: bool,
+    /// `M` is formed at run time from `M qdd` (a long pure tree without the exact
+    /// Jacobian): `m_full` then holds the joints' own diagonal blocks only, zero elsewhere.
+    pub lazy_mass: bool,
     pub qdd_recursive: Vec<Option<Expr>>,
     pub rolled: Option<tree::Rolled>,
     /// The spatial recursion's steps (a planar tree's, converted).
@@ -71,9 +74,11 @@ pub(super) fn inertial(
             None => [zero; 3],
         },
     };
-    let by_recursion = (recursive && spatial::covers(&steps, nz))
-        .then(|| spatial::mass_and_forces(g, &steps, &inputs));
-    let m_by_recursion = by_recursion.is_some();
+    let m_by_recursion = recursive && spatial::covers(&steps, nz);
+    let free = prescribed.iter().filter(|p| p.is_none()).count();
+    let lazy_mass = m_by_recursion && !ast.jacobian && free >= LAZY_MASS_FROM;
+    let by_recursion =
+        m_by_recursion.then(|| spatial::mass_and_forces(g, &steps, &inputs, !lazy_mass));
     let inverse_full = (m_by_recursion && ast.inverse_dynamics).then(|| {
         let accel: Vec<Expr> = kinematics.coords.iter().map(|c| c.zdd).collect();
         spatial::inverse_dynamics(g, &steps, &inputs, &accel)
@@ -83,9 +88,10 @@ pub(super) fn inertial(
     let (m_full, f_full, kinetic) = match by_recursion {
         Some(rec) => (rec.mass, rec.forces, rec.twice_kinetic),
         None => {
-            let (mut m_full, f_full, kinetic) = kane(g, &kin, forces.q_full.clone());
+            let q_full = forces.with_gravity(g, kinematics);
+            let (mut m_full, f_full, kinetic) = kane(g, &kin, q_full.clone());
             symmetrize(&mut m_full);
-            let f_full = choose_form(g, &kin, &m_full, f_full, &forces.q_full, form);
+            let f_full = choose_form(g, &kin, &m_full, f_full, &q_full, form);
             (m_full, f_full, kinetic)
         }
     };
@@ -103,7 +109,7 @@ pub(super) fn inertial(
         f_full,
         energy_full,
         recursive,
-        m_by_recursion,
+        lazy_mass,
         qdd_recursive,
         rolled,
         steps,

@@ -57,10 +57,8 @@ enum Applied {
     },
 }
 
-/// The generalised forces, with and without gravity, and the potential energy.
+/// The generalised forces other than gravity, gravity, and the potential energy.
 pub(super) struct Forces {
-    /// All applied forces, gravity included.
-    pub q_full: Vec<Expr>,
     /// Applied forces other than gravity: the joint efforts of the recursive evaluation.
     pub q_applied: Vec<Expr>,
     pub gravity: Option<Vec<Expr>>,
@@ -265,22 +263,40 @@ pub(super) fn generalized(
     for load in &loads.applied {
         apply_load(g, load, &kin, &axes, &mut q_full);
     }
-    let q_applied = q_full.clone();
     let mut gravity_energy = zero;
     if let Some(grav) = &loads.gravity {
         for b in &kinematics.bodies {
             let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
-            axes.add_force_at(g, &mut q_full, &b.r, &w);
             let h = g.dot(&w, &b.r);
             gravity_energy = g.sub(gravity_energy, h);
         }
     }
     Forces {
-        q_full,
-        q_applied,
+        q_applied: q_full,
         gravity: loads.gravity,
         potential,
         gravity_energy,
+    }
+}
+
+impl Forces {
+    /// All applied forces, gravity's by virtual work added: a derivative of every body's
+    /// position by every coordinate (O(bodies x depth) terms in a chain), so only Kane's
+    /// projection asks; a pure tree's recursions take gravity as the ground's acceleration
+    /// (computed for every tree, this was most of a 64-link spatial chain's expansion).
+    pub fn with_gravity(&self, g: &mut Graph, kinematics: &Kinematics) -> Vec<Expr> {
+        let mut q_full = self.q_applied.clone();
+        if let Some(grav) = &self.gravity {
+            let axes = Axes {
+                z: kinematics.z_syms(g),
+                zd: Vec::new(),
+            };
+            for b in &kinematics.bodies {
+                let w: Vec<Expr> = grav.iter().map(|gc| g.mul(b.mass, *gc)).collect();
+                axes.add_force_at(g, &mut q_full, &b.r, &w);
+            }
+        }
+        q_full
     }
 }
 

@@ -5,7 +5,7 @@
 
 use super::inertial::Inertial;
 use super::scope::Scope;
-use super::{Coord, CoordKind, LAZY_MASS_FROM, Role};
+use super::{Coord, CoordKind, Role};
 use crate::spatial;
 use crate::sym::{Expr, Sym};
 use crate::tree;
@@ -34,7 +34,6 @@ pub(super) fn reduce(
     coords: &[Coord],
     inertial: &mut Inertial,
     phi_full: &[Expr],
-    jacobian: bool,
     minimal: Option<&velocity::Minimal>,
 ) -> Reduced {
     if minimal.is_some() {
@@ -61,25 +60,39 @@ pub(super) fn reduce(
         f_full,
         energy_full,
         recursive,
-        m_by_recursion,
+        lazy_mass,
         qdd_recursive,
         steps,
         inverse_full,
         ..
     } = inertial;
-    let (recursive, m_by_recursion) = (*recursive, *m_by_recursion);
+    let (recursive, lazy_mass) = (*recursive, *lazy_mass);
     // Reduce everything in one pass over the shared graph (one rebuild, not one per entry).
     let mut full_rows = Vec::with_capacity(n * n + n + 1 + phi_full.len());
     for &i in &free_idx {
         full_rows.extend(free_idx.iter().map(|&j| m_full[i][j]));
     }
+    // Move the driven coordinates' known accelerations to the right side (through `M a`
+    // where `M` is not written out).
+    let driven: Vec<Expr> = coords
+        .iter()
+        .map(|c| match c.kind {
+            CoordKind::Driven(_) => c.zdd,
+            _ => zero,
+        })
+        .collect();
+    let driven_rows = (lazy_mass && driven.iter().any(|&a| !g.is_zero(a)))
+        .then(|| spatial::mass_times(g, steps, &driven));
     for &i in &free_idx {
-        // Move the driven coordinates' known accelerations to the right side.
         let mut fi = f_full[i];
-        for (j, c) in coords.iter().enumerate() {
-            if let CoordKind::Driven(_) = c.kind {
-                let mz = g.mul(m_full[i][j], c.zdd);
-                fi = g.sub(fi, mz);
+        if let Some(rows) = &driven_rows {
+            fi = g.sub(fi, rows[i]);
+        } else if !lazy_mass {
+            for (j, c) in coords.iter().enumerate() {
+                if let CoordKind::Driven(_) = c.kind {
+                    let mz = g.mul(m_full[i][j], c.zdd);
+                    fi = g.sub(fi, mz);
+                }
             }
         }
         full_rows.push(fi);
@@ -102,7 +115,6 @@ pub(super) fn reduce(
     full_rows.extend(&run_inits);
     // A long tree's mass matrix as `M qdd` (free coordinates' accelerations; driven ones at
     // rest), formed column by column at run time: O(n) code instead of O(n d) entries.
-    let lazy_mass = m_by_recursion && !jacobian && n >= LAZY_MASS_FROM;
     let n_rows_inits = full_rows.len();
     if lazy_mass {
         let accel: Vec<Expr> = coords
