@@ -250,6 +250,21 @@ impl Integrator for Gauss {
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
+        // With room for its D x D matrices (`super::stack`).
+        super::stack::with_room::<D, _>(16, || self.observed(sys, t0, y0, t1, events, observer))
+    }
+}
+
+impl Gauss {
+    fn observed<S: OdeSystem<D>, const D: usize>(
+        &self,
+        sys: &S,
+        t0: f64,
+        y0: Vector<D>,
+        t1: f64,
+        events: &[Event<'_, D>],
+        observer: Option<&mut Observer<'_, D>>,
+    ) -> Result<Solution<D>> {
         self.validate()?;
         validate_problem(t0, &y0, t1)?;
         self.record.validate()?;

@@ -23,6 +23,7 @@ pub mod generalized_alpha;
 pub mod radau5;
 pub mod rk4;
 pub mod solution;
+mod stack;
 pub mod tableau;
 pub mod vern9;
 pub mod vern9_tableau;

@@ -206,7 +206,9 @@ impl Integrator for Radau5 {
         let mut recorder = Recorder::new(events, t0, y0, &self.opts).observed(observer);
         let mut stats = Stats::default();
         if t1 > t0 {
-            Run::new(sys, &self.opts, &mut stats).integrate(t0, y0, t1, &mut recorder)?;
+            super::stack::with_room::<D, _>(16, || {
+                Run::new(sys, &self.opts, &mut stats).integrate(t0, y0, t1, &mut recorder)
+            })?;
         }
         recorder.finish(stats)
     }
