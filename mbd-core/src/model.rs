@@ -74,6 +74,12 @@ pub trait Mechanism<const N: usize> {
     /// Names of the free generalised coordinates, in state order.
     const COORDINATES: [&'static str; N];
 
+    /// The constraint rows of its [`Constrained`] implementation (`0`, the default, for a
+    /// model without one). [`Self::mass_matrix`] and [`Self::forces`] leave the constraint
+    /// forces out, so code that solves `M qdd = f` or `f = 0` alone refuses a model with
+    /// rows rather than drop them (a Cartesian pendulum would fall freely).
+    const CONSTRAINTS: usize = 0;
+
     /// The mass matrix `M(q, t)`: symmetric, positive definite when every coordinate moves mass.
     ///
     /// `mass_matrix`, [`Self::forces`], [`Self::energy`] and [`Self::inverse_dynamics`] fail
@@ -116,6 +122,26 @@ pub trait Mechanism<const N: usize> {
     ) -> Result<Vector<N>> {
         Ok(self.mass_matrix(t, q)? * qdd - self.forces(t, q, qd)?)
     }
+}
+
+/// [`Error::InvalidInput`](crate::Error::InvalidInput) for a model with constraint rows
+/// given to `entry`, which solves `M qdd = f` or `f = 0` without them; `instead` names the
+/// entry that keeps them.
+pub(crate) fn unconstrained<S: Mechanism<N>, const N: usize>(
+    entry: &str,
+    instead: &str,
+) -> Result<()> {
+    if S::CONSTRAINTS == 0 {
+        return Ok(());
+    }
+    Err(crate::Error::InvalidInput {
+        what: "model",
+        detail: format!(
+            "it has {} constraint rows, which `{entry}` would drop (it solves the unconstrained \
+             equations): use `{instead}`",
+            S::CONSTRAINTS
+        ),
+    })
 }
 
 /// Holonomic constraints `Phi(q, t) = 0` on a [`Mechanism`] (`M` equations).

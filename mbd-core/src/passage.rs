@@ -841,7 +841,11 @@ fn add(s: &mut Stats, p: Stats) {
 const START_TOL: f64 = 1e-8;
 
 /// The start must lie on the position and velocity constraints: the least `M`-norm
-/// correction that would put it there is at most [`START_TOL`] of its size.
+/// correction that would put it there is at most [`START_TOL`] of its size, and it must
+/// leave no residual the Jacobian cannot reach. (Where `Phi_q` loses rank, a residual
+/// outside its range has a zero least-norm correction: a Cartesian pendulum started at its
+/// pivot, `x^2 + y^2 = l^2` at `(0, 0)`, passed and ran as a free fall or was projected
+/// onto the circle after the first step, unseen.)
 pub(crate) fn check_start<S: Constrained<N, M>, const N: usize, const M: usize, const D: usize>(
     sys: &S,
     t: f64,
@@ -854,14 +858,21 @@ pub(crate) fn check_start<S: Constrained<N, M>, const N: usize, const M: usize, 
     for (what, r, x) in [("positions", position, q), ("velocities", velocity, qd)] {
         let dx = metric_correction(sys, t, &q, &jac, &r)?;
         let (off, size) = (max_norm(&dx), max_norm(&x));
-        if off > START_TOL * (1.0 + size) {
+        let slope = jac.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+        let unreached = max_norm(&(r + jac * dx));
+        let stuck = unreached > START_TOL * (1.0 + slope * (1.0 + size));
+        if off > START_TOL * (1.0 + size) || stuck {
             let row = r.iamax();
+            let why = if stuck {
+                "the constraint Jacobian has lost rank there: no correction reaches it".to_string()
+            } else {
+                format!("a correction of {off:.3e} against a size of {size:.3e}")
+            };
             return Err(Error::InvalidInput {
                 what: "initial state",
                 detail: format!(
-                    "its {what} are off the constraints (row {row} by {:.3e}; a correction of \
-                     {off:.3e} against a size of {size:.3e}): assemble the start first \
-                     (`mbd::analysis::assemble`, or the model's `initial_state`)",
+                    "its {what} are off the constraints (row {row} by {:.3e}; {why}): assemble \
+                     the start first (`mbd::analysis::assemble`, or the model's `initial_state`)",
                     r[row]
                 ),
             });

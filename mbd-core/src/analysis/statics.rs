@@ -17,6 +17,8 @@ use crate::model::{Constrained, Mechanism, Vector};
 ///
 /// Converged when the Newton step satisfies `max |dq_i| <= tol (1 + max |q_i|)`. A step
 /// that leaves a minimal closed loop's domain is halved back into it.
+/// A model with constraint rows is refused ([`Error::InvalidInput`]): its equilibrium is
+/// [`static_equilibrium_constrained`]'s.
 /// Errors: [`Error::StaticsFailed`] when the iterations run out or the stiffness
 /// `-df/dq` is singular (neutral equilibrium, or a coordinate nothing holds) and no
 /// equilibrium is reached; where a singular stiffness has a family of equilibria (a free
@@ -29,6 +31,7 @@ pub fn static_equilibrium<S: Mechanism<N>, const N: usize>(
     q_guess: &Vector<N>,
     opts: &NewtonOptions,
 ) -> Result<Vector<N>> {
+    crate::model::unconstrained::<S, N>("static_equilibrium", "static_equilibrium_constrained")?;
     let zero = Vector::<N>::zeros();
     newton(t, q_guess, |q| sys.forces(t, q, &zero), opts)
 }

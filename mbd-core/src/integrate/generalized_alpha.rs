@@ -135,7 +135,9 @@ impl GeneralizedAlpha {
     }
 
     /// Integrate an unconstrained mechanism from `(t0, q0, qd0)` to `t1`; the solution's
-    /// state is `y = [q; qd]` (`D = 2 N`), with cubic Hermite dense output.
+    /// state is `y = [q; qd]` (`D = 2 N`), with cubic Hermite dense output. A model with
+    /// constraint rows ([`Mechanism::CONSTRAINTS`]) is refused with [`Error::InvalidInput`]:
+    /// it runs through [`Self::solve_constrained`].
     pub fn solve<S: Mechanism<N>, const N: usize, const D: usize>(
         &self,
         sys: &S,
@@ -164,6 +166,7 @@ impl GeneralizedAlpha {
         events: &[Event<'_, D>],
         observer: Option<&mut Observer<'_, D>>,
     ) -> Result<Solution<D>> {
+        crate::model::unconstrained::<S, N>("GeneralizedAlpha::solve", "solve_constrained")?;
         let qdd0 = sys.acceleration(t0, &q0, &qd0)?;
         let residual = |_, t, z: &Vector<N>, qd1: &Vector<N>, qdd1: &Vector<N>| {
             Ok(sys.mass_matrix(t, z)? * qdd1 - sys.forces(t, z, qd1)?)

@@ -330,9 +330,14 @@ fn mechanism_impl(
     // A one-coordinate acceleration is a few operations: called out of line from another
     // crate (where integrators and `rhs` are instantiated), the call costs as much as the body.
     let inline_acceleration = eq.single_qdd.is_some().then(|| quote!(#[inline]));
+    let rows = (sh.constrained).then(|| {
+        let m = sh.m;
+        quote!(const CONSTRAINTS: usize = #m;)
+    });
     quote! {
         impl ::mbd::__private::Mechanism<#n> for #ident {
             const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
+            #rows
             fn mass_matrix(&self, t: f64, q: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Matrix<#n, #n>> {
                 #mass_matrix
