@@ -136,8 +136,16 @@ pub fn locate<const D: usize>(
     g0: f64,
     g1: f64,
 ) -> Result<f64> {
-    let (mut a, mut ga) = (seg.t0, g0);
-    let (mut b, mut gb) = (seg.t1(), g1);
+    locate_in(g, seg, (seg.t0, g0), (seg.t1(), g1))
+}
+
+/// [`locate`] on the bracket `[a, b]` inside `seg`.
+fn locate_in<const D: usize>(
+    g: &dyn Fn(f64, &Vector<D>) -> Result<f64>,
+    seg: &Segment<D>,
+    (mut a, mut ga): (f64, f64),
+    (mut b, mut gb): (f64, f64),
+) -> Result<f64> {
     if gb == 0.0 {
         return Ok(b);
     }
@@ -172,6 +180,123 @@ pub fn locate<const D: usize>(
         }
     }
     Ok(b)
+}
+
+/// Samples of `g` inside a step besides its ends: a crossing and its return within one
+/// step leave `g` with one sign at both ends (an oscillator's `x - 0.99 x0`, steps of half
+/// a period, was found at 2 of 10 peaks by DOPRI5 at 1e-3 and 5 of 10 by DOP853 at 1e-9).
+const SAMPLES: usize = 8;
+
+/// Golden-section iterations that look for an extremum of `g` between samples that could
+/// reach zero: a local maximum of negative samples or a local minimum of positive ones,
+/// stopping as soon as one reaches zero.
+const PEAK_ITERATIONS: usize = 40;
+
+/// Every crossing of `g` in `direction` on `seg`, in time order, given `g0` and `g1` at its
+/// ends, each passed to `found`: `g` is sampled at [`SAMPLES`] points and a local extremum
+/// between samples is searched for a value past zero, so a crossing pair inside the step is
+/// found unless it lies within one sample interval of a step end, or of another extremum.
+/// (No allocation: a step's samples and extrema fit on the stack.)
+pub fn crossings<const D: usize>(
+    g: &dyn Fn(f64, &Vector<D>) -> Result<f64>,
+    seg: &Segment<D>,
+    direction: Direction,
+    (g0, g1): (f64, f64),
+    found: &mut dyn FnMut(f64),
+) -> Result<()> {
+    let (t0, t1) = (seg.t0, seg.t1());
+    let mut pts = [(t1, g1); 2 * SAMPLES + 2];
+    pts[0] = (t0, g0);
+    for (j, p) in pts.iter_mut().enumerate().take(SAMPLES).skip(1) {
+        let t = t0 + (t1 - t0) * j as f64 / SAMPLES as f64;
+        *p = (t, g(t, &seg.eval(t))?);
+    }
+    // pts[..=SAMPLES] are the samples in order (pts[SAMPLES] the end); extrema go after.
+    // Each window (a, m, b) whose middle is an extremum of one sign is searched; at the
+    // step's ends a probe `d` inside the step tells whether the extremum is inside.
+    let mut n = SAMPLES + 1;
+    let d = (t1 - t0) / SAMPLES as f64 * 1e-3;
+    for j in 0..=SAMPLES {
+        let window = match j {
+            0 => probe(g, seg, pts[0], t0 + d, pts[1])?,
+            SAMPLES => probe(g, seg, pts[SAMPLES], t1 - d, pts[SAMPLES - 1])?,
+            _ => Some((pts[j - 1], pts[j], pts[j + 1])),
+        };
+        let Some(((a, ga), (m, gm), (b, gb))) = window else {
+            continue;
+        };
+        // Either kind of extremum, whatever the direction: a falling crossing between
+        // negative ends follows a rising one.
+        let top = gm < 0.0 && gm >= ga && gm >= gb;
+        let bottom = gm > 0.0 && gm <= ga && gm <= gb;
+        if top || bottom {
+            let sign = if top { 1.0 } else { -1.0 };
+            let (a, b) = (a.min(b), a.max(b));
+            if let Some(p) = peak(g, seg, (a, m, b), gm, sign)? {
+                pts[n] = p;
+                n += 1;
+            }
+        }
+    }
+    let pts = &mut pts[..n];
+    pts.sort_by(|x, y| x.0.total_cmp(&y.0));
+    for w in pts.windows(2) {
+        if direction.crossed(w[0].1, w[1].1) {
+            found(locate_in(g, seg, w[0], w[1])?);
+        }
+    }
+    Ok(())
+}
+
+/// At a step's end `e` (its neighbouring sample `s`): the window `(e, x, s)` with the
+/// probe `x` just inside the step when `e` is no extremum but `g` turns between `e` and
+/// `s` (it moves from `e` towards `x` away from `s`'s side); `None` otherwise, without
+/// evaluating `g` when `e` already lies between zero and `s`.
+#[allow(clippy::type_complexity, reason = "three points (t, g)")]
+fn probe<const D: usize>(
+    g: &dyn Fn(f64, &Vector<D>) -> Result<f64>,
+    seg: &Segment<D>,
+    e: (f64, f64),
+    x: f64,
+    s: (f64, f64),
+) -> Result<Option<((f64, f64), (f64, f64), (f64, f64))>> {
+    // A turn towards zero inside: e below zero and above s, or above zero and below s.
+    let towards_zero = (e.1 < 0.0 && e.1 >= s.1) || (e.1 > 0.0 && e.1 <= s.1);
+    if !towards_zero {
+        return Ok(None);
+    }
+    let gx = g(x, &seg.eval(x))?;
+    Ok(((gx - e.1) * e.1 < 0.0).then_some((e, (x, gx), s)))
+}
+
+/// Golden-section search of `sign g` for its maximum on `[a, b]` around `m`, `gm = g(m)`:
+/// the first point where `sign g >= 0`, or `None`.
+fn peak<const D: usize>(
+    g: &dyn Fn(f64, &Vector<D>) -> Result<f64>,
+    seg: &Segment<D>,
+    (mut a, mut m, mut b): (f64, f64, f64),
+    mut gm: f64,
+    sign: f64,
+) -> Result<Option<(f64, f64)>> {
+    const R: f64 = 0.381_966_011_250_105_1; // 2 - golden ratio
+    for _ in 0..PEAK_ITERATIONS {
+        // Probe the larger side of the bracket.
+        let left = m - a > b - m;
+        let x = if left { m - R * (m - a) } else { m + R * (b - m) };
+        let gx = g(x, &seg.eval(x))?;
+        if sign * gx >= 0.0 {
+            return Ok(Some((x, gx)));
+        }
+        if sign * gx > sign * gm {
+            (a, b) = if left { (a, m) } else { (m, b) };
+            (m, gm) = (x, gx);
+        } else if left {
+            a = x;
+        } else {
+            b = x;
+        }
+    }
+    Ok(None)
 }
 
 #[cfg(test)]

@@ -81,6 +81,7 @@ impl Integrator for Rk4 {
         let mut k = [Vector::<D>::zeros(); 4];
         let mut z = [Vector::<D>::zeros(); 4];
         let mut chart = crate::closure::ChartWatch::<D>::default();
+        let mut unstable = 0;
         if n > 0 {
             k[0] = sys.rhs(t0, &y0)?;
             stats.n_rhs += 1;
@@ -102,6 +103,11 @@ impl Integrator for Rk4 {
             };
             let h = t_new - t;
             RK4.stages(sys, t, &y, h, &mut k, &mut z)?;
+            unstable = match beyond_stability(h, &y, &k) {
+                Some(hl) if unstable + 1 >= n.min(PERSIST) => return Err(too_long(t, h, hl)),
+                Some(_) => unstable + 1,
+                None => 0,
+            };
             stats.n_rhs += 3;
             stats.n_steps += 1;
             stats.n_accepted += 1;
@@ -130,5 +136,41 @@ impl Integrator for Rk4 {
             }
         }
         rec.finish(stats)
+    }
+}
+
+/// `h |lambda|` above which RK4 amplifies an undamped oscillation: `2 sqrt(2)`, where its
+/// stability region meets the imaginary axis (a mechanism's fast modes lie near it).
+const LIMIT: f64 = 2.0 * std::f64::consts::SQRT_2;
+
+/// Steps in a row beyond [`LIMIT`] that stop a run (fewer in a shorter run): one step
+/// across a kink of the right-hand side (`abs`, `min` in a load) may show a large estimate.
+const PERSIST: usize = 3;
+
+/// The step's `h |lambda|` when it exceeds [`LIMIT`], from its stages: `k2 - k1` is
+/// `(h/2)^2 J^2 k0` to second order, so `h |lambda| = 2 sqrt(|k2 - k1| / |k0|)`, exact for
+/// `y' = lambda y`. `J^2` maps positions to positions and rates to rates, so the mixed
+/// units of `[q; qd]` cancel (`|k1 - k0| / |k0|` would swing from 1 to `w^2` over an
+/// oscillation of `w`). A state whose change is at rounding level is not judged.
+fn beyond_stability<const D: usize>(h: f64, y: &Vector<D>, k: &[Vector<D>; 4]) -> Option<f64> {
+    let (d0, d21) = (k[0].norm(), (k[2] - k[1]).norm());
+    let moving = h * d0 > 1e-10 * (1.0 + y.norm());
+    let hl = 2.0 * (d21 / d0).sqrt();
+    (moving && hl > LIMIT).then_some(hl)
+}
+
+/// The error of a run whose steps resolve no motion of its fastest mode: the state would
+/// grow by `|R(h lambda)| > 1` a step and the run return a finite, wrong answer.
+fn too_long(t: f64, h: f64, hl: f64) -> Error {
+    Error::InvalidInput {
+        what: "h",
+        detail: format!(
+            "at t = {} the step is beyond RK4's stability limit: h |lambda| = {hl:.3} > {LIMIT:.3} \
+             (|lambda| estimated from the stages), so the run would diverge and return a wrong \
+             answer; take h below {:.3e}, or an adaptive or implicit method (Radau5 for a stiff \
+             model)",
+            crate::error::Num(t),
+            h * LIMIT / hl
+        ),
     }
 }

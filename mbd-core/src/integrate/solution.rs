@@ -1,7 +1,7 @@
 //! The record of an integration, and the bookkeeping every method shares to build it.
 
 use super::dense::Segment;
-use super::events::{Event, EventHit, locate};
+use super::events::{self, Event, EventHit};
 use super::{Options, Stats};
 use crate::error::{Error, Result};
 use crate::model::Vector;
@@ -153,10 +153,11 @@ pub enum Flow {
 }
 
 /// Bookkeeping every method shares: records accepted steps as [`Record`] asks, locates
-/// events on the step's dense segment (a sign change of `g` between the segment's ends,
-/// refined by [`locate`] to `|dt| <= 1e-12 (|t| + 1)`), stops at terminal events, and
-/// calls the observer. Event functions are evaluated once per step at the step's end; a
-/// step in which `g` crosses zero twice shows no sign change and reports nothing.
+/// events on the step's dense segment (every sign change of `g` between samples of the
+/// segment and the extrema between them, [`events::crossings`], refined by
+/// [`events::locate`] to `|dt| <= 1e-12 (|t| + 1)`), stops at terminal events, and calls the
+/// observer. A step in which `g` crosses zero and back is no longer silent: its crossings
+/// are found between the samples (the ends alone showed no sign change).
 ///
 /// Nothing here allocates per step unless the record grows ([`Record::Steps`],
 /// [`Record::Every`], dense segments, events found).
@@ -349,14 +350,12 @@ impl<'r, 'e, const D: usize> Recorder<'r, 'e, D> {
         for (i, ev) in self.events.iter().enumerate() {
             let located = ev.value(t1, y1).and_then(|g1| {
                 self.g_next[i] = g1;
-                if !ev.direction.crossed(self.g_prev[i], g1) {
-                    return Ok(None);
-                }
-                locate(&|t, y| ev.value(t, y), seg, self.g_prev[i], g1).map(Some)
+                let g = |t, y: &Vector<D>| ev.value(t, y);
+                let mut found = |t| crossings.push((t, i));
+                events::crossings(&g, seg, ev.direction, (self.g_prev[i], g1), &mut found)
             });
             match located {
-                Ok(Some(t)) => crossings.push((t, i)),
-                Ok(None) => {}
+                Ok(()) => {}
                 Err(e) => {
                     // The caller sees `failed` and stops.
                     self.failed = Some(e);
