@@ -128,8 +128,9 @@ pub const EVENT_TIME_TOL: f64 = 1e-12;
 /// when the same end is kept twice its `g` is halved, which makes convergence superlinear.
 /// A secant point outside the bracket falls back to bisection; a failed or non-finite `g`
 /// is the caller's error. The
-/// bracket is shrunk until its width is at most [`EVENT_TIME_TOL`]` (|t| + 1)`; the end
-/// returned is the one past the crossing, so `g` there has the new sign (or is zero).
+/// bracket is shrunk until its width is at most [`EVENT_TIME_TOL`]` (|t| + 1)`; the time
+/// returned is past the crossing, so `g` there has the new sign (or is zero): the first of
+/// the final bracket's secant point and a few points from it towards the far end that is.
 pub fn locate<const D: usize>(
     g: &dyn Fn(f64, &Vector<D>) -> Result<f64>,
     seg: &Segment<D>,
@@ -149,8 +150,10 @@ fn locate_in<const D: usize>(
     if gb == 0.0 {
         return Ok(b);
     }
-    // -1: b moved last, +1: a moved last (for the Illinois halving).
+    // -1: b moved last, +1: a moved last (for the Illinois halving); `fa`, `fb` are the
+    // ends' values of `g`, `ga`, `gb` their Illinois weights.
     let mut last = 0i8;
+    let (mut fa, mut fb) = (ga, gb);
     for _ in 0..200 {
         if (b - a).abs() <= EVENT_TIME_TOL * (b.abs() + 1.0) {
             break;
@@ -164,19 +167,29 @@ fn locate_in<const D: usize>(
             return Ok(c);
         }
         if (gc > 0.0) == (gb > 0.0) {
-            b = c;
-            gb = gc;
+            (b, gb, fb) = (c, gc, gc);
             if last == -1 {
                 ga *= 0.5;
             }
             last = -1;
         } else {
-            a = c;
-            ga = gc;
+            (a, ga, fa) = (c, gc, gc);
             if last == 1 {
                 gb *= 0.5;
             }
             last = 1;
+        }
+    }
+    // The first point past the crossing from the final bracket's secant point (true
+    // values) towards `b`: for a smooth `g` far closer to the crossing than `b` (which may
+    // be a whole `EVENT_TIME_TOL` past it), at a few evaluations per event.
+    let c = (a * fb - b * fa) / (fb - fa);
+    if c >= a && c < b {
+        for x in [c, c + (b - c) / 64.0, c + (b - c) / 8.0, c + (b - c) / 2.0] {
+            let gx = g(x, &seg.eval(x))?;
+            if x > a && (gx == 0.0 || (gx > 0.0) == (fb > 0.0)) {
+                return Ok(x);
+            }
         }
     }
     Ok(b)
