@@ -114,7 +114,7 @@ pub(super) fn lower(
             springs.push(Spring { name, ends, k, l0 });
         }
     }
-    let potentials = ast
+    let potentials: Vec<Expr> = ast
         .potentials
         .iter()
         .filter_map(|p| {
@@ -136,17 +136,76 @@ pub(super) fn lower(
         }
     }
     let mut kin = kinematics.kin(scope.t, scope.dim, reactions);
-    let applied = ast
+    let applied: Vec<Applied> = ast
         .loads
         .iter()
         .filter_map(|load| lower_load(load, scope, &mut kin))
         .collect();
+    still(ast, scope, kinematics, (&springs, &dampers), (&potentials, &applied));
     Loads {
         gravity,
         springs,
         potentials,
         dampers,
         applied,
+    }
+}
+
+/// Loads that act on nothing are errors, not silent no-ops: a spring or damper whose ends
+/// both stay put, a force at a point or a torque on a body that moves with no coordinate
+/// and not with `t` (its virtual work is zero: a mistyped end or body; one moved by a drive
+/// loads the drive), a potential of no coordinate. Each lowered list holds the attributes
+/// that lowered, in order; one that failed has its error.
+fn still(
+    ast: &Ast,
+    scope: &mut Scope,
+    kinematics: &Kinematics,
+    (springs, dampers): (&[Spring], &[Damper]),
+    (potentials, applied): (&[Expr], &[Applied]),
+) {
+    let q = kinematics.z_syms(&scope.g);
+    let mut z = q.clone();
+    z.extend(scope.g.as_sym(scope.t));
+    let g = &scope.g;
+    let moves = |v: &[Expr]| v.iter().any(|e| z.iter().any(|s| g.depends_on(*e, *s)));
+    let mut out: Vec<(proc_macro2::Span, String)> = Vec::new();
+    for s in springs {
+        if !moves(&s.ends.0) && !moves(&s.ends.1) {
+            let at = ast.springs.iter().find(|a| a.name == s.name).map(|a| a.name.span());
+            out.extend(at.map(|at| (at, format!("spring `{}` joins two points that move with no coordinate: it acts on nothing (name a body, or a point on one)", s.name))));
+        }
+    }
+    for d in dampers {
+        if !moves(&d.ends.0) && !moves(&d.ends.1) {
+            let at = ast.dampers.iter().find(|a| a.name == d.name).map(|a| a.name.span());
+            out.extend(at.map(|at| (at, format!("damper `{}` joins two points that move with no coordinate: it acts on nothing (name a body, or a point on one)", d.name))));
+        }
+    }
+    if potentials.len() == ast.potentials.len() {
+        for (p, term) in potentials.iter().zip(&ast.potentials) {
+            if !q.iter().any(|s| g.depends_on(*p, *s)) {
+                out.push((term.span(), "this potential depends on no coordinate: it exerts no force".into()));
+            }
+        }
+    }
+    if applied.len() == ast.loads.len() {
+        for (a, load) in applied.iter().zip(&ast.loads) {
+            let msg = match (a, load) {
+                (Applied::Force { at, .. }, Load::Force { at: term, .. }) if !moves(at) => (
+                    term.span(),
+                    "this force acts at a point that moves with no coordinate: it does no work (apply it at a body: `position(b)` or `position(b, [..])`)".to_string(),
+                ),
+                (Applied::PlanarTorque { angle, .. }, Load::Torque { body, .. }) if !moves(&[*angle]) => (
+                    body.span(),
+                    format!("`{body}` turns with no coordinate: a torque on it does no work"),
+                ),
+                _ => continue,
+            };
+            out.push(msg);
+        }
+    }
+    for (span, msg) in out {
+        scope.errors.at(span, msg);
     }
 }
 

@@ -45,6 +45,12 @@ pub(super) fn lower(
     }
     for ev in &ast.events {
         if let Some(e) = scope.lowerer(Some(kin)).scalar(&ev.expr, Context::Output) {
+            if constant(ast, scope, e) {
+                scope.errors.at(
+                    ev.name.span(),
+                    format!("event `{}` depends only on parameters: it never crosses zero during a run (name a coordinate, a rate or `t`)", ev.name),
+                );
+            }
             events.push(EventEq {
                 name: ev.name.clone(),
                 expr: e,
@@ -54,6 +60,17 @@ pub(super) fn lower(
         }
     }
     (outputs, events)
+}
+
+/// Whether `e` names nothing but the model's parameters (no coordinate, rate, body query,
+/// reaction or `t`): a constant during any run.
+fn constant(ast: &Ast, scope: &mut Scope, e: Expr) -> bool {
+    let params: Vec<Expr> = (ast.params.iter())
+        .map(|p| scope.g.symbol(&p.name.to_string()))
+        .collect();
+    let g = &scope.g;
+    let params: Vec<_> = params.iter().filter_map(|p| g.as_sym(*p)).collect();
+    g.free_symbols(e).iter().all(|s| params.contains(s))
 }
 
 /// A vector output `p` as its components `p_x`, `p_y` (, `p_z`), in the ground frame.

@@ -332,6 +332,11 @@ impl Graph {
         self.nodes[e.index()]
     }
 
+    /// The node of id `i` (ids are a topological order).
+    pub(super) fn node_at(&self, i: usize) -> Node {
+        self.nodes[i]
+    }
+
     pub fn as_const(&self, e: Expr) -> Option<f64> {
         match self.node(e) {
             Node::Const(c) => Some(c.value()),
