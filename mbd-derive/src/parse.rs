@@ -292,6 +292,9 @@ impl Errors {
     pub fn at(&mut self, span: Span, msg: impl std::fmt::Display) {
         self.push(syn::Error::new(span, msg));
     }
+    pub fn is_empty(&self) -> bool {
+        self.0.is_none()
+    }
     /// An error over the whole of `tokens` (first to last token, also on stable).
     pub fn over(&mut self, tokens: impl quote::ToTokens, msg: impl std::fmt::Display) {
         self.push(syn::Error::new_spanned(tokens, msg));

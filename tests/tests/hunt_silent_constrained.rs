@@ -52,18 +52,36 @@ fn a_start_where_the_constraint_jacobian_vanishes_off_the_circle_is_refused_by_e
     let q0 = Vector::<2>::zeros();
     let opts = Options::default();
     let runs: [(&str, Result<Solution<4>, Error>); 10] = [
-        ("DOPRI5", Dopri5::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[])),
-        ("DOP853", Dop853::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[])),
-        ("Vern9", Vern9::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[])),
+        (
+            "DOPRI5",
+            Dopri5::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[]),
+        ),
+        (
+            "DOP853",
+            Dop853::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[]),
+        ),
+        (
+            "Vern9",
+            Vern9::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[]),
+        ),
         ("Auto", Auto::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[])),
-        ("Radau5", Radau5::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[])),
+        (
+            "Radau5",
+            Radau5::new(opts.clone()).solve(&P, 0.0, y0, 1.0, &[]),
+        ),
         ("RK4", Rk4::new(0.01).solve(&P, 0.0, y0, 1.0, &[])),
         ("Gauss", Gauss::new(0.01).solve(&P, 0.0, y0, 1.0, &[])),
         ("Ali3", Ali3::new(0.01).solve(&P, 0.0, q0, q0, 1.0, &[])),
         (
             "generalized-alpha",
-            GeneralizedAlpha::new(0.9, 0.01)
-                .solve_constrained::<_, 2, 1, 3, 4>(&P, 0.0, q0, q0, 1.0, &[]),
+            GeneralizedAlpha::new(0.9, 0.01).solve_constrained::<_, 2, 1, 3, 4>(
+                &P,
+                0.0,
+                q0,
+                q0,
+                1.0,
+                &[],
+            ),
         ),
         (
             "generalized-alpha (solve)",
@@ -91,7 +109,10 @@ fn generalized_alpha_solve_of_a_constrained_model_is_refused() {
         .solve_constrained::<_, 2, 1, 3, 4>(&P, 0.0, q0, qd0, 1.0, &[])
         .unwrap();
     let end = held.y.last().unwrap();
-    assert!((end[0]).abs() < 1e-12 && (end[1] + P.l).abs() < 1e-12, "{end:?}");
+    assert!(
+        (end[0]).abs() < 1e-12 && (end[1] + P.l).abs() < 1e-12,
+        "{end:?}"
+    );
     // `solve` integrates `M qdd = f` without the constraint: the spring pulled the bob off
     // the circle towards (0, -2 l) and it returned `Ok`.
     let dropped: Result<Solution<4>, Error> =
@@ -112,5 +133,8 @@ fn static_equilibrium_of_a_constrained_model_is_refused() {
     // circle: `static_equilibrium` returned it as `Ok`.
     let (what, detail) = invalid(static_equilibrium(&P, 0.0, &guess, &opts));
     assert_eq!(what, "model");
-    assert!(detail.contains("static_equilibrium_constrained"), "{detail}");
+    assert!(
+        detail.contains("static_equilibrium_constrained"),
+        "{detail}"
+    );
 }

@@ -1,7 +1,7 @@
 //! Fixed steps too long for a model's fastest motion: RK4 beyond its stability limit
 //! (`h w > 2 sqrt 2` for an undamped oscillation of `w`) grew the state by `|R(i h w)| > 1`
 //! a step and returned the finite, wrong result as `Ok` (a spring of `w = 100` at `h = 0.05`
-//! ended 1e26 times its amplitude); now a typed error naming `h` and a step that is stable.
+//! ended 3e26 times its amplitude); now a typed error naming `h` and a step that is stable.
 //! Below the limit runs are unchanged (the closed form `x0 cos(w t)` beside each).
 
 use mbd::integrate::{Integrator, Rk4};
@@ -31,25 +31,39 @@ fn refused(r: Result<Solution<2>, Error>) -> (String, String) {
     match r {
         Err(Error::InvalidInput { what, detail }) => (what.into(), detail),
         Err(e) => (format!("other error: {e}"), String::new()),
-        Ok(s) => (format!("Ok, x(end) = {:e}", s.y.last().unwrap()[0]), String::new()),
+        Ok(s) => (
+            format!("Ok, x(end) = {:e}", s.y.last().unwrap()[0]),
+            String::new(),
+        ),
     }
 }
 
 #[test]
 fn rk4_beyond_its_stability_limit_is_refused_not_returned() {
     let w = (P.k / P.m).sqrt();
-    // (h, t1): h w = 5 over 20 steps (was Ok, |x| 4e25), h = 10 s in one step (was Ok,
-    // |x| 4e10: R(1000 i) ~ 4e10), h w = 3 just past the limit over 33 steps (was Ok,
-    // |R(3 i)| = 1.5 a step: |x| ~ 1e5 x0).
+    // (h, t1): h w = 5 over 20 steps (was Ok, x(1) = -2.9e26 x0), h = 10 s in one step
+    // (was Ok, x = 4.2e10 x0), h w = 3 just past the limit over 34 steps (was Ok,
+    // |R(3 i)| = 1.5 a step: x(1) = -7.1e5 x0); the same RK4 recurrence by hand.
     for (h, t1) in [(0.05, 1.0), (10.0, 10.0), (0.03, 1.0)] {
         let (what, detail) = refused(Rk4::new(h).solve(&P, 0.0, P.initial_state(), t1, &[]));
         assert_eq!(what, "h", "h w = {}: {what}", h * w);
         assert!(detail.contains("stability limit"), "{detail}");
         // The suggested step is stable: below 2 sqrt(2) / w (the estimate is exact for
         // this linear model, to rounding).
-        let hint: f64 = detail.split("below ").nth(1).unwrap().split(',').next().unwrap().parse().unwrap();
+        let hint: f64 = detail
+            .split("below ")
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
         let limit = 2.0 * 2f64.sqrt() / w;
-        assert!((hint - limit).abs() < 1e-3 * limit, "hint {hint}, limit {limit}");
+        assert!(
+            (hint - limit).abs() < 1e-3 * limit,
+            "hint {hint}, limit {limit}"
+        );
     }
 }
 
@@ -58,12 +72,16 @@ fn rk4_below_its_stability_limit_runs_as_before() {
     let w = (P.k / P.m).sqrt();
     // h w = 0.1: accurate, 1000 steps to t = 1; RK4's global error on x0 cos(w t) is about
     // t w (h w)^4 / 120 x0 = 8e-6.
-    let sol = Rk4::new(1e-3).solve(&P, 0.0, P.initial_state(), 1.0, &[]).unwrap();
+    let sol = Rk4::new(1e-3)
+        .solve(&P, 0.0, P.initial_state(), 1.0, &[])
+        .unwrap();
     let x = sol.y.last().unwrap()[0];
     assert!((x - P.x0 * (w * 1.0).cos()).abs() < 2e-5, "x = {x}");
     // h w = 2.7, inside the stability region (|R(2.7 i)| = 0.72): a stable, damped run is
     // returned; its amplitude never exceeds x0 (the check is on stability, not accuracy).
-    let sol = Rk4::new(0.027).solve(&P, 0.0, P.initial_state(), 1.0, &[]).unwrap();
+    let sol = Rk4::new(0.027)
+        .solve(&P, 0.0, P.initial_state(), 1.0, &[])
+        .unwrap();
     let peak = sol.y.iter().map(|y| y[0].abs()).fold(0.0, f64::max);
     assert!(peak <= P.x0, "peak {peak}");
 }

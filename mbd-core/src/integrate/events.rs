@@ -295,7 +295,11 @@ fn peak<const D: usize>(
     for _ in 0..PEAK_ITERATIONS {
         // Probe the larger side of the bracket.
         let left = m - a > b - m;
-        let x = if left { m - R * (m - a) } else { m + R * (b - m) };
+        let x = if left {
+            m - R * (m - a)
+        } else {
+            m + R * (b - m)
+        };
         let gx = g(x, &seg.eval(x))?;
         if sign * gx >= 0.0 {
             return Ok(Some((x, gx)));

@@ -243,11 +243,13 @@ pub(super) fn check(
         };
         errors.over(tokens[k], why);
     }
+    // Bounds that exclude zero, unless a closed form already said so (`sin(x) == 2`).
     let ranges = g.ranges(phi);
+    let bounded = errors.is_empty();
     for (k, p) in phi.iter().enumerate() {
         if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
             errors.over(tokens[k], "this constraint involves no coordinate: it relates only parameters and `t`, so it cannot hold the mechanism");
-        } else if !told.contains(&k) && (ranges[k].0 > 0.0 || ranges[k].1 < 0.0) {
+        } else if bounded && !told.contains(&k) && (ranges[k].0 > 0.0 || ranges[k].1 < 0.0) {
             let gap = ranges[k].0.max(-ranges[k].1);
             errors.over(tokens[k], format!("this constraint holds at no configuration: its two sides differ by at least {gap} whatever the coordinates and parameters (a square, an even power, `sqrt` or `abs` is never negative; `sin` and `cos` stay within [-1, 1])"));
         }

@@ -12,6 +12,7 @@ use crate::lower::{Binding, Context, Value};
 use crate::lowered::Term;
 use crate::parse::{End, Load};
 use crate::sym::{Expr, Func, Graph, Sym};
+use quote::ToTokens;
 
 /// The loads of a model, lowered.
 pub(super) struct Loads {
@@ -141,7 +142,13 @@ pub(super) fn lower(
         .iter()
         .filter_map(|load| lower_load(load, scope, &mut kin))
         .collect();
-    still(ast, scope, kinematics, (&springs, &dampers), (&potentials, &applied));
+    still(
+        ast,
+        scope,
+        kinematics,
+        (&springs, &dampers),
+        (&potentials, &applied),
+    );
     Loads {
         gravity,
         springs,
@@ -168,23 +175,34 @@ fn still(
     z.extend(scope.g.as_sym(scope.t));
     let g = &scope.g;
     let moves = |v: &[Expr]| v.iter().any(|e| z.iter().any(|s| g.depends_on(*e, *s)));
-    let mut out: Vec<(proc_macro2::Span, String)> = Vec::new();
+    let mut out: Vec<(proc_macro2::TokenStream, String)> = Vec::new();
     for s in springs {
         if !moves(&s.ends.0) && !moves(&s.ends.1) {
-            let at = ast.springs.iter().find(|a| a.name == s.name).map(|a| a.name.span());
+            let at = ast
+                .springs
+                .iter()
+                .find(|a| a.name == s.name)
+                .map(|a| a.name.to_token_stream());
             out.extend(at.map(|at| (at, format!("spring `{}` joins two points that move with no coordinate: it acts on nothing (name a body, or a point on one)", s.name))));
         }
     }
     for d in dampers {
         if !moves(&d.ends.0) && !moves(&d.ends.1) {
-            let at = ast.dampers.iter().find(|a| a.name == d.name).map(|a| a.name.span());
+            let at = ast
+                .dampers
+                .iter()
+                .find(|a| a.name == d.name)
+                .map(|a| a.name.to_token_stream());
             out.extend(at.map(|at| (at, format!("damper `{}` joins two points that move with no coordinate: it acts on nothing (name a body, or a point on one)", d.name))));
         }
     }
     if potentials.len() == ast.potentials.len() {
         for (p, term) in potentials.iter().zip(&ast.potentials) {
             if !q.iter().any(|s| g.depends_on(*p, *s)) {
-                out.push((term.span(), "this potential depends on no coordinate: it exerts no force".into()));
+                out.push((
+                    term.to_token_stream(),
+                    "this potential depends on no coordinate: it exerts no force".into(),
+                ));
             }
         }
     }
@@ -192,11 +210,11 @@ fn still(
         for (a, load) in applied.iter().zip(&ast.loads) {
             let msg = match (a, load) {
                 (Applied::Force { at, .. }, Load::Force { at: term, .. }) if !moves(at) => (
-                    term.span(),
+                    term.to_token_stream(),
                     "this force acts at a point that moves with no coordinate: it does no work (apply it at a body: `position(b)` or `position(b, [..])`)".to_string(),
                 ),
                 (Applied::PlanarTorque { angle, .. }, Load::Torque { body, .. }) if !moves(&[*angle]) => (
-                    body.span(),
+                    body.to_token_stream(),
                     format!("`{body}` turns with no coordinate: a torque on it does no work"),
                 ),
                 _ => continue,
@@ -204,8 +222,8 @@ fn still(
             out.push(msg);
         }
     }
-    for (span, msg) in out {
-        scope.errors.at(span, msg);
+    for (tokens, msg) in out {
+        scope.errors.over(tokens, msg);
     }
 }
 

@@ -62,7 +62,10 @@ fn mul(a: Range, b: Range) -> Range {
     if p.iter().any(|v| v.is_nan()) {
         return ALL;
     }
-    (p.iter().copied().fold(f64::INFINITY, f64::min), p.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+    (
+        p.iter().copied().fold(f64::INFINITY, f64::min),
+        p.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    )
 }
 
 fn div(a: Range, b: Range) -> Range {
@@ -76,7 +79,11 @@ fn div(a: Range, b: Range) -> Range {
 /// `a^n` for an even `n > 0`.
 fn even(a: Range, n: i32) -> Range {
     let (small, big) = (a.0.abs().min(a.1.abs()), a.0.abs().max(a.1.abs()));
-    let lo = if a.0 <= 0.0 && a.1 >= 0.0 { 0.0 } else { small.powi(n) };
+    let lo = if a.0 <= 0.0 && a.1 >= 0.0 {
+        0.0
+    } else {
+        small.powi(n)
+    };
     (lo, big.powi(n))
 }
 

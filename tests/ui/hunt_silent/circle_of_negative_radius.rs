@@ -1,16 +1,15 @@
 use mbd::Mechanism;
 
 /// A circle whose squared radius is written with the wrong sign: `x^2 + y^2 >= 0` never
-/// meets `-l^2 - d^2`, whatever the parameters.
+/// meets `-l^2 - 0.25`, whatever the parameters.
 #[derive(Mechanism)]
 #[mechanism(augmented)]
 #[coords(x, y)]
 #[particle(bob, mass = m, at = [x, y])]
-#[constraint(x * x + y * y == -(l * l) - d.powi(2))]
+#[constraint(x * x + y * y == -(l * l) - 0.25)]
 pub struct Pendulum {
     pub m: f64,
     pub l: f64,
-    pub d: f64,
 }
 
 fn main() {}
