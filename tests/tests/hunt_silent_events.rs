@@ -32,7 +32,10 @@ fn exact(level: f64, rising: bool) -> Vec<f64> {
     (0..10).map(|k| first + TAU * k as f64).collect()
 }
 
-fn methods(tol: f64) -> Vec<(String, Box<dyn Fn(&[Event<'_, 2>]) -> Solution<2>>)> {
+/// A named run of the oscillator to `T1` with the events given.
+type Run = (String, Box<dyn Fn(&[Event<'_, 2>]) -> Solution<2>>);
+
+fn methods(tol: f64) -> Vec<Run> {
     let o = Options {
         rtol: tol,
         atol: tol,
