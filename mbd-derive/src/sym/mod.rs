@@ -8,6 +8,7 @@
 //! - `expr.rs`: the arena, interning, symbols, free-symbol and non-smooth summaries;
 //! - `simplify.rs`: the simplifying constructors (`add`, `mul`, …) and their rewrite rules;
 //! - `diff.rs`: memoised differentiation; `subs.rs`: substitution; `eval.rs`: evaluation;
+//! - `regroup.rs`: a residual's constant terms summed before the state's (rounding);
 //! - `schedule.rs`: topological order and use counts for code generation;
 //! - `hash.rs`: the fast hasher of the internal maps.
 //!
@@ -26,6 +27,7 @@ mod diff;
 mod eval;
 mod expr;
 mod hash;
+mod regroup;
 mod schedule;
 mod simplify;
 mod subs;
