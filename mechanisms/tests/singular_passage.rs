@@ -23,9 +23,10 @@ fn options(tol: f64) -> Options {
 
 /// Tip error against the reduction, crank spread, and every passage bridging a flat
 /// instant of the reduction (`sin th` changes sign over the bridge) and reported at it
-/// (`|sin th| < 1e-2`: within 2.5e-3 s at the 4 rad/s the cranks turn there; the index-1
-/// stops are measured within 1e-5 s, a Newton failure's instant is extrapolated from the
-/// rank measure, measured 7e-4 s off) with its 40 lost rows named.
+/// (`|sin th| < 1e-3`: within 2e-4 s at the 4.8 rad/s the cranks turn there; the instants
+/// located on the smooth singular-value measure are measured within about 1e-5 s, where
+/// the pivoted remainder's were up to 2.2e-2 s off, and 7e-4 s extrapolated after a Newton
+/// failure) with its 40 lost rows named.
 fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, t1: f64, what: &str) -> f64 {
     let reference = fa::reference(a, 1.0, t1).unwrap();
     let sol = &run.solution;
@@ -47,7 +48,7 @@ fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, t1: f64, what: &str) -> f
         );
         let th = reference.at(p.t).unwrap()[0];
         assert!(
-            th.sin().abs() < 1e-2,
+            th.sin().abs() < 1e-3,
             "{what}: passage at t = {} where th = {th}",
             p.t
         );
