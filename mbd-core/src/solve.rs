@@ -353,9 +353,37 @@ impl<'a, const N: usize, const M: usize, const A: usize> Saddle<'a, N, M, A> {
     }
 }
 
+/// `sum x_i y_i` in twice the working precision, rounded once (Ogita, Rump and Oishi's
+/// `Dot2`, SIAM J. Sci. Comput. 26, 2005: each product split exactly by a fused
+/// multiply-add, each sum by Knuth's two-sum): the residuals of iterative refinement.
+pub fn dot2(terms: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+    let (mut s, mut c) = (0.0f64, 0.0f64);
+    for (x, y) in terms {
+        let p = x * y;
+        let pe = x.mul_add(y, -p);
+        let t = s + p;
+        let z = t - s;
+        c += (s - (t - z)) + (p - z) + pe;
+        s = t;
+    }
+    s + c
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `1e16 + 1 - 1e16` is 1 in twice the precision (0 summed in `f64`), and the product's
+    /// low part counts: `(1 + 2^-30)^2 - 1 - 2^-29 = 2^-60`.
+    #[test]
+    fn dot2_sums_in_twice_the_precision() {
+        assert_eq!(dot2([(1e16, 1.0), (1.0, 1.0), (-1e16, 1.0)]), 1.0);
+        let x = 1.0 + 2f64.powi(-30);
+        assert_eq!(
+            dot2([(x, x), (-1.0, 1.0), (-(2f64.powi(-29)), 1.0)]),
+            2f64.powi(-60)
+        );
+    }
 
     /// One coordinate: `f / m`, and a zero or non-finite mass is a typed error, not a NaN.
     #[test]

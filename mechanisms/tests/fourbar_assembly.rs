@@ -91,3 +91,22 @@ fn ali3_passes_the_singular_positions_with_second_order_error() {
     let ratio = errors[0] / errors[1];
     assert!(errors[1] < 1e-3 && ratio > 3.5, "{errors:?}");
 }
+
+/// The generated closure residual rounds at its own size, not at the pins' ground
+/// positions. On an exact parallelogram (every crank at `th`, every coupler at `-th` from
+/// its crank, so horizontal) loop `i`'s rows are exactly
+/// `i l + l cos th + l - ((i + 1) l + l cos th) = 0` and `l sin th + 0 - l sin th = 0`;
+/// the derive sums the offsets `i l - (i + 1) l = -l` first (exact), so what is left is
+/// the rounding of terms of size `l`: a few `eps l`. Summed in the written order, the x
+/// rows rounded at the size of `(i + 2) l` (`ulp(41) = 7e-15`; this check failed with
+/// 1.8e-15 at `th = 0.03`); Gauss–Newton near a flat position divides that by the distance
+/// to it (docs/STABILITY.md).
+#[test]
+fn closure_residual_rounds_at_its_own_size() {
+    let a = FourBarAssembly::benchmark();
+    for th in [1.0, 0.3, 0.1, 0.03, 1e-2, 3e-3, 1e-3, -0.02, 2.5] {
+        let q = mbd::Vector::<{ fa::N }>::from_fn(|i, _| if i % 2 == 0 { th } else { -th });
+        let worst = a.phi(0.0, &q).amax();
+        assert!(worst <= 4.0 * f64::EPSILON * a.l, "th = {th}: {worst:e}");
+    }
+}

@@ -23,9 +23,10 @@ fn options(tol: f64) -> Options {
 
 /// Tip error against the reduction, crank spread, and every passage bridging a flat
 /// instant of the reduction (`sin th` changes sign over the bridge) and reported at it
-/// (`|sin th| < 1e-2`: within 2.5e-3 s at the 4 rad/s the cranks turn there; the index-1
-/// stops are measured within 1e-5 s, a Newton failure's instant is extrapolated from the
-/// rank measure, measured 7e-4 s off) with its 40 lost rows named.
+/// (`|sin th| < 1e-3`: within 2e-4 s at the 4.8 rad/s the cranks turn there; the instants
+/// located on the smooth singular-value measure are measured within about 1e-5 s, where
+/// the pivoted remainder's were up to 2.2e-2 s off, and 7e-4 s extrapolated after a Newton
+/// failure) with its 40 lost rows named.
 fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, t1: f64, what: &str) -> f64 {
     let reference = fa::reference(a, 1.0, t1).unwrap();
     let sol = &run.solution;
@@ -47,7 +48,7 @@ fn check(a: &FourBarAssembly, run: &Passed<{ fa::D }>, t1: f64, what: &str) -> f
         );
         let th = reference.at(p.t).unwrap()[0];
         assert!(
-            th.sin().abs() < 1e-2,
+            th.sin().abs() < 1e-3,
             "{what}: passage at t = {} where th = {th}",
             p.t
         );
@@ -94,13 +95,13 @@ fn dopri5_is_bridged_on_the_parallelogram_branch() {
 /// once crawled (main before this test: 1e-10 and 1e-12 ended in `TooManySteps` after
 /// 100 000 steps at t = 11.07 and 9.11, the instant misplaced by the pivoted rank measure
 /// and crossed inside a leg). Every run ends at 20 s on the parallelogram branch, each
-/// passage at a flat instant of the reduction, the tip within 1e-6 of it (measured with
-/// the 400 outputs of `loops`: 3.3e-7 at 1e-10, 8.9e-8 at 1e-12).
+/// passage at a flat instant of the reduction, the tip within 1e-6 / 1e-7 of it (measured
+/// here: 3.3e-7 at 1e-10, 2.1e-8 at 1e-12; 8.9e-8 before the constants-first rows).
 #[test]
 fn dopri5_runs_the_whole_20_s_at_tight_tolerances() {
     let a = FourBarAssembly::benchmark();
     let y0 = a.benchmark_state(1.0);
-    for tol in [1e-10, 1e-12] {
+    for (tol, bound) in [(1e-10, 1e-6), (1e-12, 1e-7)] {
         let run = passage::solve(
             &Dopri5::new(options(tol)),
             &a,
@@ -113,7 +114,7 @@ fn dopri5_runs_the_whole_20_s_at_tight_tolerances() {
         .unwrap();
         assert!(!run.passages.is_empty(), "{tol:e}: nothing bridged");
         let err = check(&a, &run, 20.0, &format!("DOPRI5 {tol:e}, 20 s"));
-        assert!(err < 1e-6, "{tol:e}: {err:e}");
+        assert!(err < bound, "{tol:e}: {err:e}");
     }
 }
 
@@ -250,14 +251,13 @@ fn quadrature_reference_is_the_reduction() {
 }
 
 /// DOPRI5 through the ordinary solve over the first 3 s (three flat positions), against
-/// the quadrature reference: the error converges with the tolerance, at least fourfold a
-/// decade from 1e-7 to 1e-10 (measured 4.7e-6, 4.4e-7, 3.9e-8, 3.7e-9), and no run
-/// returns `Ok` off the parallelogram. From 1e-11 on it stops falling (measured 4.0e-9 at
-/// 1e-11, 1.6e-9 at 1e-12): the bridge's right-hand side near a flat position rebuilds the
-/// dependent positions from the generated closure residual, whose rounding (7e-15: it sums
-/// the pins' ground positions, up to 40 m) moves them by `7e-15 / d` at `d` rad from flat
-/// and the accelerations by that over `d^2`; a step across the instant then carries about
-/// `1e-10` rad/s, which the slow turn over the top multiplies (docs/STABILITY.md).
+/// the quadrature reference: the error converges with the tolerance, at least eightfold a
+/// decade from 1e-7 to 1e-11 (measured 4.7e-6, 4.4e-7, 4.0e-8, 3.7e-9, 2.4e-10: 10.8,
+/// 10.9, 10.8, 15.7), and no run returns `Ok` off the parallelogram. At 1e-12, the one
+/// setting that also bridges the passage at 0.72 s, it reaches the floor (measured
+/// 6.4e-11; docs/STABILITY.md). The closure rows cancel the pins' ground offsets before
+/// the cosines (rounding 4e-16, was 7e-15), the bridge's solves are refined and the
+/// instant is placed on a smooth measure; before, 1e-11 gave 4.0e-9 and 1e-12 1.9e-9.
 #[test]
 fn dopri5_error_converges_with_the_tolerance_to_the_floor() {
     use mbd::integrate::Integrator;
@@ -276,12 +276,13 @@ fn dopri5_error_converges_with_the_tolerance_to_the_floor() {
         );
         err
     };
-    let errors: Vec<f64> = [1e-7, 1e-8, 1e-9, 1e-10].into_iter().map(error).collect();
+    let errors: Vec<f64> = [1e-7, 1e-8, 1e-9, 1e-10, 1e-11]
+        .into_iter()
+        .map(error)
+        .collect();
     for pair in errors.windows(2) {
-        assert!(pair[1] < 0.25 * pair[0], "{errors:?}");
+        assert!(pair[1] < 0.125 * pair[0], "{errors:?}");
     }
-    for tol in [1e-11, 1e-12] {
-        let err = error(tol);
-        assert!(err < 1e-8, "{tol:e}: {err:e}");
-    }
+    let err = error(1e-12);
+    assert!(err < 1e-10, "1e-12: {err:e}");
 }

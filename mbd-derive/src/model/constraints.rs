@@ -80,6 +80,13 @@ pub(super) fn gather<'a>(ast: &'a Ast, scope: &mut Scope, kin: &Kinematics) -> C
             out.tokens.push(&cl.tokens);
         }
     }
+    // The constant offsets of each row (pins' ground positions) cancel among themselves
+    // before the coordinates' terms are added: the residual rounds at its own size.
+    let mut varying = kin.z_syms(&scope.g);
+    varying.extend(scope.g.as_sym(scope.t));
+    for row in &mut out.phi {
+        *row = scope.g.constants_first(*row, &varying);
+    }
     out
 }
 

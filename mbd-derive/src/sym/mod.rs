@@ -9,6 +9,7 @@
 //! - `simplify.rs`: the simplifying constructors (`add`, `mul`, …) and their rewrite rules;
 //! - `diff.rs`: memoised differentiation; `subs.rs`: substitution; `eval.rs`: evaluation;
 //! - `range.rs`: interval bounds over every value of the symbols;
+//! - `regroup.rs`: a residual's constant terms summed before the state's (rounding);
 //! - `schedule.rs`: topological order and use counts for code generation;
 //! - `hash.rs`: the fast hasher of the internal maps.
 //!
@@ -28,6 +29,7 @@ mod eval;
 mod expr;
 mod hash;
 mod range;
+mod regroup;
 mod schedule;
 mod simplify;
 mod subs;

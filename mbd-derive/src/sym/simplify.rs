@@ -100,7 +100,7 @@ impl Graph {
     }
 
     /// `e` as `coefficient * term` for collecting like terms.
-    fn coefficient(&self, e: Expr) -> (f64, Expr) {
+    pub(super) fn coefficient(&self, e: Expr) -> (f64, Expr) {
         match self.node(e) {
             Node::Neg(t) => (-1.0, t),
             _ => self.const_times(e).unwrap_or((1.0, e)),
