@@ -85,6 +85,47 @@ pub fn shadow<const D: usize>(y: &mut Vector<D>, n: usize, balls: &[[usize; 3]])
     }
 }
 
+/// [`shadow`] for a second-order integrator's state: positions `q`, rates `qd` and any
+/// number of acceleration-like vectors `acc` (generalized-alpha's `qdd` and its algorithmic
+/// acceleration), each joint `k` at the indices `balls[k]` of all of them. An acceleration
+/// follows the map's second derivative: `sigma_s'' = J sigma'' + J'(sigma') sigma'`,
+/// `J v = -v / s2 + 2 (sigma . v) sigma / s2^2`,
+/// `J'(v) v = (4 (sigma . v) v + 2 |v|^2 sigma) / s2^2 - 8 (sigma . v)^2 sigma / s2^3`.
+/// Returns whether any joint switched.
+pub fn shadow_motion<const N: usize>(
+    q: &mut Vector<N>,
+    qd: &mut Vector<N>,
+    acc: &mut [&mut Vector<N>],
+    balls: &[[usize; 3]],
+) -> bool {
+    let mut switched = false;
+    for ball in balls {
+        let get = |v: &Vector<N>| Vector::<3>::new(v[ball[0]], v[ball[1]], v[ball[2]]);
+        let (sigma, rate) = (get(q), get(qd));
+        let s2 = sigma.norm_squared();
+        if !(s2 > 1.0 && s2.is_finite()) {
+            continue;
+        }
+        switched = true;
+        let sd = sigma.dot(&rate);
+        let j = |v: &Vector<3>| -v / s2 + 2.0 * sigma.dot(v) * sigma / (s2 * s2);
+        let curve = (4.0 * sd * rate + 2.0 * rate.norm_squared() * sigma) / (s2 * s2)
+            - 8.0 * sd * sd * sigma / (s2 * s2 * s2);
+        let put = |v: &mut Vector<N>, x: Vector<3>| {
+            for k in 0..3 {
+                v[ball[k]] = x[k];
+            }
+        };
+        for a in acc.iter_mut() {
+            let x = j(&get(a)) + curve;
+            put(a, x);
+        }
+        put(q, -sigma / s2);
+        put(qd, j(&rate));
+    }
+    switched
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -170,5 +211,37 @@ mod tests {
         let before = y;
         shadow(&mut y, 3, &[[0, 1, 2]]);
         assert_eq!(y, before);
+    }
+    #[test]
+    fn the_shadow_motion_maps_accelerations_along_a_path() {
+        // sigma(t) = s + v t + a t^2 / 2 crosses nothing; its shadow's second derivative
+        // at t = 0 by a central difference of the map itself.
+        let (s, v, a) = (
+            Vector::<3>::new(0.9, -0.6, 0.3),
+            Vector::<3>::new(0.4, 0.7, -1.1),
+            Vector::<3>::new(-0.3, 0.2, 0.8),
+        );
+        let map = |t: f64| {
+            let x = s + v * t + a * (t * t / 2.0);
+            -x / x.norm_squared()
+        };
+        let dt = 1e-4;
+        let dd = (map(dt) - 2.0 * map(0.0) + map(-dt)) / (dt * dt);
+        let d = (map(dt) - map(-dt)) / (2.0 * dt);
+        let (mut q, mut qd, mut qdd, mut other) = (s, v, a, a);
+        assert!(shadow_motion(&mut q, &mut qd, &mut [&mut qdd, &mut other], &[[0, 1, 2]]));
+        assert!((q - map(0.0)).norm() < 1e-15);
+        assert!((qd - d).norm() < 1e-7, "{qd} {d}");
+        assert!((qdd - dd).norm() < 1e-6, "{qdd} {dd}");
+        assert_eq!(qdd, other);
+        // As `shadow` maps the first-order state.
+        let mut y = Vector::<6>::new(s[0], s[1], s[2], v[0], v[1], v[2]);
+        shadow(&mut y, 3, &[[0, 1, 2]]);
+        assert_eq!(y.fixed_rows::<3>(0).into_owned(), q);
+        assert!((y.fixed_rows::<3>(3).into_owned() - qd).norm() < 1e-15);
+        // Inside the unit ball nothing moves.
+        let before = (q, qd, qdd);
+        assert!(!shadow_motion(&mut q, &mut qd, &mut [&mut qdd], &[[0, 1, 2]]));
+        assert_eq!((q, qd, qdd), before);
     }
 }

@@ -63,6 +63,11 @@ pub trait OdeSystem<const D: usize> {
     fn chart_margin(&self, _t: f64, _y: &Vector<D>) -> Option<f64> {
         None
     }
+
+    /// [`Mechanism::rotation_charts`], the same indices into `y = [q; qd]`'s upper half.
+    fn rotation_charts(&self) -> &[[usize; 3]] {
+        &[]
+    }
 }
 
 /// A mechanism in minimal coordinates: `M(q, t) qdd = f(q, qd, t)`, plus constraints when
@@ -107,6 +112,14 @@ pub trait Mechanism<const N: usize> {
     /// `None` (the default) for models without closed-form closures.
     fn chart_margin(&self, _t: f64, _q: &Vector<N>) -> Option<f64> {
         None
+    }
+
+    /// The coordinates of each ball joint's (and free joint's) rotation parameters, which
+    /// switch to their shadow set past a half turn ([`crate::chart`]): what an integrator
+    /// that does not call [`OdeSystem::project`] (generalized-alpha) switches itself.
+    /// Empty (the default) for a model without them.
+    fn rotation_charts(&self) -> &[[usize; 3]] {
+        &[]
     }
 
     /// Inverse dynamics: the generalised forces `M qdd - f` that must act besides the

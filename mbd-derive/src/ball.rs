@@ -162,6 +162,14 @@ pub fn moment(g: &mut Graph, sigma: V3, tau: V3) -> V3 {
 /// it has none): each joint's state indices, for `mbd::chart::shadow` in
 /// `OdeSystem::project`. A ball joint whose coordinates are not all free coordinates (a closure made one dependent) keeps its chart.
 pub fn switch(ast: &Mechanism, free: &[syn::Ident], n: usize) -> Option<TokenStream> {
+    let balls = charts(ast, free)?;
+    Some(quote!(::mbd::__private::chart::shadow(y, #n, #balls);))
+}
+
+/// The same joints' coordinate indices as a slice literal `&[[a, b, c], ..]` (`None`: it has
+/// none), for `rotation_charts`, through which generalized-alpha switches its positions,
+/// rates and accelerations (`mbd::chart::shadow_motion`).
+pub fn charts(ast: &Mechanism, free: &[syn::Ident]) -> Option<TokenStream> {
     let balls: Vec<TokenStream> = ast
         .tree
         .iter()
@@ -172,5 +180,5 @@ pub fn switch(ast: &Mechanism, free: &[syn::Ident], n: usize) -> Option<TokenStr
             Some(quote!([#a, #b, #c]))
         })
         .collect();
-    (!balls.is_empty()).then(|| quote!(::mbd::__private::chart::shadow(y, #n, &[#(#balls),*]);))
+    (!balls.is_empty()).then(|| quote!(&[#(#balls),*]))
 }

@@ -357,11 +357,20 @@ impl Gauss {
             let delta = (f[0] * B[0] + f[1] * B[1]) * h + compensation;
             let mut y1 = y + delta;
             compensation = delta - (y1 - y);
+            // The step's end as computed, when a projection moved it farther than the step
+            // itself did: a ball joint's switch to its shadow set (`chart.rs`), not a
+            // correction onto a loop's constraints. The step is then interpolated as
+            // computed, and neither the Newton start nor the Jacobian crosses the switch.
+            let mut computed = None;
             if self.project {
                 let before = y1;
                 sys.project(t_new, &mut y1)?;
                 if y1 != before {
                     compensation = Vector::<D>::zeros();
+                    if (y1 - before).amax() > (before - y).amax() {
+                        computed = Some(before);
+                        previous = None;
+                    }
                 }
             }
             if non_finite(&y1) {
@@ -370,7 +379,7 @@ impl Gauss {
             if let Some((ts, yb)) = chart.accept(t_new, &y1, |y| sys.chart_margin(t_new, y)) {
                 return Err(passed_limit(ts, &yb, sys.rhs(ts, &yb).err()));
             }
-            if slow && step < n {
+            if (slow || computed.is_some()) && step < n {
                 // The iteration slowed down: a fresh Jacobian for the next step.
                 lu = fresh(t_new, &y1, &mut stats)?;
                 jac_current = true;
@@ -382,12 +391,20 @@ impl Gauss {
                 if non_finite(&f1) {
                     return Err(Error::NonFinite { t: t_new });
                 }
-                let seg = Segment::hermite(t, t_new - t, &y, &f0, &y1, &f1);
+                let seg = match computed {
+                    Some(end) => {
+                        stats.n_rhs += 1;
+                        let f_end = sys.rhs(t_new, &end)?;
+                        Segment::hermite(t, t_new - t, &y, &f0, &end, &f_end)
+                    }
+                    None => Segment::hermite(t, t_new - t, &y, &f0, &y1, &f1),
+                };
                 f0 = f1;
-                rec.accept(seg, &y1)
+                rec.accept_with(t_new, &y1, || seg)
             } else {
+                let end = computed.unwrap_or(y1);
                 rec.accept_with(t_new, &y1, || {
-                    Segment::hermite(t, t_new - t, &y, &f0, &y1, &f0)
+                    Segment::hermite(t, t_new - t, &y, &f0, &end, &f0)
                 })
             };
             (t, y) = (t_new, y1);

@@ -30,6 +30,7 @@
 
 use super::{Integrator, positive_finite, second_order_end_packed, stack};
 use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
+use crate::chart::shadow_motion;
 use crate::banded::SaddleLu;
 use crate::closure::{ChartWatch, passed_limit};
 use crate::error::{Error, Result};
@@ -188,6 +189,7 @@ impl GeneralizedAlpha {
                 );
                 sys.acceleration(t, &q, &qd).err()
             },
+            rotations: sys.rotation_charts(),
         };
         self.run::<N, N, D>(
             start,
@@ -332,6 +334,7 @@ impl GeneralizedAlpha {
         residual: impl Fn(f64, f64, &Vector<K>, &Vector<N>, &Vector<N>) -> Result<Vector<K>>,
         structure: Option<impl Fn(f64, &Vector<N>, f64) -> Result<Option<Factor<K>>>>,
         chart: Chart<
+            '_,
             impl Fn(f64, &Vector<D>) -> Option<f64>,
             impl Fn(f64, &Vector<D>) -> Option<Error>,
         >,
@@ -426,9 +429,18 @@ impl GeneralizedAlpha {
                     None => e,
                 }
             })?;
-            let (q1, a1, qd1, qdd1) = kinematics(&z.fixed_rows::<N>(0).into_owned());
-            let (y1, seg) =
+            let (mut q1, mut a1, mut qd1, mut qdd1) =
+                kinematics(&z.fixed_rows::<N>(0).into_owned());
+            let (mut y1, seg) =
                 second_order_end_packed(&pack, t, t_next, (&q, &qd, &qdd), (&q1, &qd1, &qdd1))?;
+            // Past a half turn a ball joint's parameters switch to their shadow set after the
+            // step's segment (which interpolates the step as computed), with the rates and
+            // both accelerations mapped along; the predictor starts there. `z`'s position
+            // part is only the next predictor's slot, refilled below.
+            let rotations = chart.rotations;
+            if shadow_motion(&mut q1, &mut qd1, &mut [&mut qdd1, &mut a1], rotations) {
+                y1 = pack(&q1, &qd1);
+            }
             stats.n_steps += 1;
             stats.n_accepted += 1;
             if let Some((ts, yb)) = watch.accept(t_next, &y1, |y| (chart.margin)(t_next, y)) {
@@ -564,19 +576,23 @@ const STALL: f64 = 1e3;
 const BANDED_FROM: usize = 24;
 
 /// A minimal loop's closed-form chart, watched for a limit position stepped over
-/// ([`ChartWatch`]): its margin at a state `y = [q; qd]`, and the model's own error there.
-struct Chart<M, E> {
+/// ([`ChartWatch`]): its margin at a state `y = [q; qd]`, and the model's own error there;
+/// and the ball joints' rotation charts, switched after each step ([`crate::chart`]).
+struct Chart<'r, M, E> {
     margin: M,
     explain: E,
+    rotations: &'r [[usize; 3]],
 }
 
 /// No chart: constrained (index-3) loops keep all their coordinates.
 #[allow(clippy::type_complexity, reason = "the two closures' types")]
 fn no_chart<const D: usize>()
--> Chart<impl Fn(f64, &Vector<D>) -> Option<f64>, impl Fn(f64, &Vector<D>) -> Option<Error>> {
+-> Chart<'static, impl Fn(f64, &Vector<D>) -> Option<f64>, impl Fn(f64, &Vector<D>) -> Option<Error>>
+{
     Chart {
         margin: |_: f64, _: &Vector<D>| None,
         explain: |_: f64, _: &Vector<D>| None,
+        rotations: &[],
     }
 }
 
@@ -774,6 +790,7 @@ impl Integrator for GeneralizedAlpha {
         let chart = Chart {
             margin: |t: f64, y: &Vector<D>| sys.chart_margin(t, y),
             explain: |t: f64, y: &Vector<D>| sys.rhs(t, y).err(),
+            rotations: sys.rotation_charts(),
         };
         self.run::<D, D, D>(
             start,

@@ -528,10 +528,16 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
             }
             // A change point of a loop's closed forms stepped over (`closure::ChartWatch`).
             watch_step(self.sys, &mut chart, t_new, &y1)?;
-            let segment = collocation_segment(t, h, &y, a, &y1);
+            // A projection within the tolerance (onto a loop's constraints) is spread over
+            // the step; one beyond it (a ball joint's switch to its shadow set, `chart.rs`)
+            // moved to another chart: the step is interpolated as computed, and the next
+            // step's Newton start is not extrapolated across it.
+            let switched = (y1 - y_new).component_div(&scale).amax() > 1.0;
+            let end = if switched { &y_new } else { &y1 };
+            let segment = collocation_segment(t, h, &y, a, end);
             let coeffs = [segment.coeffs[1], segment.coeffs[2], segment.coeffs[3]];
-            previous = Some((coeffs, h));
-            if let Flow::Stop = recorder.accept(segment, &y1) {
+            previous = (!switched).then_some((coeffs, h));
+            if let Flow::Stop = recorder.accept_with(t_new, &y1, || segment) {
                 return Ok(());
             }
             (t, y) = (t_new, y1);
@@ -554,13 +560,15 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
                 last = true;
             } else {
                 let ratio = h_new / h;
-                if self.theta <= THETA_REUSE && (keep_min..=keep_max).contains(&ratio) {
+                // (The Jacobian of the old chart does not serve the new one.)
+                if !switched && self.theta <= THETA_REUSE && (keep_min..=keep_max).contains(&ratio)
+                {
                     refresh = Refresh::Nothing;
                     continue;
                 }
                 h = h_new;
             }
-            refresh = if self.theta <= THETA_REUSE {
+            refresh = if !switched && self.theta <= THETA_REUSE {
                 Refresh::Factors
             } else {
                 Refresh::Jacobian
@@ -692,7 +700,8 @@ impl<'a, S: OdeSystem<D>, const D: usize> Run<'a, S, D> {
 }
 
 /// The dense output of an accepted step: the collocation polynomial in the monomial basis,
-/// shifted by `(y1 − u(1)) θ` so that it ends exactly at the (possibly projected) `y1`.
+/// shifted by `(y1 − u(1)) θ` so that it ends exactly at `y1` (the step's end as computed,
+/// or projected onto a loop's constraints).
 fn collocation_segment<const D: usize>(
     t0: f64,
     h: f64,

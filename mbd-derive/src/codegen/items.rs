@@ -41,6 +41,8 @@ struct Shape<'a> {
     parts: Parts,
     /// The ball joints' chart switch, when the model has one (`ball.rs`).
     charts: Option<TokenStream>,
+    /// `rotation_charts` for `Mechanism` and `OdeSystem`, when the model has ball joints.
+    rotation_charts: Option<TokenStream>,
 }
 
 pub fn emit(ast: &Mechanism, eq: &Equations) -> TokenStream {
@@ -140,6 +142,9 @@ impl<'a> Shape<'a> {
             solve_qdd_lambda,
             parts,
             charts: crate::ball::switch(ast, &eq.free, n),
+            rotation_charts: crate::ball::charts(ast, &eq.free).map(|balls| {
+                quote!(fn rotation_charts(&self) -> &[[usize; 3]] { #balls })
+            }),
         }
     }
 }
@@ -334,10 +339,12 @@ fn mechanism_impl(
         let m = sh.m;
         quote!(const CONSTRAINTS: usize = #m;)
     });
+    let rotation_charts = &sh.rotation_charts;
     quote! {
         impl ::mbd::__private::Mechanism<#n> for #ident {
             const COORDINATES: [&'static str; #n] = [#(#coord_names),*];
             #rows
+            #rotation_charts
             fn mass_matrix(&self, t: f64, q: &::mbd::__private::Vector<#n>)
                 -> ::mbd::__private::Result<::mbd::__private::Matrix<#n, #n>> {
                 #mass_matrix
@@ -500,7 +507,7 @@ fn ode_impl(
     let onto_constraints = constrained.then(|| {
         quote!(::mbd::__private::analysis::projection::project_state::<Self, #n, #m, #d>(self, t, y)?;)
     });
-    let charts = &sh.charts;
+    let (charts, rotation_charts) = (&sh.charts, &sh.rotation_charts);
     let margin = sh.margin.as_ref().map(|(_, o)| o);
     let project = (constrained || charts.is_some()).then(|| {
         quote! {
@@ -573,6 +580,7 @@ fn ode_impl(
             #project
             #passage
             #margin
+            #rotation_charts
         }
         #bridge
     }
