@@ -229,7 +229,12 @@ mod tests {
         let dd = (map(dt) - 2.0 * map(0.0) + map(-dt)) / (dt * dt);
         let d = (map(dt) - map(-dt)) / (2.0 * dt);
         let (mut q, mut qd, mut qdd, mut other) = (s, v, a, a);
-        assert!(shadow_motion(&mut q, &mut qd, &mut [&mut qdd, &mut other], &[[0, 1, 2]]));
+        assert!(shadow_motion(
+            &mut q,
+            &mut qd,
+            &mut [&mut qdd, &mut other],
+            &[[0, 1, 2]]
+        ));
         assert!((q - map(0.0)).norm() < 1e-15);
         assert!((qd - d).norm() < 1e-7, "{qd} {d}");
         assert!((qdd - dd).norm() < 1e-6, "{qdd} {dd}");
@@ -241,7 +246,12 @@ mod tests {
         assert!((y.fixed_rows::<3>(3).into_owned() - qd).norm() < 1e-15);
         // Inside the unit ball nothing moves.
         let before = (q, qd, qdd);
-        assert!(!shadow_motion(&mut q, &mut qd, &mut [&mut qdd], &[[0, 1, 2]]));
+        assert!(!shadow_motion(
+            &mut q,
+            &mut qd,
+            &mut [&mut qdd],
+            &[[0, 1, 2]]
+        ));
         assert_eq!((q, qd, qdd), before);
     }
 }

@@ -49,15 +49,19 @@ pub fn emit(
     let mu_s = eq.frictions.iter().map(|f| b.leaf(f.mu_static));
     let along = eq.frictions.iter().map(|f| f.coord);
     let p = quote!(::mbd::__private);
-    let project = (m > 0).then(|| {
-        quote! {
-            fn project_in(&self, t: f64, y: &mut #p::Vector<#d>, mode: &Self::Mode) -> #p::Result<()> {
-                #p::OdeSystem::<#d>::project(self, t, y)?;
-                #p::friction::project_in::<#n, #nf, #d>(&<Self as #p::Frictional<#n, #m, #nf, #a>>::ALONG, y, mode);
-                Ok(())
-            }
-        }
+    // The model's own projection in every mode: a loop's constraints, and a ball joint's
+    // chart switch (`chart.rs`) also in a model without constraints.
+    let onto_modes = (m > 0).then(|| {
+        quote!(#p::friction::project_in::<#n, #nf, #d>(&<Self as #p::Frictional<#n, #m, #nf, #a>>::ALONG, y, mode);)
     });
+    let project = quote! {
+        fn project_in(&self, t: f64, y: &mut #p::Vector<#d>, mode: &Self::Mode) -> #p::Result<()> {
+            #p::OdeSystem::<#d>::project(self, t, y)?;
+            let _ = mode;
+            #onto_modes
+            Ok(())
+        }
+    };
     let sliding_check = (m > 0).then(|| quote!(self.check_parameters()?;));
     // Implicit normals: the sliding view goes through the core's Newton too.
     let fast = !implicit;

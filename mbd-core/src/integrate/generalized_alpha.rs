@@ -30,8 +30,8 @@
 
 use super::{Integrator, positive_finite, second_order_end_packed, stack};
 use super::{Observer, Record, Recorder, Solution, Stats, validate_problem};
-use crate::chart::shadow_motion;
 use crate::banded::SaddleLu;
+use crate::chart::shadow_motion;
 use crate::closure::{ChartWatch, passed_limit};
 use crate::error::{Error, Result};
 use crate::integrate::events::Event;
@@ -586,9 +586,11 @@ struct Chart<'r, M, E> {
 
 /// No chart: constrained (index-3) loops keep all their coordinates.
 #[allow(clippy::type_complexity, reason = "the two closures' types")]
-fn no_chart<const D: usize>()
--> Chart<'static, impl Fn(f64, &Vector<D>) -> Option<f64>, impl Fn(f64, &Vector<D>) -> Option<Error>>
-{
+fn no_chart<const D: usize>() -> Chart<
+    'static,
+    impl Fn(f64, &Vector<D>) -> Option<f64>,
+    impl Fn(f64, &Vector<D>) -> Option<Error>,
+> {
     Chart {
         margin: |_: f64, _: &Vector<D>| None,
         explain: |_: f64, _: &Vector<D>| None,

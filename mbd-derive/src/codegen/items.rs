@@ -142,9 +142,8 @@ impl<'a> Shape<'a> {
             solve_qdd_lambda,
             parts,
             charts: crate::ball::switch(ast, &eq.free, n),
-            rotation_charts: crate::ball::charts(ast, &eq.free).map(|balls| {
-                quote!(fn rotation_charts(&self) -> &[[usize; 3]] { #balls })
-            }),
+            rotation_charts: crate::ball::charts(ast, &eq.free)
+                .map(|balls| quote!(fn rotation_charts(&self) -> &[[usize; 3]] { #balls })),
         }
     }
 }
