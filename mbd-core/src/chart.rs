@@ -7,8 +7,11 @@
 //! The same rotation has the *shadow* parameters `-sigma / |sigma|^2` (the rotation by
 //! `phi - 2π` about `n`), so switching to them whenever `|sigma| > 1` (`phi > π`) keeps every
 //! ball joint within `|sigma| <= 1`. A generated model does it in
-//! [`crate::OdeSystem::project`], after each accepted step; the orientation, the angular
-//! velocity and so every output and the energy are the same on both sides of the switch.
+//! [`crate::OdeSystem::project`], after each accepted step (generalized-alpha, which does not
+//! project, through [`shadow_motion`] on the joints of `Mechanism::rotation_charts`); the
+//! dense output interpolates the step in the chart it was computed in. The orientation, the
+//! angular velocity and so every output and the energy are the same on both sides of the
+//! switch.
 
 use crate::model::{Matrix, Vector};
 

@@ -443,8 +443,8 @@ fn free_body_flips_about_its_intermediate_axis_as_in_closed_form() {
 
 /// Under gravity the mass centre follows the parabola `r0 + v0 t + g t^2 / 2` while the
 /// body tumbles (at every accepted step), by Radau5 (tolerance 1e-11: within 1e-9) and
-/// generalized-alpha (h = 1e-3, second order: within 1e-4); generalized-alpha does not switch
-/// charts, so its run stays below a full turn (|w| t = 4.3 rad).
+/// generalized-alpha (h = 1e-3, second order: within 1e-4), below a full turn (|w| t = 4.3
+/// rad; `chart_dense_output.rs` takes generalized-alpha through switches).
 #[test]
 fn free_body_under_gravity_follows_the_parabola() {
     let g = 9.81;
