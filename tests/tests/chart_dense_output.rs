@@ -256,6 +256,9 @@ fn dense_output_inside_a_switching_step_is_the_step_as_computed() {
     }
 }
 
+/// A run of the free body with events.
+type Run<'a> = dyn Fn(&[Event<'_, 12>]) -> Solution<12> + 'a;
+
 /// An event whose closed-form time lies in the middle of a switching step: the mass centre's
 /// `x` (uniform motion: `c0x + v0x t`) passing the value it has there. Located by each
 /// method's dense output inside that step.
@@ -264,7 +267,7 @@ fn events_inside_a_switching_step_are_located_where_they_are() {
     let p = flyer(9.81);
     let y0 = flyer_start();
     let c0x = com(&y0)[0];
-    let methods: [(&str, &dyn Fn(&[Event<'_, 12>]) -> Solution<12>, f64); 3] = [
+    let methods: [(&str, &Run, f64); 3] = [
         (
             "DOPRI5",
             &|ev| {
