@@ -226,13 +226,7 @@ const RESOLVED: f64 = 100.0;
 /// when it moves `lambda` by less than 1% (rounding is below 0.1% of a resolved one);
 /// a real eigenvalue stays real.
 fn refine(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> Complex<f64> {
-    let x = inverse_iteration(a, lambda, norm, &[]);
-    let w = inverse_iteration(&a.transpose(), lambda, norm, &[]);
-    let ax = a.map(|v| Complex::new(v, 0.0)) * &x;
-    let dot = |u: &DVector<Complex<f64>>| -> Complex<f64> {
-        w.iter().zip(u.iter()).map(|(p, q)| p * q).sum()
-    };
-    let quotient: Complex<f64> = dot(&ax) / dot(&x);
+    let quotient = two_sided_quotient(a, lambda, norm, a);
     let refined = if lambda.im == 0.0 {
         Complex::new(quotient.re, 0.0)
     } else {
@@ -293,15 +287,40 @@ fn condition(a: &DMatrix<f64>, lambda: Complex<f64>, norm: f64) -> f64 {
     if lambda.norm() == 0.0 {
         return f64::INFINITY;
     }
+    let (x, w) = eigenvectors(a, lambda, norm);
+    x.norm() * w.norm() / left_dot(&w, &x).norm()
+}
+
+/// The right and left eigenvectors of `lambda`, `A x = lambda x` and `A^T w = lambda w`,
+/// by inverse iteration. For a real `A` the left eigenvector is `y = conj(w)`, so
+/// `y^H u = w^T u` ([`left_dot`]).
+fn eigenvectors(
+    a: &DMatrix<f64>,
+    lambda: Complex<f64>,
+    norm: f64,
+) -> (DVector<Complex<f64>>, DVector<Complex<f64>>) {
     let x = inverse_iteration(a, lambda, norm, &[]);
-    // `A^T w = lambda w` for a real `A` makes `y = conj(w)` the left one: `y^H x = w^T x`.
     let w = inverse_iteration(&a.transpose(), lambda, norm, &[]);
-    let cos = w
-        .iter()
-        .zip(x.iter())
-        .map(|(p, q)| p * q)
-        .sum::<Complex<f64>>();
-    x.norm() * w.norm() / cos.norm()
+    (x, w)
+}
+
+/// `w^T u`, unconjugated: `y^H u` for the left eigenvector `y = conj(w)`.
+fn left_dot(w: &DVector<Complex<f64>>, u: &DVector<Complex<f64>>) -> Complex<f64> {
+    w.iter().zip(u.iter()).map(|(p, q)| p * q).sum()
+}
+
+/// `w^T B x / w^T x` with the right and left eigenvectors of `lambda` of `a`: for
+/// `B = A` the two-sided Rayleigh quotient ([`refine`]), for `B = dA/dp` the first-order
+/// change of a simple eigenvalue ([`mode_sensitivity`]).
+fn two_sided_quotient(
+    a: &DMatrix<f64>,
+    lambda: Complex<f64>,
+    norm: f64,
+    b: &DMatrix<f64>,
+) -> Complex<f64> {
+    let (x, w) = eigenvectors(a, lambda, norm);
+    let bx = b.map(|v| Complex::new(v, 0.0)) * &x;
+    left_dot(&w, &bx) / left_dot(&w, &x)
 }
 
 /// The eigenvalues of `a` from its real Schur form. nalgebra's shifted QR iteration can
@@ -836,21 +855,13 @@ pub fn mode_sensitivity<S: Parametric<D>, const D: usize>(
         da.set_column(j, &((plus - minus) / (2.0 * h)));
     }
     let norm = a.abs().column_sum().max();
-    let dac = da.map(|v| Complex::new(v, 0.0));
     let found = modes_of(a.clone())?;
     Ok(found
         .into_iter()
         .map(|m| {
-            if m.kind == ModeKind::Neutral {
-                return (m, None);
-            }
-            let x = inverse_iteration(&a, m.eigenvalue, norm, &[]);
-            let w = inverse_iteration(&a.transpose(), m.eigenvalue, norm, &[]);
-            let dot = |u: &DVector<Complex<f64>>| -> Complex<f64> {
-                w.iter().zip(u.iter()).map(|(p, q)| p * q).sum()
-            };
-            let d = dot(&(&dac * &x)) / dot(&x);
-            (m, Some(d))
+            let d = (m.kind != ModeKind::Neutral)
+                .then(|| two_sided_quotient(&a, m.eigenvalue, norm, &da));
+            (m, d)
         })
         .collect())
 }
