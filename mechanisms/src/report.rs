@@ -174,33 +174,28 @@ pub fn summary(rows: &[ReportRow], failed: &[(String, String)]) -> Vec<String> {
         n(rows.len(), "quantity", "quantities"),
         n(cases.len(), "case", "cases")
     )];
-    let worst = |err: &dyn Fn(&ReportRow) -> Option<f64>| {
-        rows.iter()
+    let errors: [(&str, &dyn Fn(&ReportRow) -> Option<f64>); 2] = [
+        ("mbd", &|r: &ReportRow| Some(r.error_pct)),
+        ("RecurDyn", &|r: &ReportRow| r.recurdyn_error_pct),
+    ];
+    for (who, err) in errors {
+        let worst = (rows.iter())
             .filter_map(|r| err(r).map(|e| (e, r)))
-            .max_by(|a, b| a.0.total_cmp(&b.0))
-    };
-    if let Some((e, r)) = worst(&|r| Some(r.error_pct)) {
-        out.push(format!(
-            "Largest mbd error: {} % (case {} {}).",
-            pct(e),
-            r.case,
-            r.quantity
-        ));
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((e, r)) = worst {
+            let (e, case, quantity) = (pct(e), &r.case, &r.quantity);
+            out.push(format!(
+                "Largest {who} error: {e} % (case {case} {quantity})."
+            ));
+        }
     }
-    if let Some((e, r)) = worst(&|r| r.recurdyn_error_pct) {
-        out.push(format!(
-            "Largest RecurDyn error: {} % (case {} {}).",
-            pct(e),
-            r.case,
-            r.quantity
-        ));
-    }
-    for (case, error) in failed {
-        out.push(format!(
-            "Case {case} FAILED and is not in the table: {error}"
-        ));
-    }
+    out.extend(failed.iter().map(|(case, error)| failure(case, error)));
     out
+}
+
+/// The summary's sentence for a case that failed to run.
+fn failure(case: &str, error: &str) -> String {
+    format!("Case {case} FAILED and is not in the table: {error}")
 }
 
 /// Whether the row's reference is a corrected value (the manual's theory does not round to
@@ -380,12 +375,13 @@ pub fn html(runs: &[CaseRun], failed: &[(String, String)]) -> String {
     }
     s.push_str("</nav>\n<p class=\"small\">Under each case number: its largest mbd error, in percent.</p>\n");
     let rows: Vec<ReportRow> = runs.iter().flat_map(|r| r.rows.iter().cloned()).collect();
-    let (failures, lines): (Vec<String>, Vec<String>) = summary(&rows, failed)
-        .into_iter()
-        .partition(|l| l.contains("FAILED"));
-    let _ = writeln!(s, "<p class=\"ok\">{}</p>", esc(&lines.join(" ")));
-    for line in failures {
-        let _ = writeln!(s, "<p class=\"wrong\">{}</p>", esc(&line));
+    let _ = writeln!(
+        s,
+        "<p class=\"ok\">{}</p>",
+        esc(&summary(&rows, &[]).join(" "))
+    );
+    for (case, error) in failed {
+        let _ = writeln!(s, "<p class=\"wrong\">{}</p>", esc(&failure(case, error)));
     }
     for r in runs {
         s.push_str(&section(r));
