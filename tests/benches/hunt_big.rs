@@ -50,42 +50,35 @@ pub struct FreeMassMatrix {
     pub g: f64,
 }
 
+/// The least times of `p`'s rhs, mass matrix and forces at one fixed state, printed.
+fn time_model<S, const N: usize, const D: usize>(name: &str, p: &S)
+where
+    S: MechanismModel<N> + OdeSystem<D>,
+{
+    let y = Vector::<D>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
+    let (q, qd) = (
+        y.fixed_rows::<N>(0).into_owned(),
+        y.fixed_rows::<N>(N).into_owned(),
+    );
+    let rhs = least_ns(&|| {
+        let _ = black_box(p.rhs(0.0, black_box(&y)));
+    });
+    let mass = least_ns(&|| {
+        let _ = black_box(p.mass_matrix(0.0, black_box(&q)));
+    });
+    let forces = least_ns(&|| {
+        let _ = black_box(p.forces(0.0, black_box(&q), black_box(&qd)));
+    });
+    println!(
+        "{name}: rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
+    );
+}
+
 fn main() {
-    let p = Humanoid { g: 9.81 };
-    let y = Vector::<60>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
-    let (q, qd) = (
-        y.fixed_rows::<30>(0).into_owned(),
-        y.fixed_rows::<30>(30).into_owned(),
-    );
-    let rhs = least_ns(&|| {
-        let _ = black_box(p.rhs(0.0, black_box(&y)));
-    });
-    let mass = least_ns(&|| {
-        let _ = black_box(p.mass_matrix(0.0, black_box(&q)));
-    });
-    let forces = least_ns(&|| {
-        let _ = black_box(p.forces(0.0, black_box(&q), black_box(&qd)));
-    });
-    println!(
-        "humanoid (30 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
-    );
-    let p = FloatingHumanoid { g: 9.81 };
-    let y = Vector::<66>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
-    let (q, qd) = (
-        y.fixed_rows::<33>(0).into_owned(),
-        y.fixed_rows::<33>(33).into_owned(),
-    );
-    let rhs = least_ns(&|| {
-        let _ = black_box(p.rhs(0.0, black_box(&y)));
-    });
-    let mass = least_ns(&|| {
-        let _ = black_box(p.mass_matrix(0.0, black_box(&q)));
-    });
-    let forces = least_ns(&|| {
-        let _ = black_box(p.forces(0.0, black_box(&q), black_box(&qd)));
-    });
-    println!(
-        "floating humanoid (33 dof, 14 bodies): rhs {rhs:.0} ns, mass matrix {mass:.0} ns, forces {forces:.0} ns (least of 300 batches of 1000)"
+    time_model::<_, 30, 60>("humanoid (30 dof, 14 bodies)", &Humanoid { g: 9.81 });
+    time_model::<_, 33, 66>(
+        "floating humanoid (33 dof, 14 bodies)",
+        &FloatingHumanoid { g: 9.81 },
     );
     let y = Vector::<12>::from_fn(|i, _| 0.5 * (1.3 * i as f64).sin());
     let (a, b) = (FreeRecursive { g: 9.81 }, FreeMassMatrix { g: 9.81 });
