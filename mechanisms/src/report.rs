@@ -156,7 +156,8 @@ pub const LEGEND: &[&str] = &[
     "reference: the exact value every error is measured against: the manual's theory to full \
      precision or, where the theory is marked *, a corrected value the theory does not round \
      to (report.html and the case's source, mechanisms/src/caseNN_*.rs, say why).",
-    "mbd: mbd's value (10 significant figures). RD err %, mbd err % (RecurDyn's and mbd's): |value - reference| / |reference| x 100; where \
+    "mbd: mbd's value (10 significant figures). RD err %, mbd err % (RecurDyn's and mbd's): \
+     |value - reference| / |reference| x 100; where \
      the reference is 0, |value| x 100 in the row's unit.",
     "method: how mbd obtained the value. time [us]: wall-clock time of the whole case run, \
      shared by its rows.",
@@ -174,21 +175,17 @@ pub fn summary(rows: &[ReportRow], failed: &[(String, String)]) -> Vec<String> {
         n(rows.len(), "quantity", "quantities"),
         n(cases.len(), "case", "cases")
     )];
-    let errors: [(&str, &dyn Fn(&ReportRow) -> Option<f64>); 2] = [
-        ("mbd", &|r: &ReportRow| Some(r.error_pct)),
-        ("RecurDyn", &|r: &ReportRow| r.recurdyn_error_pct),
-    ];
-    for (who, err) in errors {
-        let worst = (rows.iter())
+    let largest = |who: &str, err: &dyn Fn(&ReportRow) -> Option<f64>| {
+        let (e, r) = (rows.iter())
             .filter_map(|r| err(r).map(|e| (e, r)))
-            .max_by(|a, b| a.0.total_cmp(&b.0));
-        if let Some((e, r)) = worst {
-            let (e, case, quantity) = (pct(e), &r.case, &r.quantity);
-            out.push(format!(
-                "Largest {who} error: {e} % (case {case} {quantity})."
-            ));
-        }
-    }
+            .max_by(|a, b| a.0.total_cmp(&b.0))?;
+        let (e, case, quantity) = (pct(e), &r.case, &r.quantity);
+        Some(format!(
+            "Largest {who} error: {e} % (case {case} {quantity})."
+        ))
+    };
+    out.extend(largest("mbd", &|r| Some(r.error_pct)));
+    out.extend(largest("RecurDyn", &|r| r.recurdyn_error_pct));
     out.extend(failed.iter().map(|(case, error)| failure(case, error)));
     out
 }

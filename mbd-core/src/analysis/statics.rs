@@ -41,8 +41,9 @@ pub fn static_equilibrium<S: Mechanism<N>, const N: usize>(
 /// least-squares multipliers at the guess (`Phi_q Phi_q^T lambda = Phi_q f`; zero where
 /// `Phi_q` lacks rank there). Not from `lambda = 0`: with loads that do not depend on the
 /// configuration (a press's load and torque) the residual's Jacobian at `lambda = 0` is
-/// `[[0, -Phi_q^T], [Phi_q, 0]]`, singular, since the stiffness `lambda . Phi_qq` is missing. The multipliers follow the convention of [`Constrained`]
-/// (`-Phi_q^T lambda` is the constraint force).
+/// `[[0, -Phi_q^T], [Phi_q, 0]]`, singular, since the stiffness `lambda . Phi_qq` is
+/// missing. The multipliers follow the convention of [`Constrained`] (`-Phi_q^T lambda` is
+/// the constraint force).
 ///
 /// Converged when every component of the step satisfies `|dz_i| <= tol (1 + |z_i|)`,
 /// `z = (q, lambda)`. Errors as [`static_equilibrium`].
