@@ -254,8 +254,18 @@ pub(super) fn check(
     let ranges = g.ranges(phi);
     let bounded = errors.is_empty();
     for (k, p) in phi.iter().enumerate() {
-        if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
-            errors.over(tokens[k], "this constraint involves no coordinate: it relates only parameters and `t`, so it cannot hold the mechanism");
+        if told.contains(&k) && !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
+            continue; // already said by the dependence check
+        } else if !qsyms.iter().any(|s| g.depends_on(*p, *s)) {
+            let why = match names_a_coordinate(tokens[k], coords) {
+                true => {
+                    "the coordinate terms of this constraint cancel: it relates only parameters and `t`, so it cannot hold the mechanism"
+                }
+                false => {
+                    "this constraint involves no coordinate: it relates only parameters and `t`, so it cannot hold the mechanism"
+                }
+            };
+            errors.over(tokens[k], why);
         } else if bounded && !told.contains(&k) && (ranges[k].0 > 0.0 || ranges[k].1 < 0.0) {
             let gap = ranges[k].0.max(-ranges[k].1);
             errors.over(tokens[k], format!("this constraint holds at no configuration: its two sides differ by at least {gap} whatever the coordinates and parameters (a square, an even power, `sqrt` or `abs` is never negative; `sin` and `cos` stay within [-1, 1])"));
@@ -270,4 +280,13 @@ pub(super) fn check(
             );
         }
     }
+}
+
+/// Whether the written constraint names a coordinate (whose terms then cancelled).
+fn names_a_coordinate(tokens: &TokenStream, coords: &[Coord]) -> bool {
+    tokens.clone().into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => coords.iter().any(|c| c.name == i),
+        proc_macro2::TokenTree::Group(g) => names_a_coordinate(&g.stream(), coords),
+        _ => false,
+    })
 }
